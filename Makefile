@@ -1,0 +1,97 @@
+# shellbench — build, test, run, bench, report.
+# `make run`  : installs missing Debian packages, builds, runs the default benchmark.
+# `make test` : installs missing Debian packages, builds, runs every test.
+
+CC      ?= cc
+CXX     ?= c++
+BUILD   ?= build
+OPT     ?= -O2
+SAN     ?=
+PKGS    := hdf5-serial jansson gsl
+PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+CFLAGS  ?= $(OPT) -g
+CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
+           -Icore -I/usr/include/suitesparse $(PKGCF) $(SAN) -MMD -MP
+CXXFLAGS ?= $(OPT) -g
+CXXFLAGS += -std=c++14 -Wall -Wextra -Icore $(SAN) -MMD -MP
+LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -lstdc++ -lm
+LDFLAGS += $(SAN)
+
+DEPS_STAMP := $(BUILD)/.deps-ok
+
+LIB_C   := $(sort $(wildcard core/*.c core/shell/*.c core/solvers/*.c \
+             methods/*/*.c tests/fixture/*.c))
+LIB_C   := $(filter-out core/main.c,$(LIB_C))
+LIB_CXX := $(sort $(wildcard methods/*/*.cpp))
+LIB_OBJ := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
+LIB     := $(BUILD)/libshellbench.a
+BIN     := $(BUILD)/shellbench
+
+TEST_SRC := $(sort $(wildcard tests/test_*.c))
+TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
+BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
+BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
+
+.PHONY: all deps test run bench report check-asan clean
+.DEFAULT_GOAL := all
+
+all: $(BIN)
+
+deps: $(DEPS_STAMP)
+$(DEPS_STAMP): scripts/ensure_deps.sh
+	@bash scripts/ensure_deps.sh
+	@mkdir -p $(BUILD) && touch $@
+
+# every object waits for the dependency check (order-only)
+$(BUILD)/%.o: %.c | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+$(BUILD)/%.o: %.cpp | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS) -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BIN): $(BUILD)/core/main.o $(LIB)
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/tests/sb_test.o: tests/sb_test.c | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -Itests -c $< -o $@
+$(BUILD)/tests/%: tests/%.c $(BUILD)/tests/sb_test.o $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(BUILD)/tests/sb_test.o $(LIB) $(LDFLAGS) $(LDLIBS)
+
+$(BUILD)/bench/%: bench/%.c $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -o $@ $< $(LIB) $(LDFLAGS) $(LDLIBS)
+
+# Each test binary writes its own result file; the summary sums them.
+$(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN)
+	@SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) OPENBLAS_NUM_THREADS=1 \
+	  ./$< > $@.log 2>&1; echo $$? > $@.rc; tail -n 1 $@.log > $@; \
+	  if [ "$$(cat $@.rc)" != 0 ]; then echo "--- $< failed:"; grep -E 'FAIL|not ok|rror|Sanitizer' $@.log | head -n 30; fi
+
+test: $(BIN) $(TEST_BIN)
+	@rm -f $(BUILD)/tests/*.result
+	@$(MAKE) --no-print-directory -k $(TEST_OK) || true
+	@bash scripts/test_summary.sh $(BUILD)/tests
+
+run: $(BIN)
+	OPENBLAS_NUM_THREADS=1 bash bench/default.sh $(BIN)
+
+bench: $(BIN) $(BENCH_BIN)
+	OPENBLAS_NUM_THREADS=1 bash bench/run_all.sh $(BUILD)
+
+check-asan:
+	$(MAKE) --no-print-directory BUILD=build-asan OPT=-O1 \
+	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
+
+clean:
+	rm -rf build build-asan
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,49 @@
+/* sb_common.h — status codes, outcome reasons and small shared helpers.
+ *
+ * Status convention (CHOLMOD style): 0 = ok, negative = error (the run could
+ * not be carried out), positive = an outcome or warning of an algorithm that
+ * is recorded as a result of the run, never a crash. */
+#ifndef SB_COMMON_H
+#define SB_COMMON_H
+
+#include <stddef.h>
+
+enum {
+    SB_OK = 0,
+    /* errors (< 0) */
+    SB_ERR_INPUT = -1,       /* malformed or out-of-range input (scene, option) */
+    SB_ERR_NOMEM = -2,
+    SB_ERR_INTERNAL = -3,
+    SB_ERR_UNSUPPORTED = -4, /* impossible combination (solver needs an op the method lacks) */
+    SB_ERR_IO = -5,
+    /* outcomes / warnings (> 0) */
+    SB_NOT_POSDEF = 1,       /* factorization found a non-positive-definite matrix */
+    SB_NONFINITE = 2,        /* NaN or Inf met in an energy, gradient or Hessian */
+    SB_DIVERGED = 3
+};
+
+/* Why an outer solve stopped.  Recorded per step; names in sb_reason_name(). */
+typedef enum {
+    SB_REASON_NONE = 0,
+    SB_REASON_GRAD_TOL,      /* ||g|| < gtol                                   (RMTR paper Eq. 7.1) */
+    SB_REASON_F_TOL,         /* |f_{i-1}-f_i| < ftol while Delta > delta_big   (Eq. 7.1) */
+    SB_REASON_X_TOL,         /* ||x_{i-1}-x_i|| < xtol while Delta > delta_big (Eq. 7.1) */
+    SB_REASON_SINGLE_STEP,   /* linearized solver: one Newton step by design */
+    SB_REASON_MAX_ITER,      /* iteration cap reached */
+    SB_REASON_NONFINITE,     /* NaN/Inf in f, g or H */
+    SB_REASON_DIVERGED,      /* f or ||x|| blew past the divergence limit */
+    SB_REASON_NOT_POSDEF,    /* a solver that needs a PD Hessian met an indefinite one */
+    SB_REASON_LINESEARCH,    /* line search could not find sufficient decrease */
+    SB_REASON_RADIUS,        /* trust-region radius collapsed below delta_min */
+    SB_REASON_LINEAR_SOLVER, /* linear solver failed beyond recovery */
+    SB_REASON_COUNT
+} sb_reason;
+
+const char *sb_reason_name(sb_reason r);
+/* 1 when the reason counts as convergence (grad/f/x tolerances, single step). */
+int sb_reason_converged(sb_reason r);
+
+#define SB_MAX_LEVELS 8
+#define SB_NAME_LEN 64
+
+#endif

@@ -1,0 +1,27 @@
+/* sb_linsolve.h — sparse Cholesky through CHOLMOD: analyze once per pattern,
+ * numeric factorization (optionally shifted, A + beta I) per iteration, solves
+ * into preallocated workspace.  Counting (events, flops, nnz(L)) is done here. */
+#ifndef SB_LINSOLVE_H
+#define SB_LINSOLVE_H
+
+#include "sb_sparse.h"
+#include "sb_stats.h"
+
+struct sb_context;
+typedef struct sb_linsolve sb_linsolve;
+
+/* Creates the solver for matrices on `pat` and performs the symbolic analysis. */
+int  sb_linsolve_create(struct sb_context *ctx, int level, const sb_pattern *pat, sb_linsolve **out);
+void sb_linsolve_free(sb_linsolve *ls);
+/* The matrix whose values the caller assembles; it aliases CHOLMOD's storage. */
+sb_matrix *sb_linsolve_matrix(sb_linsolve *ls);
+/* Factor (A + shift I).  Returns SB_OK, SB_NOT_POSDEF (recorded, not an
+ * error: the factor is unusable), or a negative error. */
+int  sb_linsolve_factor(sb_linsolve *ls, double shift);
+/* x = (A + shift I)^{-1} b with the last successful factor.  x may equal b. */
+int  sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x);
+/* figures of the last analysis/factorization */
+double sb_linsolve_flops(const sb_linsolve *ls);
+double sb_linsolve_nnz_l(const sb_linsolve *ls);
+
+#endif

@@ -1,0 +1,95 @@
+/* sb_method.h — a discretization of a scene, as a constant table of function
+ * pointers plus a private state blob (GSL "type" style).
+ *
+ * DOFs.  A method works on a full DOF vector x in R^n per level (positions,
+ * or Hermite generalized coordinates).  Dirichlet-type constraints (fixed,
+ * clamped, symmetry, moving) are reported as a constant set of constrained DOF
+ * indices with time-dependent values; the core eliminates them (gradient
+ * entries zeroed, Hessian rows/columns replaced by identity).  Penalty-type
+ * boundary conditions (RMTR paper Eq. 3.6) are part of the method's energy.
+ *
+ * The energy a method returns is E_elastic + E_external + E_penalty at the
+ * step set by set_step(); the core adds inertia and damping (DESIGN.md). */
+#ifndef SB_METHOD_H
+#define SB_METHOD_H
+
+#include "sb_scene.h"
+#include "sb_params.h"
+#include "sb_sparse.h"
+
+struct sb_context;
+
+enum {
+    SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
+    SB_METHOD_POTENTIAL = 1u << 1,    /* energy is a true potential (all solvers apply) */
+    SB_METHOD_TEST_FIXTURE = 1u << 2  /* test fixture, not a real discretization */
+};
+
+typedef struct sb_method_config {
+    int res;                    /* finest resolution (elements per side); 0 = method default */
+    int levels;                 /* levels in the hierarchy (>= 1) */
+    const sb_paramset *params;  /* resolved "method.*" parameters */
+    struct sb_context *ctx;     /* for error messages */
+} sb_method_config;
+
+/* What the current step prescribes.  Ramps are computed once by the core. */
+typedef struct sb_step_info {
+    int step;                   /* 1-based */
+    int n_steps;
+    double t;                   /* time at the end of the step (quasi-static: step index) */
+    double dt;                  /* 0 for quasi-static */
+    double load_factor[SB_SCENE_MAX_LOADS];   /* per scene load */
+    double motion_factor[SB_SCENE_MAX_BCS];   /* per scene bc (moving) */
+} sb_step_info;
+
+typedef struct sb_dirichlet {
+    int n;                      /* number of constrained dofs (constant over a run) */
+    const int *dofs;            /* sorted, unique */
+    const double *values;       /* prescribed values at the current step */
+} sb_dirichlet;
+
+typedef struct sb_method_type {
+    const char *name;
+    const char *description;
+    size_t state_size;
+    const sb_param_def *params;     /* "method.*" parameters, may be NULL */
+    unsigned flags;
+
+    int  (*create)(void *state, const sb_scene *scene, const sb_method_config *cfg);
+    void (*destroy)(void *state);
+
+    int  (*n_levels)(const void *state);
+    int  (*n_dofs)(const void *state, int level);           /* level 0 = coarsest */
+    /* Add the element DOF lists of `level` to the builder, elements in the
+     * order energy()/mass() will add their blocks. */
+    int  (*pattern)(const void *state, int level, sb_pattern_builder *pb);
+    /* Reference configuration (also the default initial state). */
+    int  (*initial)(const void *state, int level, double *x);
+    /* Prepare loads and boundary data for a step (all levels). */
+    int  (*set_step)(void *state, const sb_step_info *si);
+    /* Constrained dofs and their values at the current step; NULL if none. */
+    const sb_dirichlet *(*dirichlet)(const void *state, int level);
+    /* f = E(x); g += dE/dx and H += d2E/dx2 when non-NULL (the core zeroes
+     * them first).  Returns SB_OK or SB_NONFINITE (recorded outcome). */
+    int  (*energy)(void *state, int level, const double *x, double *f, double *g, sb_matrix *H);
+    /* Add the mass matrix into M (dynamic scenes). */
+    int  (*mass)(void *state, int level, sb_matrix *M);
+    /* Positions at grid parameters st[2*np] into pos[3*np]. */
+    int  (*eval_points)(const void *state, int level, const double *x, int np,
+                        const double *st, double *pos);
+
+    /* hierarchy (flags & SB_METHOD_HIERARCHY); coarse level lc -> lc+1 */
+    int  (*prolong)(void *state, int lc, const double *xc, double *xf);      /* I */
+    int  (*restrict_adj)(void *state, int lc, const double *gf, double *gc);  /* R = I^T */
+    int  (*project)(void *state, int lc, const double *xf, double *xc);      /* P, P I = id */
+
+    /* optional: one line describing the discretization ("8x8 Hermite patches") */
+    void (*describe)(const void *state, char *buf, size_t len);
+} sb_method_type;
+
+/* registry (core/sb_registry.c) */
+const sb_method_type *sb_method_find(const char *name);
+int sb_method_count(void);
+const sb_method_type *sb_method_at(int i);
+
+#endif

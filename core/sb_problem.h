@@ -1,0 +1,69 @@
+/* sb_problem.h — the per-step minimization problem every solver sees.
+ *
+ *   Phi(x) = 1/(2 dt^2) (x - xhat)^T M (x - xhat)                (inertia, dynamic)
+ *          + 1/(2 dt)   (x - x_n)^T (alpha M + beta K_n) (x - x_n) (Rayleigh damping, dynamic)
+ *          + E(x)                                                 (method: elastic + external + penalty)
+ *   xhat = x_n + dt v_n,  K_n = Hessian of E at x_n (lagged),  DESIGN.md.
+ *
+ * Quasi-static scenes drop the first two terms.  Constrained dofs are
+ * eliminated: they hold their prescribed values, their gradient entries are
+ * zero and their Hessian rows/columns are identity.
+ *
+ * Every evaluation, factorization, solve and transfer made through this
+ * interface is counted in the context's statistics (events per level, work
+ * units per RMTR paper Eq. 7.3). */
+#ifndef SB_PROBLEM_H
+#define SB_PROBLEM_H
+
+#include "sb_method.h"
+#include "sb_linsolve.h"
+
+struct sb_context;
+typedef struct sb_problem sb_problem;
+
+int  sb_problem_create(struct sb_context *ctx, const sb_method_type *mt, void *method_state,
+                       const sb_scene *scene, sb_problem **out);
+void sb_problem_free(sb_problem *p);
+
+int  sb_problem_levels(const sb_problem *p);
+int  sb_problem_n(const sb_problem *p, int level);
+int  sb_problem_finest(const sb_problem *p);
+int  sb_problem_has_hierarchy(const sb_problem *p);
+struct sb_context *sb_problem_context(sb_problem *p);
+const sb_method_type *sb_problem_method_type(const sb_problem *p);
+void *sb_problem_method_state(sb_problem *p);
+
+/* Start a step: passes step data to the method, builds xhat and the lagged
+ * damping matrix on every level, and writes into x0 (finest level) the initial
+ * iterate: x_n with constrained dofs at their new prescribed values. */
+int  sb_problem_begin_step(sb_problem *p, const sb_step_info *si,
+                           const double *x_n, const double *v_n, double *x0);
+
+/* f = Phi(x) at `level`; g and H optional (H: the level's Hessian matrix,
+ * sb_problem_hessian()).  Returns SB_OK or SB_NONFINITE. */
+int  sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H);
+sb_matrix *sb_problem_hessian(sb_problem *p, int level);
+/* Factor the level's Hessian (as last assembled) + shift I.  SB_NOT_POSDEF is an outcome. */
+int  sb_problem_factor(sb_problem *p, int level, double shift);
+int  sb_problem_solve(sb_problem *p, int level, const double *b, double *x);
+/* y = H x with the level's Hessian as last assembled. */
+void sb_problem_hess_mult(sb_problem *p, int level, const double *x, double *y);
+
+/* Zero the constrained entries of a correction / gradient-like vector. */
+void sb_problem_constrain(const sb_problem *p, int level, double *v);
+/* Overwrite constrained entries of an iterate with prescribed values. */
+void sb_problem_impose(const sb_problem *p, int level, double *x);
+/* Euclidean norm over free dofs. */
+double sb_problem_norm(const sb_problem *p, int level, const double *v);
+
+/* Transfers (counted); lc is the coarse level. */
+int  sb_problem_prolong(sb_problem *p, int lc, const double *xc, double *xf);
+int  sb_problem_restrict(sb_problem *p, int lc, const double *gf, double *gc);
+int  sb_problem_project(sb_problem *p, int lc, const double *xf, double *xc);
+
+/* Account one trust-region subproblem (QP) solve on a level: QP work units. */
+void sb_problem_count_qp(sb_problem *p, int level, double seconds);
+/* Account CG iterations on a level. */
+void sb_problem_count_cg(sb_problem *p, int level, int iters);
+
+#endif

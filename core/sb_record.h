@@ -1,0 +1,86 @@
+/* sb_record.h — what one run produced, written to one HDF5 file (plus an
+ * XDMF sidecar for the final surface), and read back by the report. */
+#ifndef SB_RECORD_H
+#define SB_RECORD_H
+
+#include "sb_scene.h"
+#include "sb_params.h"
+#include "sb_stats.h"
+#include <stdio.h>
+
+typedef struct sb_run {
+    /* identity */
+    char scene_name[SB_NAME_LEN];
+    char scene_path[512];
+    const char *scene_json;    /* verbatim scene file text */
+    char method[SB_NAME_LEN];
+    char solver[SB_NAME_LEN];
+    char method_info[256];     /* method describe() */
+    int res, levels;
+    long n_dofs;               /* finest level */
+    const sb_paramset *params;
+    char build_id[64];         /* git describe */
+    char cpu_model[128];
+    int n_cores;
+    char started[32];          /* ISO 8601 UTC */
+    /* outcome */
+    int status;                /* 0 converged, 1 not converged, see exit codes */
+    int reason;                /* sb_reason of the last step, or the failing step */
+    int steps_planned, steps_done;
+    const sb_stats *stats;
+    /* probes: trajectory[(step)*(n_probes*3) + p*3 + c], step 0 = reference */
+    int n_probes;
+    char (*probe_names)[SB_NAME_LEN];
+    double *probe_traj;        /* (steps_done+1) * n_probes * 3 */
+    double *probe_expected;    /* n_probes * 3 (NaN where none) */
+    double *probe_rel_error;   /* n_probes (NaN where none) */
+    /* final state */
+    int n_x;
+    const double *x_final;
+    /* sample grid: material points (s,t), reference and final positions */
+    int n_samples;
+    double *sample_st;         /* 2 * n_samples */
+    double *sample_ref;        /* 3 * n_samples */
+    double *sample_pos;        /* 3 * n_samples */
+    /* surface for output: triangles over the sample grid */
+    int n_tris;
+    int *tris;                 /* 3 * n_tris, indices into samples */
+    /* error against the scene's reference */
+    int has_error;
+    double error_rms, error_max;   /* relative to the domain diameter (field) */
+    double error_probe;            /* max probe relative error (probes) */
+    char error_kind[16];           /* "none", "probes", "field" */
+} sb_run;
+
+/* Write atomically: to PATH.tmp.<pid>, then rename. Also writes PATH minus
+ * ".h5" plus ".xdmf".  Returns SB_OK or SB_ERR_IO with a message in err. */
+int sb_record_write(const sb_run *run, const char *path, char *err, size_t errlen);
+
+/* A flat summary read back from a record (for reports and comparisons). */
+typedef struct sb_record_summary {
+    char scene[SB_NAME_LEN], method[SB_NAME_LEN], solver[SB_NAME_LEN];
+    long dofs;
+    int levels, steps, iterations, status, reason;
+    double work_assembly, work_qp, seconds;
+    double seconds_event[SB_EV_COUNT];
+    int has_error;
+    double error_rms, error_max, error_probe;
+    char error_kind[16];
+    /* convergence history of all iterations (for plots) */
+    int n_hist;
+    double *hist_gnorm;        /* owned */
+    int *hist_step;            /* owned */
+} sb_record_summary;
+
+int  sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen);
+void sb_record_summary_free(sb_record_summary *s);
+/* Read the sampled final positions (for reference-run errors). */
+int  sb_record_read_samples(const char *path, int *n, double **st, double **pos,
+                            char *err, size_t errlen);
+
+/* Report: Markdown (format "md") or CSV table of the files, and, when
+ * png_path is non-NULL, a gnuplot PNG of ||g|| against iteration. */
+int sb_report(int n_files, char **files, const char *format, FILE *out,
+              const char *png_path, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,204 @@
+/* sb_scene.h — what is simulated: plain data read from a JSON scene file.
+ * Every method receives an identical sb_scene.  See README "Scene files".
+ *
+ * Coordinates.  A scene lives on a domain in material coordinates
+ * xi = (xi1, xi2) in metres.  Structured methods use the *grid parameter*
+ * (s, t) in [0,1]^2, mapped onto the domain by sb_domain_map() (rectangle and
+ * L-shape: the bounding box; annulus sector: s radial, t angular).  The
+ * reference surface is X(xi) = chart(xi), see sb_geometry.h. */
+#ifndef SB_SCENE_H
+#define SB_SCENE_H
+
+#include "sb_common.h"
+
+#define SB_SCENE_MAX_LOADS 16
+#define SB_SCENE_MAX_BCS 32
+#define SB_SCENE_MAX_PROBES 32
+#define SB_SCENE_MAX_PARTS 8
+
+/* ---- domain ---------------------------------------------------------- */
+typedef enum { SB_DOMAIN_RECTANGLE, SB_DOMAIN_L_SHAPE, SB_DOMAIN_ANNULUS_SECTOR } sb_domain_kind;
+
+/* Corners of the bounding box, counter-clockwise from (x0,y0). */
+enum { SB_CORNER_00 = 0, SB_CORNER_10 = 1, SB_CORNER_11 = 2, SB_CORNER_01 = 3 };
+
+typedef struct sb_domain {
+    sb_domain_kind kind;
+    double origin[2];      /* rectangle, L-shape: lower-left corner of the bounding box */
+    double size[2];        /* rectangle, L-shape: width (xi1) and height (xi2) */
+    double notch[2];       /* L-shape: size of the removed rectangle */
+    int notch_corner;      /* L-shape: SB_CORNER_* where the notch is cut */
+    double center[2];      /* annulus sector: centre in xi */
+    double r_in, r_out;    /* annulus sector radii, 0 <= r_in < r_out */
+    double theta[2];       /* annulus sector angle range (radians, theta[0] < theta[1]) */
+} sb_domain;
+
+/* ---- reference geometry chart ----------------------------------------- */
+typedef enum { SB_CHART_PLANE, SB_CHART_CYLINDER, SB_CHART_SPHERE } sb_chart_kind;
+
+typedef struct sb_chart {
+    sb_chart_kind kind;
+    /* The chart maps the domain's bounding box [x0,x1]x[y0,y1] linearly onto
+     * its parameter ranges (see sb_geometry.c):
+     *   plane:    X = (xi1, xi2, 0)
+     *   cylinder: axis along e_y:  phi = angle[0] + u*(angle[1]-angle[0]),
+     *             X = (R sin phi, v*length, R cos phi)      (u,v in [0,1])
+     *   sphere:   theta = polar[0]+v*(..), phi = azimuth[0]+u*(..),
+     *             X = R (sin th cos ph, sin th sin ph, cos th) */
+    double radius;
+    double angle[2];       /* cylinder angle range (rad) */
+    double length;         /* cylinder length along its axis */
+    double polar[2];       /* sphere polar range (rad) */
+    double azimuth[2];     /* sphere azimuth range (rad) */
+} sb_chart;
+
+/* ---- material --------------------------------------------------------- */
+typedef enum { SB_MAT_STVK, SB_MAT_DENIM } sb_material_kind;
+
+#define SB_DENIM_MAX_TERMS 5
+typedef struct sb_denim_params {
+    /* RMTR paper Eq. (3.3)-(3.4), Table 1.  k in Pa (Table 1 gives MPa; the
+     * parser converts), mu/alpha dimensionless.  mu[j][0] is NOT in Table 1:
+     * it is taken as 1 - sum_{i>=2} mu[j][i] so that phi_j'(0) = 1 (assumption,
+     * see README).  A scene may override any entry. */
+    double k[4];
+    int d[4];
+    double mu[4][SB_DENIM_MAX_TERMS];
+    double alpha[4][SB_DENIM_MAX_TERMS];
+} sb_denim_params;
+
+typedef struct sb_material_spec {
+    sb_material_kind kind;
+    double young, poisson;      /* stvk */
+    sb_denim_params denim;      /* denim */
+    double thickness;           /* m */
+    double density;             /* areal density, kg/m^2 */
+    double warp_angle;          /* rad, warp direction measured from the first
+                                   covariant base vector a_1 in the tangent plane */
+} sb_material_spec;
+
+/* ---- boundary parts --------------------------------------------------- */
+/* A part is a named edge of the domain or a single material point.  Edges are
+ * segments in the grid parameter (s,t): s=0 "left" ("inner" for annulus),
+ * s=1 "right" ("outer"), t=0 "bottom" ("start"), t=1 "top" ("end"); the
+ * L-shape adds "notch_s" (the notch edge at constant s) and "notch_t" (at
+ * constant t).  On an L-shape the outer edges are clipped by the notch. */
+typedef enum { SB_PART_EDGE, SB_PART_POINT } sb_part_kind;
+
+typedef struct sb_part {
+    sb_part_kind kind;
+    char name[SB_NAME_LEN];
+    double st0[2], st1[2];  /* edge: segment in (s,t), axis-aligned, st0 < st1 componentwise */
+    double xi[2];           /* point: material coordinates */
+    double st[2];           /* point: grid parameter of xi */
+} sb_part;
+
+/* ---- loads ------------------------------------------------------------ */
+typedef enum {
+    SB_LOAD_GRAVITY,     /* vec = acceleration (m/s^2); force density = density * vec */
+    SB_LOAD_PRESSURE,    /* value = pressure (Pa) along the surface normal a_3 */
+    SB_LOAD_LINE,        /* vec = force per unit reference length (N/m) on each part */
+    SB_LOAD_POINT,       /* vec = force (N) at each point part */
+    SB_LOAD_END_MOMENT   /* value = moment per unit reference length (N m / m) on each
+                            edge part, about axis `vec` (unit), conservative: E = -m * theta */
+} sb_load_kind;
+
+typedef struct sb_load {
+    sb_load_kind kind;
+    double vec[3];
+    double value;
+    int follower;        /* pressure: 1 = follows the deformed normal, 0 = dead load on
+                            the reference normal */
+    int n_parts;
+    sb_part parts[SB_SCENE_MAX_PARTS];
+    int ramp_steps;      /* factor = min(1, step/ramp_steps); 0 = constant (full from step 1) */
+} sb_load;
+
+/* ---- boundary conditions ---------------------------------------------- */
+typedef enum {
+    SB_BC_FIXED,      /* position held at the reference (components mask) */
+    SB_BC_CLAMPED,    /* position and tangent plane held */
+    SB_BC_SYMMETRY,   /* symmetry plane with normal e_axis through the part:
+                         normal displacement and rotation about the in-plane edge
+                         direction vanish */
+    SB_BC_MOVING,     /* prescribed rigid motion: x = c + R(f*angle)(X - c) + f*translation,
+                         f = min(1, step/ramp_steps) (dynamic: t/(ramp_steps*dt)) */
+    SB_BC_FREE
+} sb_bc_kind;
+
+typedef struct sb_bc {
+    sb_bc_kind kind;
+    int n_parts;
+    sb_part parts[SB_SCENE_MAX_PARTS];
+    unsigned components;     /* fixed/moving: bit 0 = x, 1 = y, 2 = z (default 7) */
+    int axis;                /* symmetry: 0, 1, 2 */
+    double translation[3];   /* moving */
+    double rot_axis[3];      /* moving: unit axis (zero vector = no rotation) */
+    double rot_center[3];
+    double rot_angle;        /* rad, total */
+    int ramp_steps;          /* moving: 0 = all steps */
+    int clamp_tangent;       /* moving: also prescribe the (rotated) tangents */
+} sb_bc;
+
+/* ---- time ------------------------------------------------------------- */
+typedef enum { SB_TIME_QUASI_STATIC, SB_TIME_DYNAMIC } sb_time_mode;
+
+typedef struct sb_time_spec {
+    sb_time_mode mode;
+    int steps;               /* load steps (quasi-static) or time steps (dynamic) */
+    double dt;               /* dynamic only */
+    double rayleigh_alpha;   /* dynamic: D = alpha M + beta K */
+    double rayleigh_beta;
+} sb_time_spec;
+
+/* ---- probes and reference --------------------------------------------- */
+typedef struct sb_probe {
+    char name[SB_NAME_LEN];
+    double xi[2];            /* material point */
+    double st[2];            /* its grid parameter */
+    int has_expected;
+    int expected_component;  /* 0,1,2 = x,y,z displacement; 3 = norm of displacement;
+                                -1 = full displacement vector */
+    double expected[3];      /* expected displacement (component in [0] unless -1) */
+    double tol;              /* relative tolerance for "expected" (reported, asserted by tests) */
+} sb_probe;
+
+typedef enum { SB_REF_NONE, SB_REF_PROBES, SB_REF_FILE } sb_reference_kind;
+
+typedef struct sb_reference {
+    sb_reference_kind kind;  /* PROBES: error = max probe rel_error;
+                                FILE: error = RMS/max of |x - x_ref| / diameter on the sample grid */
+    char file[512];          /* FILE: HDF5 run record (resolved relative to the scene file) */
+    char note[256];          /* where the reference value comes from */
+} sb_reference;
+
+typedef struct sb_scene {
+    char name[SB_NAME_LEN];
+    char path[512];          /* file it was read from */
+    char *json_text;         /* the file's text verbatim (recorded); owned */
+    char description[512];
+    sb_domain domain;
+    sb_chart chart;
+    sb_material_spec material;
+    int n_loads;  sb_load loads[SB_SCENE_MAX_LOADS];
+    int n_bcs;    sb_bc bcs[SB_SCENE_MAX_BCS];
+    sb_time_spec time;
+    int n_probes; sb_probe probes[SB_SCENE_MAX_PROBES];
+    sb_reference reference;
+    int default_res;         /* suggested resolution (elements per side) when --res is absent */
+} sb_scene;
+
+/* Parse and validate.  On error returns SB_ERR_INPUT and writes
+ * "FILE:LINE:COLUMN: at /json/path: what is wrong" into err. */
+int sb_scene_load(const char *path, sb_scene *scene, char *err, size_t errlen);
+int sb_scene_parse_string(const char *text, const char *path_for_messages,
+                          sb_scene *scene, char *err, size_t errlen);
+void sb_scene_free(sb_scene *scene);
+/* Resolve a scene name ("trampoline") or path to a file path. */
+int sb_scene_resolve(const char *name_or_path, char *path, size_t len);
+
+/* Ramp factors at step n (1-based) of the scene's time spec. */
+double sb_load_factor(const sb_scene *s, const sb_load *ld, int step);
+double sb_bc_motion_factor(const sb_scene *s, const sb_bc *bc, int step);
+
+#endif

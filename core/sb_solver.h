@@ -1,0 +1,59 @@
+/* sb_solver.h — outer nonlinear solvers (GSL multimin style):
+ * alloc / set / iterate / free behind a constant type table, with the loop,
+ * convergence test (RMTR paper Eq. 7.1) and recording in one core file
+ * (sb_solve.c). */
+#ifndef SB_SOLVER_H
+#define SB_SOLVER_H
+
+#include "sb_problem.h"
+
+enum {
+    SB_SOLVER_NEEDS_HIERARCHY = 1u << 0, /* needs method prolong/restrict/project */
+    SB_SOLVER_SINGLE_STEP = 1u << 1,     /* one iteration per step by design (linearized) */
+    SB_SOLVER_TRUST_REGION = 1u << 2     /* reports a radius; (7.1) f/x tests gated by Delta */
+};
+
+/* What one iteration reports to the core loop. */
+typedef struct sb_iterate_info {
+    double f;            /* objective at the (possibly unchanged) iterate */
+    double gnorm;        /* ||g|| over free dofs at the iterate */
+    double delta;        /* trust-region radius after the update (TR solvers) */
+    double rho;          /* TR ratio, or line-search step length */
+    double step_norm;    /* ||x_new - x_old|| (0 when rejected) */
+    double df;           /* f_old - f_new (0 when rejected) */
+    double shift;        /* diagonal shift that made the factorization succeed */
+    int accepted;
+    int linear_iters;
+    int level;           /* level of the reported quantities */
+    sb_reason fail;      /* set by the solver on a failure it cannot recover from */
+} sb_iterate_info;
+
+typedef struct sb_solver_type {
+    const char *name;
+    const char *description;
+    size_t state_size;
+    const sb_param_def *params;          /* "solver.*" parameters, may be NULL */
+    unsigned flags;
+    /* allocate workspaces for `p` (sizes are fixed for the run) */
+    int  (*alloc)(void *state, sb_problem *p, const sb_paramset *ps);
+    /* start a solve from x (finest level); fills info with f, ||g|| at x */
+    int  (*set)(void *state, sb_problem *p, const double *x, sb_iterate_info *info);
+    /* one outer iteration; updates x in place */
+    int  (*iterate)(void *state, sb_problem *p, double *x, sb_iterate_info *info);
+    void (*free)(void *state);
+} sb_solver_type;
+
+const sb_solver_type *sb_solver_find(const char *name);
+int sb_solver_count(void);
+const sb_solver_type *sb_solver_at(int i);
+
+/* Parameters of the core loop (prefix "run."), RMTR paper Eq. (7.1). */
+extern const sb_param_def sb_solve_params[];
+
+/* Solve the current step's problem from x (in/out).  Runs the loop, pushes
+ * per-iteration records, returns the reason the loop stopped. */
+sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p,
+                        const sb_paramset *ps, int step, double *x, int *iterations,
+                        double *f_out, double *gnorm_out);
+
+#endif

@@ -1,0 +1,97 @@
+/* sb_stats.h — statistics of one run: events per level, work units, CHOLMOD
+ * figures and per-iteration / per-step history.
+ *
+ * Counting is done only by the core wrappers (sb_problem_*, sb_linsolve_*),
+ * never inside a method or solver plugin, so every method and solver is
+ * measured the same way (PETSc-style events counted at one call site). */
+#ifndef SB_STATS_H
+#define SB_STATS_H
+
+#include "sb_common.h"
+
+typedef enum {
+    SB_EV_ENERGY = 0,   /* energy-only evaluation                     */
+    SB_EV_GRADIENT,     /* energy + gradient                           */
+    SB_EV_HESSIAN,      /* energy + gradient + Hessian (an "assembly") */
+    SB_EV_ANALYZE,      /* symbolic factorization (once per pattern)   */
+    SB_EV_FACTORIZE,    /* numeric factorization                       */
+    SB_EV_SOLVE,        /* triangular solves                           */
+    SB_EV_CG_ITER,      /* one Steihaug–Toint CG iteration             */
+    SB_EV_QP,           /* one trust-region subproblem solve           */
+    SB_EV_TRANSFER,     /* prolongation / restriction / projection     */
+    SB_EV_ADAPT,
+    SB_EV_COLLIDE,
+    SB_EV_RECORD,       /* recording (harness overhead)                */
+    SB_EV_COUNT
+} sb_event;
+
+const char *sb_event_name(sb_event e);
+
+typedef struct sb_event_stat {
+    long count;
+    double seconds;
+} sb_event_stat;
+
+/* One outer iteration (TR iteration, V-cycle, Newton iteration). */
+typedef struct sb_iter_record {
+    int step;            /* time / load step */
+    int iter;            /* iteration within the step */
+    int level;           /* level the record refers to (finest for outer iterations) */
+    double f;            /* objective after the iteration */
+    double gnorm;        /* ||g|| after the iteration (free dofs) */
+    double delta;        /* trust-region radius (0 when not applicable) */
+    double rho;          /* TR ratio, or line-search step length */
+    double step_norm;    /* ||x_{i} - x_{i-1}|| */
+    double shift;        /* Hessian diagonal shift used (lsnewton) */
+    int accepted;
+    int linear_iters;    /* CG iterations (or 1 for a direct solve) */
+    int reason;          /* sb_reason when the step ended here, else 0 */
+} sb_iter_record;
+
+/* One time / load step. */
+typedef struct sb_step_record {
+    int step;
+    double t;
+    int iterations;
+    int reason;          /* sb_reason */
+    double f;
+    double gnorm;
+    double seconds;
+    double work_assembly;/* work units spent in this step */
+    double work_qp;
+} sb_step_record;
+
+typedef struct sb_stats {
+    int n_levels;
+    long n_dofs[SB_MAX_LEVELS];
+    sb_event_stat ev[SB_MAX_LEVELS][SB_EV_COUNT];
+    /* work units, RMTR paper Eq. (7.3): a call on level l costs n^l / n^L */
+    double work_assembly;
+    double work_qp;
+    /* CHOLMOD per level: flops of one numeric factorization, nnz(L) */
+    double chol_flops[SB_MAX_LEVELS];
+    double chol_nnz_l[SB_MAX_LEVELS];
+    long matrix_nnz[SB_MAX_LEVELS];   /* stored entries of the upper triangle */
+    long not_posdef;                  /* factorizations that met an indefinite matrix */
+    /* history (growable; amortized allocation, never per inner iteration) */
+    sb_iter_record *iters; size_t n_iters, cap_iters;
+    sb_step_record *steps; size_t n_steps, cap_steps;
+    double seconds_total;
+} sb_stats;
+
+void sb_stats_init(sb_stats *s);
+void sb_stats_free(sb_stats *s);
+void sb_stats_reset(sb_stats *s);     /* keep dof counts, clear the rest */
+int  sb_stats_push_iter(sb_stats *s, const sb_iter_record *r);
+int  sb_stats_push_step(sb_stats *s, const sb_step_record *r);
+/* Sum over levels of one event. */
+sb_event_stat sb_stats_event_total(const sb_stats *s, sb_event e);
+
+/* Monotonic clock in seconds (CLOCK_MONOTONIC). */
+double sb_now(void);
+
+/* Timer helper used by the core wrappers:
+ *   double t0 = sb_now(); ...; sb_stats_event(s, level, SB_EV_X, t0); */
+void sb_stats_event(sb_stats *s, int level, sb_event e, double t0);
+
+#endif

@@ -1,0 +1,69 @@
+/* sb_shell.h — Kirchhoff–Love thin-shell kernel shared by every method that
+ * writes the midsurface as x(xi) = sum_I N_I(xi) q_I with scalar basis
+ * functions N_I and control values q_I in R^3 (subdivision, Hermite).
+ *
+ * Strains: membrane A = (a - abar)/2, bending B = (b - bbar)/2 in covariant
+ * components, transformed to the local orthonormal warp/weft frame; the
+ * through-thickness strain E(xi3) = A - 2 xi3 B (BHEM paper Eq. 5-6, C term
+ * dropped), integrated by Gauss points through the thickness. */
+#ifndef SB_SHELL_H
+#define SB_SHELL_H
+
+#include "sb_material.h"
+
+#define SB_SHELL_MAX_BASIS 64    /* >= 2n+8 for valence n up to 28 */
+
+typedef enum { SB_HESS_EXACT = 0, SB_HESS_PSEUDO = 1, SB_HESS_PSD = 2 } sb_hess_kind;
+extern const char *const sb_hess_kind_names[];   /* "exact", "pseudo", "psd", NULL */
+
+/* Basis at one quadrature point: values and parametric derivatives, each k long. */
+typedef struct sb_shell_basis {
+    int k;
+    const double *N, *N1, *N2, *N11, *N12, *N22;
+} sb_shell_basis;
+
+/* Reference quantities at one quadrature point (precomputed once). */
+typedef struct sb_shell_ref {
+    double abar[3];     /* abar_11, abar_22, abar_12 (covariant metric) */
+    double bbar[3];     /* bbar_11, bbar_22, bbar_12 (second fundamental form) */
+    double T[9];        /* e_local = T * (E_11, E_22, E_12)_covariant, row-major 3x3 */
+    double normal[3];   /* reference unit normal */
+    double dA;          /* quadrature weight * sqrt(det abar) */
+} sb_shell_ref;
+
+/* From the reference surface derivatives X_,1 X_,2 X_,11 X_,12 X_,22. */
+void sb_shell_ref_init(sb_shell_ref *r, const double X1[3], const double X2[3],
+                       const double X11[3], const double X12[3], const double X22[3],
+                       double warp_angle, double weight);
+/* Same, from basis and reference control values Xq (k x 3). */
+void sb_shell_ref_init_basis(sb_shell_ref *r, const sb_shell_basis *b, const double *Xq,
+                             double warp_angle, double weight);
+
+/* Scratch space, sized for SB_SHELL_MAX_BASIS; one per thread, never per call. */
+typedef struct sb_shell_work sb_shell_work;
+sb_shell_work *sb_shell_work_new(void);
+void sb_shell_work_free(sb_shell_work *w);
+
+/* Elastic energy of one quadrature point (dA included).  q: k x 3 current
+ * control values (row I = q_I).  grad (3k) and hess (3k x 3k, row-major,
+ * dof index 3*I + c) are ACCUMULATED when non-NULL.  kind EXACT or PSEUDO
+ * (BHEM paper §6.1: drop the second derivatives of the strains); PSD
+ * projection is done per element with sb_psd_project(). */
+double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_shell_basis *b,
+                       const double *q, double *grad, double *hess, sb_hess_kind kind,
+                       sb_shell_work *w);
+
+/* External potential of one quadrature point: gravity (dead, density * g)
+ * and pressure p along the normal.  follower = 0: dead load on the reference
+ * normal (linear potential); follower = 1: see sb_shell.c for the potential
+ * used.  Returns energy, accumulates grad / hess (hess only for follower). */
+double sb_shell_external(const sb_material *m, const sb_shell_ref *r, const sb_shell_basis *b,
+                         const double *q, const double gvec[3], double pressure, int follower,
+                         double *grad, double *hess);
+
+/* Clamp the eigenvalues of a symmetric n x n (row-major) matrix at >= 0, in place.
+ * Uses LAPACK dsyev; work must hold sb_psd_work_size(n) doubles. */
+size_t sb_psd_work_size(int n);
+int sb_psd_project(int n, double *H, double *work);
+
+#endif

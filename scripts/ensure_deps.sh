@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages shellbench needs, only when something is
+# missing, and says what it installs.  Safe to run repeatedly.
+set -euo pipefail
+need=()
+have_hdr() { [ -e "$1" ]; }
+have_hdr /usr/include/suitesparse/cholmod.h       || need+=(libsuitesparse-dev)
+have_hdr /usr/lib/x86_64-linux-gnu/libopenblas.so || ls /usr/lib/*/libopenblas.so >/dev/null 2>&1 || need+=(libopenblas-dev)
+have_hdr /usr/include/hdf5/serial/hdf5.h          || need+=(libhdf5-dev)
+command -v h5dump >/dev/null 2>&1                 || need+=(hdf5-tools)
+have_hdr /usr/include/gsl/gsl_math.h              || need+=(libgsl-dev)
+have_hdr /usr/include/jansson.h                   || need+=(libjansson-dev)
+have_hdr /usr/include/opensubdiv/version.h        || need+=(libosd-dev)
+command -v gnuplot >/dev/null 2>&1                || need+=(gnuplot-nox)
+command -v pkg-config >/dev/null 2>&1             || need+=(pkg-config)
+command -v cc >/dev/null 2>&1                     || need+=(gcc)
+command -v c++ >/dev/null 2>&1                    || need+=(g++)
+command -v make >/dev/null 2>&1                   || need+=(make)
+command -v git >/dev/null 2>&1                    || need+=(git)
+if [ ${#need[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "ensure_deps: installing missing Debian packages: ${need[*]}"
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${need[@]}"
+echo "ensure_deps: done"
