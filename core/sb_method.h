@@ -60,8 +60,12 @@ typedef struct sb_method_type {
 
     int  (*n_levels)(const void *state);
     int  (*n_dofs)(const void *state, int level);           /* level 0 = coarsest */
-    /* Add the element DOF lists of `level` to the builder, elements in the
-     * order energy()/mass() will add their blocks. */
+    /* DOFs per node of the level (3 for control points, 12 for Hermite nodes);
+     * n_dofs = block_size * nodes. */
+    int  (*block_size)(const void *state, int level);
+    /* Add the element node lists of `level` to the builder (sb_sparse.h), in
+     * the order energy()/mass() add their element blocks with
+     * sb_matrix_add_element(). */
     int  (*pattern)(const void *state, int level, sb_pattern_builder *pb);
     /* Reference configuration (also the default initial state). */
     int  (*initial)(const void *state, int level, double *x);

@@ -11,32 +11,39 @@
 
 typedef struct sb_pattern_builder sb_pattern_builder;
 
+/* DOFs come in blocks of bs per node (3 for positions, 12 for a Hermite node
+ * x, x_,1, x_,2, x_,12): dof = bs*node + c.  An element is a list of k nodes;
+ * its dense element matrix is (bs k) x (bs k), row-major, local dof index
+ * bs*a + c — for bs = 3 exactly the shell kernel's 3*I + c. */
 typedef struct sb_pattern {
-    int n;              /* matrix dimension */
+    int n;              /* matrix dimension = bs * n_nodes */
+    int bs;             /* dofs per node */
     long nnz;           /* stored entries (upper triangle) */
     long *colptr;       /* n+1 */
     int *rowind;        /* nnz */
     long *diag;         /* n: position of (i,i) */
-    /* element scatter maps: element e has m_e = elem_ndof[e] dofs, and for
-     * every ordered local pair (a,b) with dof[a] <= dof[b] (both >= 0) an
-     * entry (a*m_e + b, position).  Repeated dofs inside an element (periodic
-     * identification) are handled: both (a,b) and (b,a) then land on the
-     * diagonal. */
+    /* element scatter maps.  For element e with nodes nd[0..k), the ordered
+     * local node pairs (a,b) in loop order a-major, b-minor that satisfy
+     * nd[a] >= 0, nd[b] >= 0 and nd[a] <= nd[b] each own bs entries: the
+     * position in the value array of the block's first row in column
+     * bs*nd[b] + j.  nd[a] < nd[b]: full bs x bs block; nd[a] == nd[b]
+     * (the diagonal block, also for a repeated node — periodic
+     * identification — where both orders are kept): upper triangle i <= j. */
     int n_elems;
-    int *elem_ndof;     /* n_elems */
-    long *elem_off;     /* n_elems+1, into map_local/map_pos */
-    int *map_local;     /* a*m+b */
-    long *map_pos;      /* position in values */
-    long *elem_dof_off; /* n_elems+1, into elem_dofs */
-    int *elem_dofs;     /* dof lists (-1 = no dof) */
+    long *elem_node_off;/* n_elems+1, into elem_nodes */
+    int *elem_nodes;    /* node lists (-1 = no node) */
+    long *elem_map_off; /* n_elems+1, into map */
+    long *map;          /* block column start positions */
 } sb_pattern;
 
-sb_pattern_builder *sb_pattern_builder_new(int n);
-/* Add element e (elements must be added in order 0,1,2,...); dofs < 0 are skipped. */
-int sb_pattern_builder_add(sb_pattern_builder *pb, int ndof, const int *dofs);
-/* Finish: builds the pattern; frees the builder. */
+sb_pattern_builder *sb_pattern_builder_new(int n_nodes, int bs);
+/* Add the next element (elements numbered in order of addition); nodes < 0 are skipped. */
+int sb_pattern_builder_add(sb_pattern_builder *pb, int k, const int *nodes);
+/* Finish: builds the pattern and the scatter maps; frees the builder (also on error). */
 int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out);
 void sb_pattern_free(sb_pattern *p);
+/* nodes of element e: *k and pointer */
+const int *sb_pattern_elem_nodes(const sb_pattern *p, int e, int *k);
 
 typedef struct sb_matrix {
     const sb_pattern *pat;
@@ -47,7 +54,7 @@ typedef struct sb_matrix {
 int  sb_matrix_init(sb_matrix *A, const sb_pattern *pat);   /* allocates val */
 void sb_matrix_free(sb_matrix *A);
 void sb_matrix_zero(sb_matrix *A);
-/* Add a dense m x m (row-major, symmetric) element matrix of element e. */
+/* Add the dense (bs k) x (bs k) row-major symmetric element matrix of element e. */
 void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke);
 /* Add a value at global (i,j) (any order); returns SB_ERR_INTERNAL if not in pattern. */
 int  sb_matrix_add(sb_matrix *A, int i, int j, double v);

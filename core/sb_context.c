@@ -1,0 +1,46 @@
+/* sb_context.c — one context per run: parameters, cholmod_common, statistics, errors. */
+#include "sb_context.h"
+
+#include <cholmod.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int sb_context_init(sb_context *ctx)
+{
+    memset(ctx, 0, sizeof *ctx);
+    sb_paramset_init(&ctx->params);
+    sb_stats_init(&ctx->stats);
+    cholmod_common *cm = malloc(sizeof *cm);
+    if (!cm) return SB_ERR_NOMEM;
+    cholmod_start(cm);
+    /* Always supernodal LL': an indefinite matrix is then reported as
+     * CHOLMOD_NOT_POSDEF instead of being factored as LDL' (DESIGN.md). */
+    cm->supernodal = CHOLMOD_SUPERNODAL;
+    cm->final_ll = 1;
+    cm->print = 0;
+    cm->error_handler = NULL;
+    ctx->cholmod = cm;
+    return SB_OK;
+}
+
+void sb_context_free(sb_context *ctx)
+{
+    if (ctx->cholmod) {
+        cholmod_finish(ctx->cholmod);
+        free(ctx->cholmod);
+    }
+    sb_stats_free(&ctx->stats);
+    ctx->cholmod = NULL;
+}
+
+int sb_error(sb_context *ctx, int status, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(ctx->err, sizeof ctx->err, fmt, ap);
+    va_end(ap);
+    ctx->status = status;
+    return status;
+}

@@ -1,0 +1,93 @@
+/* sb_stats.c — run statistics (see sb_stats.h). */
+#include "sb_stats.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const char *const event_names[SB_EV_COUNT] = {
+    "energy", "gradient", "hessian", "analyze", "factorize", "solve",
+    "cg_iter", "qp", "transfer", "adapt", "collide", "record",
+};
+
+const char *sb_event_name(sb_event e)
+{
+    return (int)e >= 0 && e < SB_EV_COUNT ? event_names[e] : "invalid";
+}
+
+double sb_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void sb_stats_init(sb_stats *s) { memset(s, 0, sizeof *s); }
+
+void sb_stats_free(sb_stats *s)
+{
+    free(s->iters);
+    free(s->steps);
+    memset(s, 0, sizeof *s);
+}
+
+void sb_stats_reset(sb_stats *s)
+{
+    int nl = s->n_levels;
+    long nd[SB_MAX_LEVELS];
+    memcpy(nd, s->n_dofs, sizeof nd);
+    sb_iter_record *it = s->iters;
+    size_t ci = s->cap_iters;
+    sb_step_record *st = s->steps;
+    size_t cs = s->cap_steps;
+    memset(s, 0, sizeof *s);
+    s->n_levels = nl;
+    memcpy(s->n_dofs, nd, sizeof nd);
+    s->iters = it;
+    s->cap_iters = ci;
+    s->steps = st;
+    s->cap_steps = cs;
+}
+
+static int grow(void **p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap) return SB_OK;
+    size_t nc = *cap ? *cap * 2 : 256;
+    while (nc < need) nc *= 2;
+    void *q = realloc(*p, nc * elem);
+    if (!q) return SB_ERR_NOMEM;
+    *p = q;
+    *cap = nc;
+    return SB_OK;
+}
+
+int sb_stats_push_iter(sb_stats *s, const sb_iter_record *r)
+{
+    if (grow((void **)&s->iters, &s->cap_iters, s->n_iters + 1, sizeof *r)) return SB_ERR_NOMEM;
+    s->iters[s->n_iters++] = *r;
+    return SB_OK;
+}
+
+int sb_stats_push_step(sb_stats *s, const sb_step_record *r)
+{
+    if (grow((void **)&s->steps, &s->cap_steps, s->n_steps + 1, sizeof *r)) return SB_ERR_NOMEM;
+    s->steps[s->n_steps++] = *r;
+    return SB_OK;
+}
+
+sb_event_stat sb_stats_event_total(const sb_stats *s, sb_event e)
+{
+    sb_event_stat t = { 0, 0.0 };
+    for (int l = 0; l < SB_MAX_LEVELS; l++) {
+        t.count += s->ev[l][e].count;
+        t.seconds += s->ev[l][e].seconds;
+    }
+    return t;
+}
+
+void sb_stats_event(sb_stats *s, int level, sb_event e, double t0)
+{
+    if (level < 0 || level >= SB_MAX_LEVELS) level = 0;
+    s->ev[level][e].count++;
+    s->ev[level][e].seconds += sb_now() - t0;
+}
