@@ -52,6 +52,17 @@ $(BUILD)/%.o: %.cpp | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS) -c $< -o $@
 
+# build id (git describe) for the records; the header changes only when the id does
+BUILD_ID := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+$(BUILD)/build_id.h: FORCE | $(DEPS_STAMP)
+	@mkdir -p $(BUILD)
+	@echo '#define SB_BUILD_ID "$(BUILD_ID)"' > $@.new
+	@cmp -s $@.new $@ || mv $@.new $@; rm -f $@.new
+$(BUILD)/core/sb_sysinfo.o: $(BUILD)/build_id.h
+$(BUILD)/core/sb_sysinfo.o: CFLAGS += -include $(BUILD)/build_id.h
+.PHONY: FORCE
+FORCE:
+
 $(LIB): $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^

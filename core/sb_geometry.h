@@ -24,7 +24,9 @@ double sb_domain_diameter(const sb_domain *d);
 /* L-shape notch rectangle in (s,t): [s0,s1]x[t0,t1]; returns 0 if no notch. */
 int  sb_domain_notch_st(const sb_domain *d, double s01[2], double t01[2]);
 
-/* xi -> X (reference surface), with derivatives w.r.t. xi. */
+/* xi -> X (reference surface), with derivatives w.r.t. xi.  Conventions in
+ * sb_chart.c: a_3 = a_1 x a_2 is +e_z (plane), outward (cylinder), inward
+ * (sphere). */
 void sb_chart_eval(const sb_chart *c, const sb_domain *d, const double xi[2], sb_jet3 *out);
 
 /* Composite (s,t) -> X with derivatives w.r.t. (s,t) (chain rule, exact). */
@@ -33,13 +35,20 @@ void sb_geometry_eval_st(const sb_scene *sc, double s, double t, sb_jet3 *out);
 /* Named boundary part lookup, fills `part` (edge segment in (s,t)).  Returns
  * SB_ERR_INPUT when the name does not exist for this domain kind. */
 int sb_domain_edge_part(const sb_domain *d, const char *name, sb_part *part);
+/* NULL-terminated list of the edge part names valid for a domain kind:
+ * rectangle left/right/bottom/top, L-shape the same plus notch_s/notch_t,
+ * annulus sector inner/outer/start/end. */
+const char *const *sb_domain_part_names(sb_domain_kind kind);
 
 /* Does grid point (s,t) lie on the part (within tol in (s,t))? */
 int sb_part_contains_st(const sb_part *p, double s, double t, double tol);
 
 /* Sample grid of material points inside the domain for error metrics:
  * n x n in (s,t) excluding points in the L-shape notch; returns count,
- * writes up to max points into st (2 per point). */
+ * writes up to max points into st (2 per point).  The nodes are
+ * (i/(n-1), j/(n-1)), i,j = 0..n-1 (boundary included; notch boundary counts
+ * as inside), row by row in t; n = 1 gives the centre (0.5, 0.5).  The count
+ * returned is the full count even when it exceeds max. */
 int sb_domain_sample_grid(const sb_domain *d, int n, double *st, int max);
 
 /* Rotation matrix for angle about unit axis (Rodrigues). */

@@ -10,11 +10,10 @@
 struct sb_context;
 typedef struct sb_linsolve sb_linsolve;
 
-/* Creates the solver for matrices on `pat` and performs the symbolic analysis. */
-int  sb_linsolve_create(struct sb_context *ctx, int level, const sb_pattern *pat, sb_linsolve **out);
+/* Creates the solver for the matrix H (its values are used in place, not
+ * copied: assemble into H, then factor) and performs the symbolic analysis. */
+int  sb_linsolve_create(struct sb_context *ctx, int level, sb_matrix *H, sb_linsolve **out);
 void sb_linsolve_free(sb_linsolve *ls);
-/* The matrix whose values the caller assembles; it aliases CHOLMOD's storage. */
-sb_matrix *sb_linsolve_matrix(sb_linsolve *ls);
 /* Factor (A + shift I).  Returns SB_OK, SB_NOT_POSDEF (recorded, not an
  * error: the factor is unusable), or a negative error. */
 int  sb_linsolve_factor(sb_linsolve *ls, double shift);

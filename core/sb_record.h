@@ -52,6 +52,21 @@ typedef struct sb_run {
     char error_kind[16];           /* "none", "probes", "field" */
 } sb_run;
 
+/* Zero the run and fill the machine/build fields (build_id, cpu_model,
+ * n_cores, started = now) from sb_sysinfo.h. */
+void sb_run_init(sb_run *run);
+
+/* Layout version written as the root attribute "format_version"; a reader
+ * refuses files with a newer version.  The layout is documented in
+ * docs/recorded_figures.md. */
+#define SB_RECORD_FORMAT_VERSION 1
+#define SB_RECORD_FORMAT_NAME "shellbench-run"
+
+/* The XDMF sidecar path of an HDF5 record: PATH with a trailing ".h5"
+ * replaced by ".xdmf" (".xdmf" appended when PATH does not end in ".h5").
+ * Returns SB_OK or SB_ERR_INPUT when buf is too small. */
+int sb_record_xdmf_path(const char *h5path, char *buf, size_t len);
+
 /* Write atomically: to PATH.tmp.<pid>, then rename. Also writes PATH minus
  * ".h5" plus ".xdmf".  Returns SB_OK or SB_ERR_IO with a message in err. */
 int sb_record_write(const sb_run *run, const char *path, char *err, size_t errlen);
@@ -70,6 +85,11 @@ typedef struct sb_record_summary {
     int n_hist;
     double *hist_gnorm;        /* owned */
     int *hist_step;            /* owned */
+    /* added by the recording module */
+    int *hist_level;           /* owned; level of each history record */
+    int steps_planned, n_cores;
+    char build_id[64], cpu_model[128], started[32];
+    char reason_name[32];      /* sb_reason_name(reason) as recorded */
 } sb_record_summary;
 
 int  sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen);
@@ -82,5 +102,21 @@ int  sb_record_read_samples(const char *path, int *n, double **st, double **pos,
  * png_path is non-NULL, a gnuplot PNG of ||g|| against iteration. */
 int sb_report(int n_files, char **files, const char *format, FILE *out,
               const char *png_path, char *err, size_t errlen);
+
+/* Positive warning bits returned by sb_report (the table was written):
+ * the plot could not be made (gnuplot missing or failed), or some files
+ * could not be read (their rows are left out).  err names the cause. */
+enum { SB_REPORT_WARN_PLOT = 1, SB_REPORT_WARN_FILES = 2 };
+
+/* sb_report with every option: format "md" (default) or "csv"; plot_path
+ * ending in ".svg" gives an SVG, anything else a PNG; gnuplot is the program
+ * to run (NULL: $SB_GNUPLOT, else "gnuplot"). */
+typedef struct sb_report_options {
+    const char *format;
+    const char *plot_path;
+    const char *gnuplot;
+} sb_report_options;
+int sb_report_opts(int n_files, char **files, const sb_report_options *o, FILE *out,
+                   char *err, size_t errlen);
 
 #endif

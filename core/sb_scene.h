@@ -111,7 +111,9 @@ typedef struct sb_load {
                             the reference normal */
     int n_parts;
     sb_part parts[SB_SCENE_MAX_PARTS];
-    int ramp_steps;      /* factor = min(1, step/ramp_steps); 0 = constant (full from step 1) */
+    int ramp_steps;      /* factor = min(1, step/ramp_steps); 0 = dynamic scenes: constant
+                            (full from step 1), quasi-static scenes: step/steps (linear
+                            over all load steps).  See sb_load_factor(). */
 } sb_load;
 
 /* ---- boundary conditions ---------------------------------------------- */
@@ -159,7 +161,8 @@ typedef struct sb_probe {
     int has_expected;
     int expected_component;  /* 0,1,2 = x,y,z displacement; 3 = norm of displacement;
                                 -1 = full displacement vector */
-    double expected[3];      /* expected displacement (component in [0] unless -1) */
+    double expected[3];      /* expected displacement x - X at the FINAL step
+                                (component in [0] unless -1) */
     double tol;              /* relative tolerance for "expected" (reported, asserted by tests) */
 } sb_probe;
 

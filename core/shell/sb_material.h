@@ -27,7 +27,35 @@ void sb_denim_defaults(sb_denim_params *p);
  * number for denim (see sb_material.c). */
 int sb_material_init(sb_material *m, const sb_material_spec *spec, int n_thick);
 
-/* psi per unit reference volume (J/m^3); dpsi[3], d2psi[9] (row-major) optional. */
+/* psi per unit reference volume (J/m^3); dpsi[3], d2psi[9] (row-major) optional.
+ * Non-finite strain, or a denim argument outside the domain of (3.4)
+ * (u + 1 <= 0 in a term with alpha != 1), gives a NaN result (the caller
+ * records SB_NONFINITE); it never crashes. */
 double sb_material_psi(const sb_material *m, const double e[3], double *dpsi, double *d2psi);
+
+/* ---- additions (issue 3 implementer; additive only) --------------------- */
+
+/* Default Gauss points through the thickness: stvk is exact with 2 (psi is
+ * quadratic in xi3); denim's default comes from the convergence check
+ * documented in sb_material.c (tests/test_material.c re-runs it). */
+#define SB_STVK_N_THICK 2
+#define SB_DENIM_N_THICK 6
+#define SB_MAX_THICK 8
+
+/* Like sb_material_init, with a message ("material.poisson = 1.2: must lie in
+ * (-1, 1)") in err when the input is rejected.  err may be NULL. */
+int sb_material_init_msg(sb_material *m, const sb_material_spec *spec, int n_thick,
+                         char *err, size_t errlen);
+
+/* A complete spec for the RMTR paper's denim (Table 1): parameters, thickness
+ * tau = 0.66 mm, areal density 0.4 kg/m^2, warp along a_1. */
+void sb_material_spec_denim(sb_material_spec *s);
+
+/* n-point Gauss-Legendre rule on [-1, 1], 1 <= n <= SB_MAX_THICK. */
+int sb_gauss_legendre(int n, double *x, double *w);
+
+/* Denim response function phi_j of RMTR paper Eq. (3.4) and its first two
+ * derivatives (d1, d2 optional).  Exposed for tests and reports. */
+double sb_denim_phi(const sb_denim_params *p, int j, double u, double *d1, double *d2);
 
 #endif

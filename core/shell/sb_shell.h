@@ -29,15 +29,25 @@ typedef struct sb_shell_ref {
     double T[9];        /* e_local = T * (E_11, E_22, E_12)_covariant, row-major 3x3 */
     double normal[3];   /* reference unit normal */
     double dA;          /* quadrature weight * sqrt(det abar) */
+    /* added by the kernel implementer (additive): */
+    double ainv[3];     /* abar^11, abar^22, abar^12 (contravariant metric) */
+    double sqrt_a;      /* sqrt(det abar) */
+    double weight;      /* quadrature weight in the parameter domain */
+    double e1[3], e2[3];/* local orthonormal frame: e1 = warp, e2 = normal x e1 (weft) */
 } sb_shell_ref;
 
-/* From the reference surface derivatives X_,1 X_,2 X_,11 X_,12 X_,22. */
-void sb_shell_ref_init(sb_shell_ref *r, const double X1[3], const double X2[3],
-                       const double X11[3], const double X12[3], const double X22[3],
-                       double warp_angle, double weight);
+/* From the reference surface derivatives X_,1 X_,2 X_,11 X_,12 X_,22.
+ * The warp direction is a_1 rotated by warp_angle about the normal.
+ * Returns SB_OK, or SB_ERR_INPUT for a degenerate reference (a_1 x a_2 = 0,
+ * non-finite input); the struct is then filled with NaN so that any energy
+ * computed from it is non-finite.  (Return type changed from void to int:
+ * source-compatible with callers that ignore it.) */
+int sb_shell_ref_init(sb_shell_ref *r, const double X1[3], const double X2[3],
+                      const double X11[3], const double X12[3], const double X22[3],
+                      double warp_angle, double weight);
 /* Same, from basis and reference control values Xq (k x 3). */
-void sb_shell_ref_init_basis(sb_shell_ref *r, const sb_shell_basis *b, const double *Xq,
-                             double warp_angle, double weight);
+int sb_shell_ref_init_basis(sb_shell_ref *r, const sb_shell_basis *b, const double *Xq,
+                            double warp_angle, double weight);
 
 /* Scratch space, sized for SB_SHELL_MAX_BASIS; one per thread, never per call. */
 typedef struct sb_shell_work sb_shell_work;

@@ -1,0 +1,120 @@
+/* sb_linsolve.c — CHOLMOD wrapper: analyze once per pattern, factorize
+ * A + shift I per iteration (cholmod_factorize_p), solve into preallocated
+ * workspaces (cholmod_solve2), count events, flops and nnz(L). */
+#include "sb_linsolve.h"
+#include "sb_context.h"
+
+#include <cholmod.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct sb_linsolve {
+    sb_context *ctx;
+    int level;
+    cholmod_sparse *A;       /* pattern + values (values aliased by `mat`) */
+    cholmod_factor *L;
+    cholmod_dense *B, *X, *Y, *E;  /* solve2 workspaces (X, Y, E reused) */
+    int factored;
+    double flops, lnz;
+};
+
+int sb_linsolve_create(sb_context *ctx, int level, sb_matrix *H, sb_linsolve **out)
+{
+    const sb_pattern *pat = H->pat;
+    cholmod_common *cm = ctx->cholmod;
+    *out = NULL;
+    sb_linsolve *ls = calloc(1, sizeof *ls);
+    if (!ls) return SB_ERR_NOMEM;
+    ls->ctx = ctx;
+    ls->level = level;
+    /* pattern-only allocation; the values are H's array (aliased, see free) */
+    ls->A = cholmod_allocate_sparse((size_t)pat->n, (size_t)pat->n, (size_t)pat->nnz,
+                                    1, 1, 1, CHOLMOD_PATTERN, cm);
+    ls->B = cholmod_zeros((size_t)pat->n, 1, CHOLMOD_REAL, cm);
+    if (!ls->A || !ls->B) {
+        sb_linsolve_free(ls);
+        return sb_error(ctx, SB_ERR_NOMEM, "cannot allocate a %d x %d sparse matrix (%ld entries)",
+                        pat->n, pat->n, pat->nnz);
+    }
+    /* CHOLMOD default index type for cholmod_* (int) routines */
+    int *Ap = ls->A->p, *Ai = ls->A->i;
+    for (int c = 0; c <= pat->n; c++) Ap[c] = (int)pat->colptr[c];
+    memcpy(Ai, pat->rowind, (size_t)pat->nnz * sizeof *Ai);
+    ls->A->xtype = CHOLMOD_REAL;
+    ls->A->x = H->val;
+
+    double t0 = sb_now();
+    ls->L = cholmod_analyze(ls->A, cm);       /* fill-reducing ordering, symbolic, once */
+    sb_stats_event(&ctx->stats, level, SB_EV_ANALYZE, t0);
+    if (!ls->L || cm->status < CHOLMOD_OK) {
+        sb_linsolve_free(ls);
+        return sb_error(ctx, SB_ERR_INTERNAL, "CHOLMOD analyze failed (status %d) on level %d", cm->status, level);
+    }
+    ls->flops = cm->fl;
+    ls->lnz = cm->lnz;
+    if (level >= 0 && level < SB_MAX_LEVELS) {
+        ctx->stats.chol_flops[level] = cm->fl;
+        ctx->stats.chol_nnz_l[level] = cm->lnz;
+        ctx->stats.matrix_nnz[level] = pat->nnz;
+    }
+    *out = ls;
+    return SB_OK;
+}
+
+void sb_linsolve_free(sb_linsolve *ls)
+{
+    if (!ls) return;
+    cholmod_common *cm = ls->ctx->cholmod;
+    cholmod_free_factor(&ls->L, cm);
+    if (ls->A) {
+        ls->A->x = NULL;                  /* aliased: owned by the caller's matrix */
+        ls->A->xtype = CHOLMOD_PATTERN;
+    }
+    cholmod_free_sparse(&ls->A, cm);
+    cholmod_free_dense(&ls->B, cm);
+    cholmod_free_dense(&ls->X, cm);
+    cholmod_free_dense(&ls->Y, cm);
+    cholmod_free_dense(&ls->E, cm);
+    free(ls);
+}
+
+int sb_linsolve_factor(sb_linsolve *ls, double shift)
+{
+    cholmod_common *cm = ls->ctx->cholmod;
+    double beta[2] = { shift, 0.0 };
+    double t0 = sb_now();
+    int ok = cholmod_factorize_p(ls->A, beta, NULL, 0, ls->L, cm);
+    /* status must be read right here: later calls reset it (DESIGN.md) */
+    int status = cm->status;
+    sb_stats_event(&ls->ctx->stats, ls->level, SB_EV_FACTORIZE, t0);
+    if (status == CHOLMOD_NOT_POSDEF) {
+        ls->factored = 0;
+        ls->ctx->stats.not_posdef++;
+        return SB_NOT_POSDEF;
+    }
+    if (!ok || status < CHOLMOD_OK) {
+        ls->factored = 0;
+        return sb_error(ls->ctx, SB_ERR_INTERNAL, "CHOLMOD factorize failed (status %d) on level %d",
+                        status, ls->level);
+    }
+    ls->factored = 1;
+    return SB_OK;
+}
+
+int sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x)
+{
+    cholmod_common *cm = ls->ctx->cholmod;
+    if (!ls->factored) return sb_error(ls->ctx, SB_ERR_INTERNAL, "solve without a valid factorization");
+    size_t n = ls->A->nrow;
+    double t0 = sb_now();
+    memcpy(ls->B->x, b, n * sizeof(double));
+    int ok = cholmod_solve2(CHOLMOD_A, ls->L, ls->B, NULL, &ls->X, NULL, &ls->Y, &ls->E, cm);
+    sb_stats_event(&ls->ctx->stats, ls->level, SB_EV_SOLVE, t0);
+    if (!ok || !ls->X) return sb_error(ls->ctx, SB_ERR_INTERNAL, "CHOLMOD solve failed (status %d)", cm->status);
+    memcpy(x, ls->X->x, n * sizeof(double));
+    return sb_all_finite((int)n, x) ? SB_OK : SB_NONFINITE;
+}
+
+double sb_linsolve_flops(const sb_linsolve *ls) { return ls->flops; }
+double sb_linsolve_nnz_l(const sb_linsolve *ls) { return ls->lnz; }

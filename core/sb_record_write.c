@@ -1,0 +1,519 @@
+/* sb_record_write.c — one HDF5 file per run, written atomically.
+ *
+ * The file is built under PATH.tmp.<pid>, flushed, closed and fsync'ed, the
+ * XDMF sidecar likewise, and only then both are renamed onto their final
+ * names, so an interrupted run or sweep never leaves a truncated record and
+ * never damages an earlier one.  The layout (every group, dataset and
+ * attribute, with units) is documented in docs/recorded_figures.md. */
+#include "sb_record_io.h"
+#include "sb_sysinfo.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <hdf5.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+void sb_run_init(sb_run *run)
+{
+    memset(run, 0, sizeof *run);
+    sb_sysinfo_build_id(run->build_id, sizeof run->build_id);
+    sb_sysinfo_cpu_model(run->cpu_model, sizeof run->cpu_model);
+    run->n_cores = sb_sysinfo_cores();
+    sb_sysinfo_now_iso(run->started, sizeof run->started);
+    snprintf(run->error_kind, sizeof run->error_kind, "none");
+}
+
+/* ---- small HDF5 writers; each returns 0, or -1 after noting the object ---- */
+
+typedef struct h5w {
+    char failed[160];      /* first object that could not be written */
+} h5w;
+
+/* Notes "<object path>/<name>" (or just name when loc < 0) as the failure. */
+static int fail(h5w *w, hid_t loc, const char *name)
+{
+    if (w->failed[0]) return -1;
+    char where[96] = "";
+    if (loc >= 0 && H5Iget_name(loc, where, sizeof where) <= 0) where[0] = 0;
+    size_t n = strlen(where);
+    snprintf(w->failed, sizeof w->failed, "%s%s%s", where, n && where[n - 1] != '/' ? "/" : "", name);
+    return -1;
+}
+
+static int attr_raw(h5w *w, hid_t loc, const char *name, hid_t ftype, hid_t mtype,
+                    hid_t space, const void *buf)
+{
+    hid_t a = H5Acreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (a < 0) return fail(w, loc, name);
+    herr_t e = H5Awrite(a, mtype, buf);
+    H5Aclose(a);
+    return e < 0 ? fail(w, loc, name) : 0;
+}
+
+static int attr_scalar(h5w *w, hid_t loc, const char *name, hid_t ftype, hid_t mtype, const void *v)
+{
+    hid_t sp = H5Screate(H5S_SCALAR);
+    if (sp < 0) return fail(w, loc, name);
+    int rc = attr_raw(w, loc, name, ftype, mtype, sp, v);
+    H5Sclose(sp);
+    return rc;
+}
+
+static int attr_long(h5w *w, hid_t loc, const char *name, long v)
+{
+    return attr_scalar(w, loc, name, H5T_STD_I64LE, H5T_NATIVE_LONG, &v);
+}
+
+static int attr_dbl(h5w *w, hid_t loc, const char *name, double v)
+{
+    return attr_scalar(w, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &v);
+}
+
+/* Fixed-length, NUL-terminated string sized to its content. */
+static int attr_str(h5w *w, hid_t loc, const char *name, const char *s)
+{
+    if (!s) s = "";
+    hid_t t = H5Tcopy(H5T_C_S1);
+    if (t < 0 || H5Tset_size(t, strlen(s) + 1) < 0 || H5Tset_strpad(t, H5T_STR_NULLTERM) < 0) {
+        if (t >= 0) H5Tclose(t);
+        return fail(w, loc, name);
+    }
+    int rc = attr_scalar(w, loc, name, t, t, s);
+    H5Tclose(t);
+    return rc;
+}
+
+/* Array of n fixed-length strings, each `width` bytes in buf. */
+static hid_t str_type(size_t width)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    if (t < 0) return t;
+    if (H5Tset_size(t, width) < 0 || H5Tset_strpad(t, H5T_STR_NULLTERM) < 0) {
+        H5Tclose(t);
+        return -1;
+    }
+    return t;
+}
+
+static int attr_str_array(h5w *w, hid_t loc, const char *name, int n, size_t width, const char *buf)
+{
+    hsize_t d = (hsize_t)n;
+    hid_t sp = H5Screate_simple(1, &d, NULL);
+    hid_t t = str_type(width);
+    int rc = (sp < 0 || t < 0) ? fail(w, loc, name) : attr_raw(w, loc, name, t, t, sp, buf);
+    if (t >= 0) H5Tclose(t);
+    if (sp >= 0) H5Sclose(sp);
+    return rc;
+}
+
+/* Dataset of the given shape; zero-sized shapes create an empty dataset. */
+static int dset(h5w *w, hid_t loc, const char *name, hid_t ftype, hid_t mtype,
+                int rank, const hsize_t *dims, const void *buf, const char *units)
+{
+    hsize_t n = 1;
+    for (int i = 0; i < rank; i++) n *= dims[i];
+    hid_t sp = H5Screate_simple(rank, dims, NULL);
+    if (sp < 0) return fail(w, loc, name);
+    hid_t d = H5Dcreate2(loc, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Sclose(sp);
+    if (d < 0) return fail(w, loc, name);
+    int rc = 0;
+    if (n > 0 && H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) rc = fail(w, loc, name);
+    if (!rc && units && attr_str(w, d, "units", units)) rc = -1;
+    H5Dclose(d);
+    return rc;
+}
+
+static int dset_dbl(h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
+                    const double *buf, const char *units)
+{
+    return dset(w, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rank, dims, buf, units);
+}
+
+static int dset_int(h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
+                    const int *buf, const char *units)
+{
+    return dset(w, loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, rank, dims, buf, units);
+}
+
+static int dset_long(h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
+                     const long *buf, const char *units)
+{
+    return dset(w, loc, name, H5T_STD_I64LE, H5T_NATIVE_LONG, rank, dims, buf, units);
+}
+
+static hid_t group(h5w *w, hid_t file, const char *name)
+{
+    hid_t g = H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0) fail(w, -1, name);
+    return g;
+}
+
+/* ---- the layout ---------------------------------------------------------- */
+
+static int write_root(h5w *w, hid_t f, const sb_run *r)
+{
+    char host[128], now[32];
+    sb_sysinfo_hostname(host, sizeof host);
+    sb_sysinfo_now_iso(now, sizeof now);
+    const char *blas = getenv("OPENBLAS_NUM_THREADS");
+    int bad = 0;
+    bad |= attr_str(w, f, "format", SB_RECORD_FORMAT_NAME);
+    bad |= attr_long(w, f, "format_version", SB_RECORD_FORMAT_VERSION);
+    bad |= attr_str(w, f, "scene_name", r->scene_name);
+    bad |= attr_str(w, f, "scene_path", r->scene_path);
+    bad |= attr_str(w, f, "scene_json", r->scene_json);
+    bad |= attr_str(w, f, "method", r->method);
+    bad |= attr_str(w, f, "solver", r->solver);
+    bad |= attr_str(w, f, "method_info", r->method_info);
+    bad |= attr_long(w, f, "res", r->res);
+    bad |= attr_long(w, f, "levels", r->levels);
+    bad |= attr_long(w, f, "n_dofs", r->n_dofs);
+    bad |= attr_str(w, f, "build_id", r->build_id);
+    bad |= attr_str(w, f, "cpu_model", r->cpu_model);
+    bad |= attr_long(w, f, "n_cores", r->n_cores);
+    bad |= attr_str(w, f, "hostname", host);
+    bad |= attr_str(w, f, "openblas_num_threads", blas ? blas : "unset");
+    bad |= attr_str(w, f, "started", r->started);
+    bad |= attr_str(w, f, "written", now);
+    bad |= attr_long(w, f, "status", r->status);
+    bad |= attr_str(w, f, "reason", sb_reason_name((sb_reason)r->reason));
+    bad |= attr_long(w, f, "reason_code", r->reason);
+    bad |= attr_long(w, f, "steps_planned", r->steps_planned);
+    bad |= attr_long(w, f, "steps_done", r->steps_done);
+    return bad ? -1 : 0;
+}
+
+static int write_params(h5w *w, hid_t f, const sb_paramset *ps)
+{
+    hid_t g = group(w, f, "/params");
+    if (g < 0) return -1;
+    int bad = 0;
+    char overridden[4096] = "";
+    size_t used = 0;
+    for (int i = 0; ps && i < ps->n && !bad; i++) {
+        const sb_param_value *v = &ps->v[i];
+        if (!v->def) continue;
+        if (v->def->kind == SB_PARAM_CHOICE) {
+            char text[SB_NAME_LEN];
+            sb_param_format(v, text, sizeof text);
+            bad |= attr_str(w, g, v->key, text);
+        } else if (v->def->kind == SB_PARAM_INT) {
+            bad |= attr_long(w, g, v->key, (long)v->value);
+        } else {
+            bad |= attr_dbl(w, g, v->key, v->value);
+        }
+        if (v->overridden && used < sizeof overridden) {
+            int n = snprintf(overridden + used, sizeof overridden - used, "%s%s", used ? "," : "", v->key);
+            if (n > 0) used += (size_t)n;
+        }
+    }
+    if (!bad) bad |= attr_str(w, g, "_overridden", overridden);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
+/* Rows of the per-level tables: the declared levels, extended to the last
+ * level that saw any event (sb_stats_event clamps levels to SB_MAX_LEVELS). */
+static int stats_rows(const sb_stats *s)
+{
+    int rows = s->n_levels < 0 ? 0 : s->n_levels > SB_MAX_LEVELS ? SB_MAX_LEVELS : s->n_levels;
+    for (int l = rows; l < SB_MAX_LEVELS; l++)
+        for (int e = 0; e < SB_EV_COUNT; e++)
+            if (s->ev[l][e].count || s->ev[l][e].seconds != 0.0) rows = l + 1;
+    return rows;
+}
+
+static int write_stats(h5w *w, hid_t f, const sb_stats *s)
+{
+    hid_t g = group(w, f, "/stats");
+    if (g < 0) return -1;
+    int rows = stats_rows(s);
+    long cnt[SB_MAX_LEVELS * SB_EV_COUNT];
+    double sec[SB_MAX_LEVELS * SB_EV_COUNT];
+    for (int l = 0; l < rows; l++)
+        for (int e = 0; e < SB_EV_COUNT; e++) {
+            cnt[l * SB_EV_COUNT + e] = s->ev[l][e].count;
+            sec[l * SB_EV_COUNT + e] = s->ev[l][e].seconds;
+        }
+    char names[SB_EV_COUNT][16];
+    for (int e = 0; e < SB_EV_COUNT; e++) snprintf(names[e], sizeof names[e], "%s", sb_event_name((sb_event)e));
+    hsize_t d2[2] = { (hsize_t)rows, SB_EV_COUNT }, d1 = (hsize_t)rows;
+    int bad = 0;
+    bad |= dset_long(w, g, "events_count", 2, d2, cnt, "calls");
+    bad |= dset_dbl(w, g, "events_seconds", 2, d2, sec, "s");
+    bad |= attr_str_array(w, g, "event_names", SB_EV_COUNT, sizeof names[0], &names[0][0]);
+    bad |= dset_long(w, g, "n_dofs", 1, &d1, s->n_dofs, "dofs");
+    bad |= dset_dbl(w, g, "chol_flops", 1, &d1, s->chol_flops, "flop");
+    bad |= dset_dbl(w, g, "chol_nnz_l", 1, &d1, s->chol_nnz_l, "entries");
+    bad |= dset_long(w, g, "matrix_nnz", 1, &d1, s->matrix_nnz, "entries");
+    bad |= attr_dbl(w, g, "work_assembly", s->work_assembly);
+    bad |= attr_dbl(w, g, "work_qp", s->work_qp);
+    bad |= attr_dbl(w, g, "seconds_total", s->seconds_total);
+    bad |= attr_long(w, g, "not_posdef", s->not_posdef);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
+/* One column of a record array: a struct member written as a 1-D dataset. */
+typedef struct column { const char *name; size_t off; int is_int; const char *units; } column;
+
+static const column iter_cols[] = {
+    { "step", offsetof(sb_iter_record, step), 1, "" },
+    { "iter", offsetof(sb_iter_record, iter), 1, "" },
+    { "level", offsetof(sb_iter_record, level), 1, "" },
+    { "f", offsetof(sb_iter_record, f), 0, "J" },
+    { "gnorm", offsetof(sb_iter_record, gnorm), 0, "N" },
+    { "delta", offsetof(sb_iter_record, delta), 0, "m" },
+    { "rho", offsetof(sb_iter_record, rho), 0, "" },
+    { "step_norm", offsetof(sb_iter_record, step_norm), 0, "m" },
+    { "shift", offsetof(sb_iter_record, shift), 0, "N/m" },
+    { "accepted", offsetof(sb_iter_record, accepted), 1, "" },
+    { "linear_iters", offsetof(sb_iter_record, linear_iters), 1, "" },
+    { "reason", offsetof(sb_iter_record, reason), 1, "" },
+};
+static const column step_cols[] = {
+    { "step", offsetof(sb_step_record, step), 1, "" },
+    { "t", offsetof(sb_step_record, t), 0, "s" },
+    { "iterations", offsetof(sb_step_record, iterations), 1, "" },
+    { "reason", offsetof(sb_step_record, reason), 1, "" },
+    { "f", offsetof(sb_step_record, f), 0, "J" },
+    { "gnorm", offsetof(sb_step_record, gnorm), 0, "N" },
+    { "seconds", offsetof(sb_step_record, seconds), 0, "s" },
+    { "work_assembly", offsetof(sb_step_record, work_assembly), 0, "WU" },
+    { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU" },
+};
+
+/* buf holds n doubles (reused for int columns). */
+static int write_columns(h5w *w, hid_t g, const column *cols, int ncols, const void *recs,
+                         size_t rec_size, size_t n, double *buf)
+{
+    hsize_t d = (hsize_t)n;
+    int *ibuf = (int *)(void *)buf;   /* sizeof(int) <= sizeof(double) */
+    for (int c = 0; c < ncols; c++) {
+        const char *base = (const char *)recs + cols[c].off;
+        for (size_t i = 0; i < n; i++) {
+            if (cols[c].is_int) memcpy(&ibuf[i], base + i * rec_size, sizeof(int));
+            else memcpy(&buf[i], base + i * rec_size, sizeof(double));
+        }
+        int rc = cols[c].is_int ? dset_int(w, g, cols[c].name, 1, &d, ibuf, cols[c].units[0] ? cols[c].units : NULL)
+                                : dset_dbl(w, g, cols[c].name, 1, &d, buf, cols[c].units[0] ? cols[c].units : NULL);
+        if (rc) return -1;
+    }
+    return 0;
+}
+
+static int write_history(h5w *w, hid_t f, const sb_stats *s)
+{
+    hid_t g = group(w, f, "/history");
+    if (g < 0) return -1;
+    char names[SB_REASON_COUNT][32];
+    for (int r = 0; r < SB_REASON_COUNT; r++) snprintf(names[r], sizeof names[r], "%s", sb_reason_name((sb_reason)r));
+    int bad = attr_str_array(w, g, "reason_names", SB_REASON_COUNT, sizeof names[0], &names[0][0]);
+    size_t nmax = s->n_iters > s->n_steps ? s->n_iters : s->n_steps;
+    double *buf = malloc((nmax ? nmax : 1) * sizeof *buf);
+    if (!buf) bad = -1, fail(w, g, "(out of memory)");
+    hid_t gi = bad ? -1 : group(w, f, "/history/iterations");
+    hid_t gs = gi < 0 ? -1 : group(w, f, "/history/steps");
+    if (gi < 0 || gs < 0) bad = -1;
+    if (!bad) bad |= write_columns(w, gi, iter_cols, (int)(sizeof iter_cols / sizeof *iter_cols), s->iters,
+                                   sizeof *s->iters, s->n_iters, buf);
+    if (!bad) bad |= write_columns(w, gs, step_cols, (int)(sizeof step_cols / sizeof *step_cols), s->steps,
+                                   sizeof *s->steps, s->n_steps, buf);
+    free(buf);
+    if (gs >= 0) H5Gclose(gs);
+    if (gi >= 0) H5Gclose(gi);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
+static int write_probes(h5w *w, hid_t f, const sb_run *r)
+{
+    hid_t g = group(w, f, "/probes");
+    if (g < 0) return -1;
+    hsize_t np = (hsize_t)r->n_probes;
+    hsize_t dt[3] = { (hsize_t)r->steps_done + 1, np, 3 }, de[2] = { np, 3 };
+    int bad = 0;
+    hsize_t d1 = np;
+    hid_t sp = H5Screate_simple(1, &d1, NULL), t = str_type(SB_NAME_LEN);
+    hid_t ds = (sp < 0 || t < 0) ? -1 : H5Dcreate2(g, "names", t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (ds < 0 || (np > 0 && H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, r->probe_names) < 0))
+        bad = fail(w, g, "names");
+    if (ds >= 0) H5Dclose(ds);
+    if (t >= 0) H5Tclose(t);
+    if (sp >= 0) H5Sclose(sp);
+    bad |= dset_dbl(w, g, "trajectory", 3, dt, r->probe_traj, "m");
+    bad |= dset_dbl(w, g, "expected", 2, de, r->probe_expected, "m");
+    bad |= dset_dbl(w, g, "rel_error", 1, &d1, r->probe_rel_error, NULL);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
+static int write_final(h5w *w, hid_t f, const sb_run *r)
+{
+    hid_t g = group(w, f, "/final");
+    if (g < 0) return -1;
+    size_t ns = (size_t)r->n_samples;
+    double *disp = malloc((ns ? ns : 1) * 3 * sizeof *disp);
+    if (!disp) {
+        H5Gclose(g);
+        return fail(w, -1, "/final/displacement (out of memory)");
+    }
+    for (size_t i = 0; i < 3 * ns; i++) disp[i] = r->sample_pos[i] - r->sample_ref[i];
+    hsize_t dx = (hsize_t)r->n_x, d2[2] = { ns, 2 }, d3[2] = { ns, 3 }, dt[2] = { (hsize_t)r->n_tris, 3 };
+    int bad = 0;
+    bad |= dset_dbl(w, g, "x", 1, &dx, r->x_final, "m");
+    bad |= dset_dbl(w, g, "sample_st", 2, d2, r->sample_st, NULL);
+    bad |= dset_dbl(w, g, "sample_ref", 2, d3, r->sample_ref, "m");
+    bad |= dset_dbl(w, g, "sample_pos", 2, d3, r->sample_pos, "m");
+    bad |= dset_dbl(w, g, "displacement", 2, d3, disp, "m");
+    bad |= dset_int(w, g, "triangles", 2, dt, r->tris, NULL);
+    free(disp);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
+static int write_error(h5w *w, hid_t f, const sb_run *r)
+{
+    hid_t g = group(w, f, "/error");
+    if (g < 0) return -1;
+    int bad = 0;
+    bad |= attr_str(w, g, "kind", r->has_error ? r->error_kind : "none");
+    bad |= attr_long(w, g, "has_error", r->has_error);
+    bad |= attr_dbl(w, g, "rms", r->has_error ? r->error_rms : NAN);
+    bad |= attr_dbl(w, g, "max", r->has_error ? r->error_max : NAN);
+    bad |= attr_dbl(w, g, "probe", r->has_error ? r->error_probe : NAN);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
+/* Root attributes may exceed the 64 KiB limit of compact attribute storage
+ * (scene_json): the 1.8 object format with dense attribute storage lifts it. */
+static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp, h5w *w)
+{
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE), fapl = H5Pcreate(H5P_FILE_ACCESS);
+    hid_t f = -1;
+    if (fcpl >= 0 && fapl >= 0 && H5Pset_attr_phase_change(fcpl, 0, 0) >= 0 &&
+        H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18) >= 0)
+        f = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, fapl);
+    if (fcpl >= 0) H5Pclose(fcpl);
+    if (fapl >= 0) H5Pclose(fapl);
+    if (f < 0) return fail(w, -1, "(file creation)");
+    int bad = write_root(w, f, run);
+    if (!bad) bad = write_params(w, f, run->params);
+    if (!bad) bad = write_stats(w, f, stats);
+    if (!bad) bad = write_history(w, f, stats);
+    if (!bad) bad = write_probes(w, f, run);
+    if (!bad) bad = write_final(w, f, run);
+    if (!bad) bad = write_error(w, f, run);
+    if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = fail(w, -1, "(flush)");
+    if (H5Fclose(f) < 0 && !bad) bad = fail(w, -1, "(close)");
+    return bad;
+}
+
+/* ---- validation and the atomic replacement ------------------------------- */
+
+static int validate(const sb_run *r, const char *path, char *err, size_t errlen)
+{
+#define BAD(...) do { snprintf(err, errlen, __VA_ARGS__); return SB_ERR_INPUT; } while (0)
+    if (!r) BAD("sb_record_write: no run given");
+    if (!path || !path[0]) BAD("sb_record_write: empty output path");
+    if (r->n_probes < 0 || r->n_x < 0 || r->n_samples < 0 || r->n_tris < 0 || r->steps_done < 0)
+        BAD("cannot record %s: negative count (probes %d, x %d, samples %d, triangles %d, steps %d)",
+            path, r->n_probes, r->n_x, r->n_samples, r->n_tris, r->steps_done);
+    if (r->n_probes > 0 && (!r->probe_names || !r->probe_traj || !r->probe_expected || !r->probe_rel_error))
+        BAD("cannot record %s: %d probes but their names/trajectory/expected/rel_error arrays are missing",
+            path, r->n_probes);
+    if (r->n_x > 0 && !r->x_final) BAD("cannot record %s: n_x = %d but no final state", path, r->n_x);
+    if (r->n_samples > 0 && (!r->sample_st || !r->sample_ref || !r->sample_pos))
+        BAD("cannot record %s: %d samples but the st/ref/pos arrays are missing", path, r->n_samples);
+    if (r->n_tris > 0 && !r->tris) BAD("cannot record %s: %d triangles but no index array", path, r->n_tris);
+    for (long i = 0; i < 3L * r->n_tris; i++)
+        if (r->tris[i] < 0 || r->tris[i] >= r->n_samples)
+            BAD("cannot record %s: triangle %ld refers to sample %d, outside [0, %d)", path, i / 3,
+                r->tris[i], r->n_samples);
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) BAD("cannot record run: %s is a directory", path);
+    const sb_stats *s = r->stats;
+    if (s && ((s->n_iters > 0 && !s->iters) || (s->n_steps > 0 && !s->steps)))
+        BAD("cannot record %s: statistics history arrays are missing", path);
+    if (s && (s->n_iters > INT32_MAX || s->n_steps > INT32_MAX))
+        BAD("cannot record %s: history too long", path);
+#undef BAD
+    return SB_OK;
+}
+
+int sb_record_write(const sb_run *run, const char *path, char *err, size_t errlen)
+{
+    int rc = validate(run, path, err, errlen);
+    if (rc) return rc;
+    char tmp[4096], xpath[4096], xtmp[4096];
+    long pid = (long)getpid();
+    if (snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, pid) >= (int)sizeof tmp ||
+        sb_record_xdmf_path(path, xpath, sizeof xpath) != SB_OK ||
+        snprintf(xtmp, sizeof xtmp, "%s.tmp.%ld", xpath, pid) >= (int)sizeof xtmp) {
+        snprintf(err, errlen, "cannot record run: output path too long (%zu characters)", strlen(path));
+        return SB_ERR_INPUT;
+    }
+    /* Create the temp file ourselves first: errno then names the cause
+     * (missing directory, permission, a directory in the way). */
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) {
+        snprintf(err, errlen, "cannot write record %s: cannot create %s: %s", path, tmp, strerror(errno));
+        return SB_ERR_IO;
+    }
+    close(fd);
+
+    sb_stats empty;
+    const sb_stats *stats = run->stats;
+    if (!stats) {
+        sb_stats_init(&empty);
+        stats = &empty;
+    }
+    /* HDF5 prints its error stack by default: silence it while we write and
+     * report errors ourselves; restore the caller's handler afterwards. */
+    H5E_auto2_t old_fn = NULL;
+    void *old_data = NULL;
+    H5Eget_auto2(H5E_DEFAULT, &old_fn, &old_data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    h5w w = { "" };
+    int bad = write_file(run, stats, tmp, &w);
+    H5Eset_auto2(H5E_DEFAULT, old_fn, old_data);
+    if (bad) {
+        unlink(tmp);
+        snprintf(err, errlen, "cannot write record %s: HDF5 failed writing %s", path, w.failed);
+        return SB_ERR_IO;
+    }
+    if (sb_record_fsync_path(tmp) != 0) {
+        snprintf(err, errlen, "cannot write record %s: fsync of %s failed: %s", path, tmp, strerror(errno));
+        unlink(tmp);
+        return SB_ERR_IO;
+    }
+    rc = sb_record_write_xdmf(run, xtmp, sb_record_basename(path), err, errlen);
+    if (rc) {
+        unlink(tmp);
+        unlink(xtmp);
+        return rc;
+    }
+    /* The record first: a sidecar never points at a record that is not there. */
+    if (rename(tmp, path) != 0) {
+        snprintf(err, errlen, "cannot write record %s: rename from %s failed: %s", path, tmp, strerror(errno));
+        unlink(tmp);
+        unlink(xtmp);
+        return SB_ERR_IO;
+    }
+    if (rename(xtmp, xpath) != 0) {
+        snprintf(err, errlen, "record %s written, but its XDMF sidecar %s could not be renamed into place: %s",
+                 path, xpath, strerror(errno));
+        unlink(xtmp);
+        return SB_ERR_IO;
+    }
+    sb_record_fsync_dir(path);
+    return SB_OK;
+}

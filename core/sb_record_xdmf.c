@@ -1,0 +1,128 @@
+/* sb_record_xdmf.c — the XDMF sidecar of a run record (lets ParaView open the
+ * final and reference surfaces stored in the HDF5 file) and the small file
+ * helpers used to replace records atomically.
+ *
+ * The sidecar holds no numbers: it points at /final/triangles,
+ * /final/sample_pos, /final/sample_ref and /final/displacement of the HDF5
+ * file next to it (referenced by its base name, so the pair can be moved
+ * together).  XDMF 3 format, https://www.xdmf.org/index.php/XDMF_Model_and_Format. */
+#include "sb_record_io.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+int sb_record_xdmf_path(const char *h5path, char *buf, size_t len)
+{
+    if (!h5path || !buf || len == 0) return SB_ERR_INPUT;
+    size_t n = strlen(h5path);
+    int w;
+    if (n > 3 && strcmp(h5path + n - 3, ".h5") == 0)
+        w = snprintf(buf, len, "%.*s.xdmf", (int)(n - 3), h5path);
+    else
+        w = snprintf(buf, len, "%s.xdmf", h5path);
+    return (w < 0 || (size_t)w >= len) ? SB_ERR_INPUT : SB_OK;
+}
+
+const char *sb_record_basename(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s ? s + 1 : path;
+}
+
+int sb_record_fsync_path(const char *path)
+{
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return -1;
+    int rc = fsync(fd);
+    int e = errno;
+    close(fd);
+    errno = e;
+    return rc;
+}
+
+void sb_record_fsync_dir(const char *path)
+{
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    if (!slash) snprintf(dir, sizeof dir, ".");
+    else if (slash == path) snprintf(dir, sizeof dir, "/");
+    else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    int fd = open(dir, O_RDONLY | O_DIRECTORY);
+    if (fd < 0) return;
+    (void)fsync(fd);   /* best effort: some file systems refuse directory fsync */
+    close(fd);
+}
+
+/* Write s with XML special characters escaped. */
+static void xml_text(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        case '\'': fputs("&apos;", f); break;
+        default: fputc(*s, f);
+        }
+    }
+}
+
+static void data_item(FILE *f, const char *h5, const char *dset, long rows, int cols,
+                      const char *type, int precision)
+{
+    fprintf(f, "        <DataItem Dimensions=\"%ld %d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">",
+            rows, cols, type, precision);
+    xml_text(f, h5);
+    fprintf(f, ":%s</DataItem>\n", dset);
+}
+
+/* One surface grid: the shared triangle topology over the sample points,
+ * geometry from `geometry_dset`, and the displacement as a node vector. */
+static void grid(FILE *f, const sb_run *run, const char *h5, const char *name,
+                 const char *geometry_dset)
+{
+    fprintf(f, "    <Grid Name=\"%s\" GridType=\"Uniform\">\n", name);
+    fprintf(f, "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n", run->n_tris);
+    data_item(f, h5, "/final/triangles", run->n_tris, 3, "Int", 4);
+    fprintf(f, "      </Topology>\n");
+    fprintf(f, "      <Geometry GeometryType=\"XYZ\">\n");
+    data_item(f, h5, geometry_dset, run->n_samples, 3, "Float", 8);
+    fprintf(f, "      </Geometry>\n");
+    fprintf(f, "      <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n");
+    data_item(f, h5, "/final/displacement", run->n_samples, 3, "Float", 8);
+    fprintf(f, "      </Attribute>\n");
+    fprintf(f, "    </Grid>\n");
+}
+
+int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h5_name,
+                         char *err, size_t errlen)
+{
+    FILE *f = fopen(xdmf_path, "w");
+    if (!f) {
+        snprintf(err, errlen, "cannot create XDMF sidecar %s: %s", xdmf_path, strerror(errno));
+        return SB_ERR_IO;
+    }
+    fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n");
+    fprintf(f, "<Xdmf Version=\"3.0\">\n  <Domain Name=\"");
+    xml_text(f, run->scene_name);
+    fputc('/', f);
+    xml_text(f, run->method);
+    fputc('/', f);
+    xml_text(f, run->solver);
+    fprintf(f, "\">\n");
+    grid(f, run, h5_name, "final", "/final/sample_pos");
+    grid(f, run, h5_name, "reference", "/final/sample_ref");
+    fprintf(f, "  </Domain>\n</Xdmf>\n");
+    int bad = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
+    int e = errno;
+    if (fclose(f) != 0) bad = 1;
+    if (bad) {
+        snprintf(err, errlen, "cannot write XDMF sidecar %s: %s", xdmf_path, strerror(e));
+        return SB_ERR_IO;
+    }
+    return SB_OK;
+}

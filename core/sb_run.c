@@ -1,0 +1,511 @@
+/* sb_run.c — one run, end to end: scene -> method -> problem -> solver ->
+ * record (sb_run.h).  All statistics come from the core wrappers. */
+#include "sb_run.h"
+#include "sb_context.h"
+#include "sb_geometry.h"
+#include "sb_record.h"
+#include "sb_solver.h"
+#include "sb_sysinfo.h"
+
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+typedef struct run_state {
+    sb_context ctx;
+    sb_scene scene;
+    int scene_loaded;
+    const sb_method_type *mt;
+    const sb_solver_type *stype;
+    void *ms, *ss;
+    int ms_created, ss_allocated;
+    sb_problem *prob;
+    double *x, *xn, *v, *xref;
+    sb_run rec;
+    char (*probe_names)[SB_NAME_LEN];
+    int n_grid;                        /* sample grid per side */
+} run_state;
+
+static void run_cleanup(run_state *R)
+{
+    if (R->ss_allocated) R->stype->free(R->ss);
+    free(R->ss);
+    sb_problem_free(R->prob);
+    if (R->ms_created) R->mt->destroy(R->ms);
+    free(R->ms);
+    free(R->x); free(R->xn); free(R->v); free(R->xref);
+    free(R->rec.probe_traj); free(R->rec.probe_expected); free(R->rec.probe_rel_error);
+    free(R->rec.sample_st); free(R->rec.sample_ref); free(R->rec.sample_pos); free(R->rec.tris);
+    free(R->probe_names);
+    if (R->scene_loaded) sb_scene_free(&R->scene);
+    sb_context_free(&R->ctx);
+}
+
+static int mkdir_p(const char *path)
+{
+    char tmp[1024];
+    snprintf(tmp, sizeof tmp, "%s", path);
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
+            *p = '/';
+        }
+    return 0;
+}
+
+/* Sample grid (n x n in (s,t), points inside the domain) and its triangles. */
+static int build_samples(run_state *R)
+{
+    const int n = R->n_grid;
+    int *idx = malloc((size_t)n * n * sizeof *idx);
+    R->rec.sample_st = malloc((size_t)n * n * 2 * sizeof(double));
+    R->rec.tris = malloc((size_t)(n - 1) * (n - 1) * 6 * sizeof(int));
+    if (!idx || !R->rec.sample_st || !R->rec.tris) { free(idx); return SB_ERR_NOMEM; }
+    int m = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double s = (double)i / (n - 1), t = (double)j / (n - 1);
+            idx[j * n + i] = -1;
+            if (!sb_domain_contains_st(&R->scene.domain, s, t)) continue;
+            R->rec.sample_st[2 * m] = s;
+            R->rec.sample_st[2 * m + 1] = t;
+            idx[j * n + i] = m++;
+        }
+    int nt = 0;
+    for (int j = 0; j + 1 < n; j++)
+        for (int i = 0; i + 1 < n; i++) {
+            int a = idx[j * n + i], b = idx[j * n + i + 1], c = idx[(j + 1) * n + i], d = idx[(j + 1) * n + i + 1];
+            if (a < 0 || b < 0 || c < 0 || d < 0) continue;
+            /* skip cells whose centre is outside (L-shape notch) */
+            if (!sb_domain_contains_st(&R->scene.domain, (i + 0.5) / (n - 1), (j + 0.5) / (n - 1))) continue;
+            int *T = R->rec.tris + 3 * nt;
+            T[0] = a; T[1] = b; T[2] = d; T[3] = a; T[4] = d; T[5] = c;
+            nt += 2;
+        }
+    free(idx);
+    R->rec.n_samples = m;
+    R->rec.n_tris = nt;
+    R->rec.sample_ref = malloc((size_t)(m ? m : 1) * 3 * sizeof(double));
+    R->rec.sample_pos = malloc((size_t)(m ? m : 1) * 3 * sizeof(double));
+    return R->rec.sample_ref && R->rec.sample_pos ? SB_OK : SB_ERR_NOMEM;
+}
+
+static void step_info(const sb_scene *sc, int step, sb_step_info *si)
+{
+    memset(si, 0, sizeof *si);
+    si->step = step;
+    si->n_steps = sc->time.steps;
+    si->dt = sc->time.mode == SB_TIME_DYNAMIC ? sc->time.dt : 0.0;
+    si->t = sc->time.mode == SB_TIME_DYNAMIC ? step * sc->time.dt : (double)step;
+    for (int i = 0; i < sc->n_loads; i++) si->load_factor[i] = sb_load_factor(sc, &sc->loads[i], step);
+    for (int i = 0; i < sc->n_bcs; i++) si->motion_factor[i] = sb_bc_motion_factor(sc, &sc->bcs[i], step);
+}
+
+static double probe_rel_error(const sb_probe *p, const double u[3])
+{
+    if (!p->has_expected) return NAN;
+    if (p->expected_component < 0) {
+        double num = 0, den = 0;
+        for (int k = 0; k < 3; k++) {
+            num += (u[k] - p->expected[k]) * (u[k] - p->expected[k]);
+            den += p->expected[k] * p->expected[k];
+        }
+        return sqrt(num) / fmax(sqrt(den), 1e-300);
+    }
+    double val = p->expected_component == 3 ? sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) : u[p->expected_component];
+    return fabs(val - p->expected[0]) / fmax(fabs(p->expected[0]), 1e-300);
+}
+
+static int record_probes(run_state *R, int step_slot)
+{
+    const sb_scene *sc = &R->scene;
+    if (!sc->n_probes || !R->mt->eval_points) return SB_OK;
+    double st[2 * SB_SCENE_MAX_PROBES];
+    for (int p = 0; p < sc->n_probes; p++) { st[2 * p] = sc->probes[p].st[0]; st[2 * p + 1] = sc->probes[p].st[1]; }
+    int F = sb_problem_finest(R->prob);
+    return R->mt->eval_points(R->ms, F, R->x, sc->n_probes, st, R->rec.probe_traj + (size_t)step_slot * sc->n_probes * 3);
+}
+
+static void json_set_num(json_t *o, const char *k, double v)
+{
+    json_object_set_new(o, k, isfinite(v) ? json_real(v) : json_null());
+}
+
+static char *summary_json(run_state *R, const char *out_path)
+{
+    const sb_stats *st = &R->ctx.stats;
+    json_t *o = json_object();
+    json_object_set_new(o, "scene", json_string(R->scene.name));
+    json_object_set_new(o, "method", json_string(R->mt->name));
+    json_object_set_new(o, "solver", json_string(R->stype->name));
+    json_object_set_new(o, "method_info", json_string(R->rec.method_info));
+    json_object_set_new(o, "dofs", json_integer(R->rec.n_dofs));
+    json_object_set_new(o, "levels", json_integer(R->rec.levels));
+    json_object_set_new(o, "res", json_integer(R->rec.res));
+    json_object_set_new(o, "steps", json_integer(R->rec.steps_done));
+    json_object_set_new(o, "steps_planned", json_integer(R->rec.steps_planned));
+    json_object_set_new(o, "status", json_string(R->rec.status == 0 ? "converged" : "not_converged"));
+    json_object_set_new(o, "reason", json_string(sb_reason_name((sb_reason)R->rec.reason)));
+    long iters = 0;
+    for (size_t i = 0; i < st->n_steps; i++) iters += st->steps[i].iterations;
+    json_object_set_new(o, "iterations", json_integer(iters));
+    json_t *wu = json_object();
+    json_set_num(wu, "assembly", st->work_assembly);
+    json_set_num(wu, "qp", st->work_qp);
+    json_object_set_new(o, "work_units", wu);
+    json_t *sec = json_object();
+    json_set_num(sec, "total", st->seconds_total);
+    for (int e = 0; e < SB_EV_COUNT; e++) json_set_num(sec, sb_event_name((sb_event)e), sb_stats_event_total(st, (sb_event)e).seconds);
+    json_object_set_new(o, "seconds", sec);
+    json_t *cnt = json_object();
+    for (int e = 0; e < SB_EV_COUNT; e++) json_object_set_new(cnt, sb_event_name((sb_event)e), json_integer(sb_stats_event_total(st, (sb_event)e).count));
+    json_object_set_new(o, "counts", cnt);
+    json_t *lin = json_object();
+    int F = R->rec.levels - 1;
+    json_set_num(lin, "matrix_nnz", (double)st->matrix_nnz[F]);
+    json_set_num(lin, "factor_nnz", st->chol_nnz_l[F]);
+    json_set_num(lin, "factor_flops", st->chol_flops[F]);
+    json_object_set_new(lin, "not_posdef", json_integer(st->not_posdef));
+    json_object_set_new(o, "linear_algebra", lin);
+    json_t *pr = json_object();
+    int last = R->rec.steps_done;
+    for (int p = 0; p < R->rec.n_probes; p++) {
+        json_t *q = json_object();
+        const double *pos = R->rec.probe_traj + ((size_t)last * R->rec.n_probes + p) * 3;
+        const double *ref = R->rec.probe_traj + (size_t)p * 3;
+        json_object_set_new(q, "position", json_pack("[fff]", pos[0], pos[1], pos[2]));
+        json_object_set_new(q, "displacement", json_pack("[fff]", pos[0] - ref[0], pos[1] - ref[1], pos[2] - ref[2]));
+        const sb_probe *sp = &R->scene.probes[p];
+        if (sp->has_expected) {
+            if (sp->expected_component < 0)
+                json_object_set_new(q, "expected", json_pack("[fff]", sp->expected[0], sp->expected[1], sp->expected[2]));
+            else
+                json_set_num(q, "expected", sp->expected[0]);
+            static const char *const comp[] = { "x", "y", "z", "norm" };
+            json_object_set_new(q, "component", json_string(sp->expected_component < 0 ? "vector" : comp[sp->expected_component]));
+            json_set_num(q, "rel_error", R->rec.probe_rel_error[p]);
+            json_set_num(q, "tol", sp->tol);
+        }
+        json_object_set_new(pr, sp->name, q);
+    }
+    json_object_set_new(o, "probes", pr);
+    if (R->rec.has_error) {
+        json_t *er = json_object();
+        json_object_set_new(er, "kind", json_string(R->rec.error_kind));
+        if (strcmp(R->rec.error_kind, "field") == 0) {
+            json_set_num(er, "rms", R->rec.error_rms);
+            json_set_num(er, "max", R->rec.error_max);
+        } else {
+            json_set_num(er, "max_probe_rel", R->rec.error_probe);
+        }
+        json_object_set_new(o, "error", er);
+    } else {
+        json_object_set_new(o, "error", json_null());
+    }
+    json_object_set_new(o, "file", out_path ? json_string(out_path) : json_null());
+    char *s = json_dumps(o, JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(12));
+    json_decref(o);
+    return s;
+}
+
+/* error against the scene's reference (DESIGN.md "Accuracy") */
+static void compute_error(run_state *R, FILE *err)
+{
+    const sb_scene *sc = &R->scene;
+    sb_run *rec = &R->rec;
+    double worst = 0;
+    int any = 0;
+    for (int p = 0; p < rec->n_probes; p++)
+        if (isfinite(rec->probe_rel_error[p])) { any = 1; worst = fmax(worst, rec->probe_rel_error[p]); }
+    if (sc->reference.kind == SB_REF_PROBES && any) {
+        rec->has_error = 1;
+        rec->error_probe = worst;
+        snprintf(rec->error_kind, sizeof rec->error_kind, "probes");
+    } else if (sc->reference.kind == SB_REF_FILE && rec->n_samples > 0) {
+        int n = 0;
+        double *st = NULL, *pos = NULL;
+        char msg[512];
+        if (sb_record_read_samples(sc->reference.file, &n, &st, &pos, msg, sizeof msg)) {
+            fprintf(err, "shellbench: warning: reference %s unreadable, no error computed: %s\n", sc->reference.file, msg);
+        } else if (n != rec->n_samples) {
+            fprintf(err, "shellbench: warning: reference %s has %d sample points, this run %d: no error computed\n",
+                    sc->reference.file, n, rec->n_samples);
+        } else {
+            double diam = sb_domain_diameter(&sc->domain), s2 = 0, mx = 0;
+            for (int i = 0; i < n; i++) {
+                double d2 = 0;
+                for (int k = 0; k < 3; k++) d2 += (rec->sample_pos[3 * i + k] - pos[3 * i + k]) * (rec->sample_pos[3 * i + k] - pos[3 * i + k]);
+                s2 += d2;
+                mx = fmax(mx, sqrt(d2));
+            }
+            rec->has_error = 1;
+            rec->error_rms = sqrt(s2 / n) / diam;
+            rec->error_max = mx / diam;
+            snprintf(rec->error_kind, sizeof rec->error_kind, "field");
+        }
+        free(st);
+        free(pos);
+    }
+    if (!rec->has_error) snprintf(rec->error_kind, sizeof rec->error_kind, "none");
+}
+
+int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summary)
+{
+    run_state *R = calloc(1, sizeof *R);
+    if (!R) { fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
+    int exit_code = SB_EXIT_INTERNAL, rc;
+    char path[1024], msg[2048];
+    double t_start = sb_now();
+    if (summary) *summary = NULL;
+    if (sb_context_init(&R->ctx)) { free(R); fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
+    R->n_grid = req->sample_n > 1 ? req->sample_n : 21;
+
+    /* scene */
+    if (sb_scene_resolve(req->scene, path, sizeof path)) {
+        fprintf(err, "shellbench: scene \"%s\" not found (neither a file nor a name in bench/scenes; try `shellbench list scenes`)\n", req->scene);
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    if (sb_scene_load(path, &R->scene, msg, sizeof msg)) {
+        fprintf(err, "%s\n", msg);
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    R->scene_loaded = 1;
+
+    /* method and solver, and whether they fit together */
+    R->mt = sb_method_find(req->method);
+    R->stype = sb_solver_find(req->solver);
+    if (!R->mt || !R->stype) {
+        fprintf(err, "shellbench: unknown %s \"%s\" (see `shellbench list %s`)\n", !R->mt ? "method" : "solver",
+                !R->mt ? req->method : req->solver, !R->mt ? "methods" : "solvers");
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    int levels = req->levels > 0 ? req->levels : 1;
+    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
+        fprintf(err, "shellbench: solver %s needs a level hierarchy (prolongation, restriction, projection), "
+                     "but method %s provides none\n", R->stype->name, R->mt->name);
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && levels < 2) {
+        fprintf(err, "shellbench: solver %s needs at least 2 levels, but --levels is %d\n", R->stype->name, levels);
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    if (levels > 1 && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
+        fprintf(err, "shellbench: --levels %d asks for a hierarchy, but method %s has none\n", levels, R->mt->name);
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    if (levels > SB_MAX_LEVELS || req->res < 0) {
+        fprintf(err, "shellbench: --levels must be in [1, %d] and --res >= 0\n", SB_MAX_LEVELS);
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    if (!(R->mt->flags & SB_METHOD_POTENTIAL) && !(R->stype->flags & SB_SOLVER_SINGLE_STEP)) {
+        fprintf(err, "shellbench: method %s has no energy potential (lagged forces); solver %s needs one: use linearized\n",
+                R->mt->name, R->stype->name);
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+
+    /* parameters: declared tables, then overrides */
+    sb_paramset *ps = &R->ctx.params;
+    if (sb_paramset_add(ps, "run", sb_solve_params) || sb_paramset_add(ps, "solver", R->stype->params) ||
+        sb_paramset_add(ps, "method", R->mt->params)) {
+        fprintf(err, "shellbench: internal error: too many parameters\n");
+        goto done;
+    }
+    for (int i = 0; i < req->n_sets; i++)
+        if (sb_paramset_set(ps, req->sets[i], msg, sizeof msg)) {
+            fprintf(err, "shellbench: %s\n", msg);
+            exit_code = SB_EXIT_INPUT;
+            goto done;
+        }
+
+    /* method -> problem -> solver */
+    R->ms = calloc(1, R->mt->state_size);
+    if (!R->ms) goto nomem;
+    sb_method_config cfg = { req->res, levels, ps, &R->ctx };
+    rc = R->mt->create(R->ms, &R->scene, &cfg);
+    R->ms_created = 1;
+    if (rc) {
+        fprintf(err, "shellbench: method %s on scene %s: %s\n", R->mt->name, R->scene.name,
+                R->ctx.err[0] ? R->ctx.err : "set-up failed");
+        exit_code = rc == SB_ERR_INPUT || rc == SB_ERR_UNSUPPORTED ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
+        goto done;
+    }
+    rc = sb_problem_create(&R->ctx, R->mt, R->ms, &R->scene, &R->prob);
+    if (rc) {
+        fprintf(err, "shellbench: %s\n", R->ctx.err);
+        exit_code = rc == SB_ERR_UNSUPPORTED || rc == SB_ERR_INPUT ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
+        goto done;
+    }
+    R->ss = calloc(1, R->stype->state_size);
+    if (!R->ss) goto nomem;
+    rc = R->stype->alloc(R->ss, R->prob, ps);
+    R->ss_allocated = 1;
+    if (rc) {
+        fprintf(err, "shellbench: solver %s: %s\n", R->stype->name, R->ctx.err[0] ? R->ctx.err : "allocation failed");
+        exit_code = rc == SB_ERR_UNSUPPORTED || rc == SB_ERR_INPUT ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
+        goto done;
+    }
+
+    const int F = sb_problem_finest(R->prob), n = sb_problem_n(R->prob, F);
+    const sb_scene *sc = &R->scene;
+    R->x = malloc((size_t)n * sizeof(double));
+    R->xn = malloc((size_t)n * sizeof(double));
+    R->v = calloc((size_t)n, sizeof(double));
+    R->xref = malloc((size_t)n * sizeof(double));
+    R->rec.probe_traj = calloc(((size_t)sc->time.steps + 1) * (sc->n_probes ? sc->n_probes : 1) * 3, sizeof(double));
+    R->rec.probe_expected = malloc((size_t)(sc->n_probes ? sc->n_probes : 1) * 3 * sizeof(double));
+    R->rec.probe_rel_error = malloc((size_t)(sc->n_probes ? sc->n_probes : 1) * sizeof(double));
+    R->probe_names = calloc((size_t)(sc->n_probes ? sc->n_probes : 1), sizeof *R->probe_names);
+    if (!R->x || !R->xn || !R->v || !R->xref || !R->rec.probe_traj || !R->rec.probe_expected ||
+        !R->rec.probe_rel_error || !R->probe_names || build_samples(R))
+        goto nomem;
+    R->mt->initial(R->ms, F, R->x);
+    sb_copy(n, R->x, R->xref);
+
+    /* record identity */
+    sb_run *rec = &R->rec;
+    snprintf(rec->scene_name, sizeof rec->scene_name, "%s", sc->name);
+    snprintf(rec->scene_path, sizeof rec->scene_path, "%s", sc->path);
+    rec->scene_json = sc->json_text;
+    snprintf(rec->method, sizeof rec->method, "%s", R->mt->name);
+    snprintf(rec->solver, sizeof rec->solver, "%s", R->stype->name);
+    if (R->mt->describe) R->mt->describe(R->ms, rec->method_info, sizeof rec->method_info);
+    rec->res = req->res;
+    rec->levels = sb_problem_levels(R->prob);
+    rec->n_dofs = n;
+    rec->params = ps;
+    sb_sysinfo_build_id(rec->build_id, sizeof rec->build_id);
+    sb_sysinfo_cpu_model(rec->cpu_model, sizeof rec->cpu_model);
+    rec->n_cores = sb_sysinfo_cores();
+    sb_sysinfo_now_iso(rec->started, sizeof rec->started);
+    rec->steps_planned = sc->time.steps;
+    rec->stats = &R->ctx.stats;
+    rec->n_probes = R->mt->eval_points ? sc->n_probes : 0;
+    rec->probe_names = R->probe_names;
+    for (int p = 0; p < sc->n_probes; p++) {
+        snprintf(R->probe_names[p], SB_NAME_LEN, "%s", sc->probes[p].name);
+        for (int k = 0; k < 3; k++)
+            rec->probe_expected[3 * p + k] = sc->probes[p].has_expected &&
+                (sc->probes[p].expected_component < 0 || k == 0) ? sc->probes[p].expected[k] : NAN;
+        rec->probe_rel_error[p] = NAN;
+    }
+    rec->n_x = n;
+    rec->x_final = R->x;
+    if (R->mt->eval_points) {
+        if (record_probes(R, 0) ||
+            R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_ref)) {
+            fprintf(err, "shellbench: method %s cannot evaluate the probes / sample grid of scene %s\n", R->mt->name, sc->name);
+            exit_code = SB_EXIT_INTERNAL;
+            goto done;
+        }
+    } else {
+        rec->n_samples = 0;
+        rec->n_tris = 0;
+    }
+
+    /* time / load stepping */
+    sb_stats *stats = &R->ctx.stats;
+    sb_reason reason = SB_REASON_NONE;
+    rec->status = 0;
+    for (int step = 1; step <= sc->time.steps; step++) {
+        double t0 = sb_now();
+        double wa0 = stats->work_assembly, wq0 = stats->work_qp;
+        sb_step_info si;
+        step_info(sc, step, &si);
+        sb_copy(n, R->x, R->xn);
+        rc = sb_problem_begin_step(R->prob, &si, R->xn, R->v, R->x);
+        if (rc < 0) {
+            fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+            exit_code = SB_EXIT_INTERNAL;
+            goto done;
+        }
+        int iters = 0;
+        double f = 0, gn = 0;
+        reason = sb_solve_step(R->stype, R->ss, R->prob, ps, step, R->x, &iters, &f, &gn);
+        if (sc->time.mode == SB_TIME_DYNAMIC)
+            for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
+        double tr0 = sb_now();
+        sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0 };
+        sr.seconds = tr0 - t0;
+        sb_stats_push_step(stats, &sr);
+        rec->steps_done = step;
+        if (R->mt->eval_points) record_probes(R, step);
+        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
+        if (!req->quiet)
+            fprintf(err, "step %d/%d: %s after %d iterations, f = %.10g, |g| = %.3g (%.3f s)\n", step, sc->time.steps,
+                    sb_reason_name(reason), iters, f, gn, sr.seconds);
+        rec->reason = reason;
+        if (!sb_reason_converged(reason)) {
+            rec->status = 1;
+            break;
+        }
+    }
+    stats->seconds_total = sb_now() - t_start;
+
+    /* results: probes, samples, error, record */
+    double tr0 = sb_now();
+    if (R->mt->eval_points) {
+        R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
+        for (int p = 0; p < rec->n_probes; p++) {
+            const double *pos = rec->probe_traj + ((size_t)rec->steps_done * rec->n_probes + p) * 3;
+            const double *ref = rec->probe_traj + (size_t)p * 3;
+            double u[3] = { pos[0] - ref[0], pos[1] - ref[1], pos[2] - ref[2] };
+            rec->probe_rel_error[p] = probe_rel_error(&sc->probes[p], u);
+        }
+    }
+    compute_error(R, err);
+    const char *out_path = NULL;
+    char auto_path[1024];
+    if (!req->out) {
+        snprintf(auto_path, sizeof auto_path, "results/runs/%s-%s-%s-r%d-l%d.h5", sc->name, R->mt->name, R->stype->name,
+                 req->res, rec->levels);
+        out_path = auto_path;
+    } else if (strcmp(req->out, "none") != 0) {
+        out_path = req->out;
+    }
+    if (out_path) {
+        if (mkdir_p(out_path)) {
+            fprintf(err, "shellbench: cannot create the directory of %s: %s\n", out_path, strerror(errno));
+            exit_code = SB_EXIT_INPUT;
+            goto done;
+        }
+        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
+        stats->seconds_total = sb_now() - t_start;
+        if (sb_record_write(rec, out_path, msg, sizeof msg)) {
+            fprintf(err, "shellbench: %s\n", msg);
+            exit_code = SB_EXIT_INPUT;
+            goto done;
+        }
+    } else {
+        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
+        stats->seconds_total = sb_now() - t_start;
+    }
+    char *js = summary_json(R, out_path);
+    if (req->summary_json && js) fprintf(out, "%s\n", js);
+    if (summary) *summary = js;
+    else free(js);
+    if (!req->quiet && !req->summary_json)
+        fprintf(err, "%s/%s/%s: %s (%s), %ld dofs, %d of %d steps, %.3f s%s%s\n", sc->name, R->mt->name, R->stype->name,
+                rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason), rec->n_dofs,
+                rec->steps_done, rec->steps_planned, stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
+    exit_code = rec->status ? SB_EXIT_NOT_CONVERGED : SB_EXIT_CONVERGED;
+    goto done;
+nomem:
+    fprintf(err, "shellbench: out of memory\n");
+    exit_code = SB_EXIT_INTERNAL;
+done:
+    run_cleanup(R);
+    free(R);
+    return exit_code;
+}

@@ -1,0 +1,31 @@
+/* sb_run.h — one run: scene -> method -> problem -> solver -> record.  The
+ * CLI's `run` command is a thin wrapper; tests call this directly, so every
+ * solver is exercised through exactly the code path of `shellbench run`. */
+#ifndef SB_RUN_H
+#define SB_RUN_H
+
+#include <stdio.h>
+
+typedef struct sb_run_request {
+    const char *scene;        /* name or path */
+    const char *method;
+    const char *solver;
+    int res;                  /* 0 = scene/method default */
+    int levels;               /* 0 = 1 */
+    const char *out;          /* HDF5 path; NULL = results/runs/<auto>.h5; "none" = no file */
+    int summary_json;         /* print the JSON summary on `out_stream` */
+    int n_sets;
+    const char *const *sets;  /* "key=value" overrides */
+    int quiet;                /* no progress lines */
+    int sample_n;             /* sample grid per side (0 = 21) */
+} sb_run_request;
+
+/* Exit codes of the CLI contract. */
+enum { SB_EXIT_CONVERGED = 0, SB_EXIT_NOT_CONVERGED = 1, SB_EXIT_INPUT = 2, SB_EXIT_INTERNAL = 3 };
+
+/* Executes the run; returns the exit code.  Messages go to err_stream,
+ * the JSON summary (if asked) to out_stream.  When summary is non-NULL it
+ * receives the JSON text (caller frees). */
+int sb_run_execute(const sb_run_request *req, FILE *out_stream, FILE *err_stream, char **summary);
+
+#endif

@@ -1,0 +1,184 @@
+/* sb_scene_loads.c — the "loads" and "boundary" arrays of a scene file.
+ * Units: acceleration m/s^2, pressure Pa, line force N/m, point force N,
+ * end moment N m/m, translations m, rotation angles degrees (radians in
+ * memory).  Ramp semantics: see sb_load_factor() in sb_scene.c. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sb_scene_json.h"
+
+#define MAX_RAMP 1000000L
+
+static int unit_axis(sbj_ctx *c, const json_t *obj, const char *key, double a[3])
+{
+    int r = sbj_get_vec(c, obj, key, 1, 3, a, NULL);
+    if (r) return r;
+    double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    if (!(n > 0)) return sbj_fail(c, key, 0, "axis must be a nonzero vector");
+    for (int k = 0; k < 3; k++) a[k] /= n;
+    return SB_OK;
+}
+
+static int parse_load(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_load *ld)
+{
+    static const char *const kinds[] = { "gravity", "pressure", "line", "point", "end_moment", NULL };
+    static const char *const k_grav[] = { "type", "acceleration", "ramp_steps", NULL };
+    static const char *const k_pres[] = { "type", "pressure", "follower", "ramp_steps", NULL };
+    static const char *const k_line[] = { "type", "on", "force_per_length", "ramp_steps", NULL };
+    static const char *const k_point[] = { "type", "at", "force", "ramp_steps", NULL };
+    static const char *const k_mom[] = { "type", "on", "moment_per_length", "axis", "ramp_steps", NULL };
+    static const char *const *const keys[] = { k_grav, k_pres, k_line, k_point, k_mom };
+    int kind = 0, r;
+    long ramp = 0;
+
+    if (!json_is_object(o)) return sbj_fail(c, NULL, 0, "must be an object, got %s", sbj_type_name(o));
+    memset(ld, 0, sizeof *ld);
+    if ((r = sbj_get_choice(c, o, "type", 1, kinds, &kind))) return r;
+    ld->kind = (sb_load_kind)kind;
+    if ((r = sbj_check_keys(c, o, keys[kind]))) return r;
+    if ((r = sbj_get_int(c, o, "ramp_steps", 0, 0, MAX_RAMP, &ramp))) return r;
+    ld->ramp_steps = (int)ramp;
+    switch (ld->kind) {
+    case SB_LOAD_GRAVITY:
+        return sbj_get_vec(c, o, "acceleration", 1, 3, ld->vec, NULL);
+    case SB_LOAD_PRESSURE:
+        if ((r = sbj_get_number(c, o, "pressure", 1, &ld->value, NULL))) return r;
+        return sbj_get_bool(c, o, "follower", &ld->follower);
+    case SB_LOAD_LINE:
+        if ((r = sbj_parse_parts(c, o, d, 1, 0, ld->parts, &ld->n_parts))) return r;
+        return sbj_get_vec(c, o, "force_per_length", 1, 3, ld->vec, NULL);
+    case SB_LOAD_POINT:
+        if ((r = sbj_parse_parts(c, o, d, 0, 1, ld->parts, &ld->n_parts))) return r;
+        return sbj_get_vec(c, o, "force", 1, 3, ld->vec, NULL);
+    case SB_LOAD_END_MOMENT:
+        if ((r = sbj_parse_parts(c, o, d, 1, 0, ld->parts, &ld->n_parts))) return r;
+        if ((r = sbj_get_number(c, o, "moment_per_length", 1, &ld->value, NULL))) return r;
+        return unit_axis(c, o, "axis", ld->vec);
+    }
+    return SB_OK;
+}
+
+int sbj_parse_loads(sbj_ctx *c, const json_t *root, sb_scene *sc)
+{
+    json_t *arr, *o;
+    size_t i;
+    int r = sbj_get_array(c, root, "loads", 0, 0, &arr);
+    if (r || !arr) return r;
+    if (json_array_size(arr) > SB_SCENE_MAX_LOADS)
+        return sbj_fail(c, "loads", 0, "too many loads: %zu (at most %d)", json_array_size(arr),
+                        SB_SCENE_MAX_LOADS);
+    size_t mark = sbj_push(c, "loads");
+    json_array_foreach(arr, i, o) {
+        size_t m2 = sbj_push_index(c, i);
+        r = parse_load(c, o, &sc->domain, &sc->loads[i]);
+        sbj_pop(c, m2);
+        if (r) break;
+        sc->n_loads++;
+    }
+    sbj_pop(c, mark);
+    return r;
+}
+
+/* "components": a non-empty subset of "xyz" -> bit mask (default all). */
+static int parse_components(sbj_ctx *c, const json_t *o, unsigned *mask)
+{
+    char s[8];
+    int present, r = sbj_get_string(c, o, "components", 0, s, sizeof s, &present);
+    *mask = 7;
+    if (r) return r;
+    if (!present) return SB_OK;
+    *mask = 0;
+    if (!s[0]) return sbj_fail(c, "components", 0, "must be a non-empty subset of \"xyz\", got \"\"");
+    for (const char *p = s; *p; p++) {
+        unsigned bit = *p == 'x' ? 1u : *p == 'y' ? 2u : *p == 'z' ? 4u : 0u;
+        if (!bit || (*mask & bit))
+            return sbj_fail(c, "components", 0, "must be a non-empty subset of \"xyz\" without repeats, got \"%s\"", s);
+        *mask |= bit;
+    }
+    return SB_OK;
+}
+
+static int parse_rotation(sbj_ctx *c, const json_t *o, sb_bc *bc)
+{
+    static const char *const keys[] = { "axis", "center", "angle", NULL };
+    json_t *rot;
+    double deg = 0;
+    int r = sbj_get_object(c, o, "rotation", 0, &rot);
+    if (r || !rot) return r;
+    size_t mark = sbj_push(c, "rotation");
+    if (!(r = sbj_check_keys(c, rot, keys)) && !(r = unit_axis(c, rot, "axis", bc->rot_axis)) &&
+        !(r = sbj_get_vec(c, rot, "center", 0, 3, bc->rot_center, NULL)) &&
+        !(r = sbj_get_number(c, rot, "angle", 1, &deg, NULL))) {
+        if (!(fabs(deg) <= 3600)) r = sbj_fail(c, "angle", 0, "must be in [-3600, 3600] degrees, got %g", deg);
+        bc->rot_angle = deg * SBJ_DEG;
+    }
+    sbj_pop(c, mark);
+    return r;
+}
+
+static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_bc *bc)
+{
+    static const char *const kinds[] = { "fixed", "clamped", "symmetry", "moving", "free", NULL };
+    static const char *const k_fixed[] = { "type", "on", "at", "components", NULL };
+    static const char *const k_clamp[] = { "type", "on", "at", NULL };
+    static const char *const k_sym[] = { "type", "on", "normal", NULL };
+    static const char *const k_mov[] = { "type", "on", "at", "components", "translation", "rotation",
+                                         "ramp_steps", "clamp_tangent", NULL };
+    static const char *const k_free[] = { "type", "on", NULL };
+    static const char *const *const keys[] = { k_fixed, k_clamp, k_sym, k_mov, k_free };
+    static const char *const axes[] = { "x", "y", "z", NULL };
+    int kind = 0, r;
+
+    if (!json_is_object(o)) return sbj_fail(c, NULL, 0, "must be an object, got %s", sbj_type_name(o));
+    memset(bc, 0, sizeof *bc);
+    bc->components = 7;
+    if ((r = sbj_get_choice(c, o, "type", 1, kinds, &kind))) return r;
+    bc->kind = (sb_bc_kind)kind;
+    if ((r = sbj_check_keys(c, o, keys[kind]))) return r;
+    int points_ok = bc->kind == SB_BC_FIXED || bc->kind == SB_BC_CLAMPED || bc->kind == SB_BC_MOVING;
+    if ((r = sbj_parse_parts(c, o, d, 1, points_ok, bc->parts, &bc->n_parts))) return r;
+    switch (bc->kind) {
+    case SB_BC_FIXED:
+        return parse_components(c, o, &bc->components);
+    case SB_BC_SYMMETRY:
+        return sbj_get_choice(c, o, "normal", 1, axes, &bc->axis);
+    case SB_BC_MOVING: {
+        long ramp = 0;
+        int has_t = 0;
+        if ((r = parse_components(c, o, &bc->components))) return r;
+        if ((r = sbj_get_vec(c, o, "translation", 0, 3, bc->translation, &has_t))) return r;
+        if ((r = parse_rotation(c, o, bc))) return r;
+        if (!has_t && !json_object_get(o, "rotation"))
+            return sbj_fail(c, NULL, 0, "a moving boundary needs \"translation\" and/or \"rotation\"");
+        if ((r = sbj_get_int(c, o, "ramp_steps", 0, 0, MAX_RAMP, &ramp))) return r;
+        bc->ramp_steps = (int)ramp;
+        return sbj_get_bool(c, o, "clamp_tangent", &bc->clamp_tangent);
+    }
+    case SB_BC_CLAMPED:
+    case SB_BC_FREE:
+        break;
+    }
+    return SB_OK;
+}
+
+int sbj_parse_boundary(sbj_ctx *c, const json_t *root, sb_scene *sc)
+{
+    json_t *arr, *o;
+    size_t i;
+    int r = sbj_get_array(c, root, "boundary", 0, 0, &arr);
+    if (r || !arr) return r;
+    if (json_array_size(arr) > SB_SCENE_MAX_BCS)
+        return sbj_fail(c, "boundary", 0, "too many boundary conditions: %zu (at most %d)",
+                        json_array_size(arr), SB_SCENE_MAX_BCS);
+    size_t mark = sbj_push(c, "boundary");
+    json_array_foreach(arr, i, o) {
+        size_t m2 = sbj_push_index(c, i);
+        r = parse_bc(c, o, &sc->domain, &sc->bcs[i]);
+        sbj_pop(c, m2);
+        if (r) break;
+        sc->n_bcs++;
+    }
+    sbj_pop(c, mark);
+    return r;
+}

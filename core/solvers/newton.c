@@ -1,0 +1,194 @@
+/* newton.c — the Newton family: line-search Newton (backtracking Armijo),
+ * damped Newton (constant step, no globalization) and the linearized solve
+ * (one Newton step per time step, Baraff–Witkin), sharing one direction
+ * computation.  RMTR paper §7.4.1 describes all three as comparison solvers. */
+#include "sb_solver.h"
+#include "sb_context.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const sb_param_def lsnewton_params[] = {
+    { "c1", SB_PARAM_REAL, 1e-4, 1e-12, 0.5, NULL, "Armijo sufficient-decrease constant (Nocedal & Wright Alg. 3.1)" },
+    { "backtrack", SB_PARAM_REAL, 0.5, 0.01, 0.99, NULL, "step contraction factor" },
+    { "max_backtracks", SB_PARAM_INT, 50, 1, 1000, NULL, "line-search trials before failure" },
+    { "shift0", SB_PARAM_REAL, 1e-8, 1e-300, 1, NULL,
+      "first diagonal shift, relative to max|H_ij|, when H is not positive definite" },
+    { "shift_factor", SB_PARAM_REAL, 10, 1.1, 1e6, NULL, "shift growth per failed factorization" },
+    { "max_shifts", SB_PARAM_INT, 40, 1, 1000, NULL, "shifted factorizations before failure" },
+    { NULL, 0, 0, 0, 0, NULL, NULL }
+};
+
+static const sb_param_def damped_params[] = {
+    { "alpha", SB_PARAM_REAL, 0.3, 1e-6, 1, NULL, "constant step length (RMTR paper §7.4.1: 0.3)" },
+    { NULL, 0, 0, 0, 0, NULL, NULL }
+};
+
+typedef enum { KIND_LS, KIND_DAMPED, KIND_LINEARIZED } newton_kind;
+
+typedef struct newton_state {
+    newton_kind kind;
+    int n, F;
+    double c1, backtrack, shift0, shift_factor, alpha;
+    int max_backtracks, max_shifts;
+    double *g, *d, *xt;
+    double f, gnorm;
+} newton_state;
+
+static int alloc_common(newton_state *s, sb_problem *p, newton_kind kind)
+{
+    s->kind = kind;
+    s->F = sb_problem_finest(p);
+    s->n = sb_problem_n(p, s->F);
+    s->g = malloc((size_t)s->n * sizeof(double));
+    s->d = malloc((size_t)s->n * sizeof(double));
+    s->xt = malloc((size_t)s->n * sizeof(double));
+    return s->g && s->d && s->xt ? SB_OK : SB_ERR_NOMEM;
+}
+
+static int lsnewton_alloc(void *st, sb_problem *p, const sb_paramset *ps)
+{
+    newton_state *s = st;
+    s->c1 = sb_param(ps, "solver.c1");
+    s->backtrack = sb_param(ps, "solver.backtrack");
+    s->max_backtracks = sb_param_int(ps, "solver.max_backtracks");
+    s->shift0 = sb_param(ps, "solver.shift0");
+    s->shift_factor = sb_param(ps, "solver.shift_factor");
+    s->max_shifts = sb_param_int(ps, "solver.max_shifts");
+    return alloc_common(s, p, KIND_LS);
+}
+
+static int damped_alloc(void *st, sb_problem *p, const sb_paramset *ps)
+{
+    newton_state *s = st;
+    s->alpha = sb_param(ps, "solver.alpha");
+    return alloc_common(s, p, KIND_DAMPED);
+}
+
+static int linearized_alloc(void *st, sb_problem *p, const sb_paramset *ps)
+{
+    (void)ps;
+    newton_state *s = st;
+    return alloc_common(s, p, KIND_LINEARIZED);
+}
+
+static void newton_free(void *st)
+{
+    newton_state *s = st;
+    free(s->g);
+    free(s->d);
+    free(s->xt);
+}
+
+static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info *info)
+{
+    newton_state *s = st;
+    int rc = sb_problem_eval(p, s->F, x, &s->f, s->g, sb_problem_hessian(p, s->F));
+    s->gnorm = sb_problem_norm(p, s->F, s->g);
+    info->f = s->f;
+    info->gnorm = s->gnorm;
+    info->delta = INFINITY;
+    return rc;
+}
+
+/* d = -(H + shift I)^{-1} g.  lsnewton: on a non-positive-definite H the
+ * shift grows geometrically from shift0 * max|H_ij| until the factorization
+ * succeeds (Nocedal & Wright Alg. 3.3); the others record NOT_POSDEF. */
+static int direction(newton_state *s, sb_problem *p, sb_iterate_info *info)
+{
+    double shift = 0.0;
+    int rc = sb_problem_factor(p, s->F, 0.0);
+    if (rc == SB_NOT_POSDEF && s->kind == KIND_LS) {
+        double scale = sb_matrix_norm_max(sb_problem_hessian(p, s->F));
+        shift = s->shift0 * (scale > 0 ? scale : 1.0);
+        for (int k = 0; k < s->max_shifts; k++) {
+            rc = sb_problem_factor(p, s->F, shift);
+            if (rc != SB_NOT_POSDEF) break;
+            shift *= s->shift_factor;
+        }
+    }
+    info->shift = shift;
+    if (rc == SB_NOT_POSDEF) {
+        info->fail = SB_REASON_NOT_POSDEF;
+        return SB_OK;
+    }
+    if (rc < 0) return rc;
+    for (int i = 0; i < s->n; i++) s->xt[i] = -s->g[i];
+    rc = sb_problem_solve(p, s->F, s->xt, s->d);
+    if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+    info->linear_iters = 1;
+    return rc < 0 ? rc : SB_OK;
+}
+
+static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
+{
+    newton_state *s = st;
+    const int n = s->n;
+    info->delta = 0.0;
+    int rc = direction(s, p, info);
+    if (rc < 0 || info->fail) {
+        info->f = s->f;
+        info->gnorm = s->gnorm;
+        return rc;
+    }
+    double alpha = s->kind == KIND_DAMPED ? s->alpha : 1.0;
+    if (s->kind == KIND_LS) {
+        /* backtracking Armijo: f(x + a d) <= f(x) + c1 a g^T d (Nocedal & Wright Alg. 3.1) */
+        double slope = sb_dot(n, s->g, s->d);
+        int ok = 0;
+        if (slope < 0.0) {
+            for (int k = 0; k < s->max_backtracks; k++) {
+                for (int i = 0; i < n; i++) s->xt[i] = x[i] + alpha * s->d[i];
+                double ft;
+                rc = sb_problem_eval(p, s->F, s->xt, &ft, NULL, NULL);
+                if (rc < 0) return rc;
+                if (rc == SB_OK && isfinite(ft) && ft <= s->f + s->c1 * alpha * slope) {
+                    ok = 1;
+                    break;
+                }
+                alpha *= s->backtrack;
+            }
+        }
+        if (!ok) {
+            info->fail = SB_REASON_LINESEARCH;
+            info->f = s->f;
+            info->gnorm = s->gnorm;
+            return SB_OK;
+        }
+    }
+    double fold = s->f;
+    sb_axpy(n, alpha, s->d, x);
+    /* new derivatives at the new iterate (the linearized solver evaluates the
+     * gradient only, to report the residual its single step leaves) */
+    sb_matrix *H = s->kind == KIND_LINEARIZED ? NULL : sb_problem_hessian(p, s->F);
+    rc = sb_problem_eval(p, s->F, x, &s->f, s->g, H);
+    if (rc < 0) return rc;
+    s->gnorm = sb_problem_norm(p, s->F, s->g);
+    info->rho = alpha;
+    info->accepted = 1;
+    /* "Newton regime" for the stagnation tests of Eq. (7.1): a full,
+     * unshifted Newton step plays the role of Delta > delta_big */
+    info->delta = (alpha == 1.0 && info->shift == 0.0) ? INFINITY : 0.0;
+    info->df = fold - s->f;
+    info->step_norm = alpha * sb_norm2(n, s->d);
+    info->f = s->f;
+    info->gnorm = s->gnorm;
+    if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+    return SB_OK;
+}
+
+const sb_solver_type sb_solver_lsnewton = {
+    "lsnewton", "Newton with backtracking Armijo line search; shifted Hessian when indefinite",
+    sizeof(newton_state), lsnewton_params, 0, lsnewton_alloc, newton_set, newton_iterate, newton_free,
+};
+
+const sb_solver_type sb_solver_damped = {
+    "damped", "Newton with constant step 0.3 and no globalization (may diverge: recorded)",
+    sizeof(newton_state), damped_params, 0, damped_alloc, newton_set, newton_iterate, newton_free,
+};
+
+const sb_solver_type sb_solver_linearized = {
+    "linearized", "one Newton step per time step from x_n (Baraff–Witkin linearized implicit Euler)",
+    sizeof(newton_state), NULL, SB_SOLVER_SINGLE_STEP, linearized_alloc, newton_set, newton_iterate, newton_free,
+};

@@ -1,0 +1,232 @@
+/* sb_trs.c — the two trust-region subproblem solvers and the counted wrapper. */
+#include "sb_trs.h"
+#include "sb_context.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const sb_trs_names[] = { "dogleg", "stcg", NULL };
+
+const sb_trs_type *sb_trs_by_index(int i) { return i == 1 ? &sb_trs_stcg : &sb_trs_dogleg; }
+
+int sb_trs_alloc(sb_trs *t, const sb_trs_type *type, int n)
+{
+    t->type = type;
+    t->state = calloc(1, type->state_size);
+    if (!t->state) return SB_ERR_NOMEM;
+    int rc = type->alloc(t->state, n);
+    if (rc) {
+        type->free(t->state);
+        free(t->state);
+        t->state = NULL;
+    }
+    return rc;
+}
+
+void sb_trs_free(sb_trs *t)
+{
+    if (t->state) {
+        t->type->free(t->state);
+        free(t->state);
+    }
+    t->state = NULL;
+}
+
+int sb_trs_solve(sb_trs *t, sb_problem *p, int level, const double *g, double delta, int fresh,
+                 int max_iter, double *s, sb_trs_result *r)
+{
+    double t0 = sb_now();
+    memset(r, 0, sizeof *r);
+    int rc = t->type->solve(t->state, p, level, g, delta, fresh, max_iter, s, r);
+    sb_problem_count_qp(p, level, sb_now() - t0);
+    return rc;
+}
+
+/* Step to the boundary: largest tau >= 0 with ||z + tau d|| = delta. */
+static double to_boundary(int n, const double *z, const double *d, double delta)
+{
+    double dd = sb_dot(n, d, d), zd = sb_dot(n, z, d), zz = sb_dot(n, z, z);
+    if (dd <= 0.0) return 0.0;
+    double disc = zd * zd + dd * (delta * delta - zz);
+    if (disc < 0.0) disc = 0.0;
+    /* numerically stable root of dd tau^2 + 2 zd tau + (zz - delta^2) = 0 */
+    if (zd <= 0.0) return (-zd + sqrt(disc)) / dd;
+    return (delta * delta - zz) / (zd + sqrt(disc));
+}
+
+/* ------------------------------------------------------------------ dogleg */
+typedef struct dogleg_state {
+    int n;
+    double *sn;     /* Newton point -H^{-1} g (when H is PD) */
+    double *sc;     /* Cauchy point along -g (unconstrained minimizer on the ray) */
+    double *hg;     /* H g */
+    double gHg, gg;
+    int have_newton;
+} dogleg_state;
+
+static int dogleg_alloc(void *st, int n)
+{
+    dogleg_state *d = st;
+    d->n = n;
+    d->sn = malloc((size_t)n * sizeof(double));
+    d->sc = malloc((size_t)n * sizeof(double));
+    d->hg = malloc((size_t)n * sizeof(double));
+    return d->sn && d->sc && d->hg ? SB_OK : SB_ERR_NOMEM;
+}
+
+static void dogleg_free(void *st)
+{
+    dogleg_state *d = st;
+    free(d->sn);
+    free(d->sc);
+    free(d->hg);
+}
+
+static double model_reduction(sb_problem *p, int level, const double *g, const double *s, double *tmp)
+{
+    int n = sb_problem_n(p, level);
+    sb_problem_hess_mult(p, level, s, tmp);
+    return -(sb_dot(n, g, s) + 0.5 * sb_dot(n, s, tmp));
+}
+
+/* Dogleg (Nocedal & Wright, Numerical Optimization, §4.1; RMTR paper §7.3):
+ * the Newton point by a sparse direct solve when H is positive definite,
+ * otherwise the Cauchy point (safe for indefinite H: along -g to the
+ * boundary when g^T H g <= 0). */
+static int dogleg_solve(void *st, sb_problem *p, int level, const double *g, double delta, int fresh,
+                        int max_iter, double *s, sb_trs_result *r)
+{
+    (void)max_iter;
+    dogleg_state *d = st;
+    const int n = d->n;
+    if (fresh) {
+        sb_problem_hess_mult(p, level, g, d->hg);
+        d->gg = sb_dot(n, g, g);
+        d->gHg = sb_dot(n, g, d->hg);
+        d->have_newton = 0;
+        int rc = sb_problem_factor(p, level, 0.0);
+        if (rc < 0) return rc;
+        if (rc == SB_OK) {
+            for (int i = 0; i < n; i++) d->sc[i] = -g[i];
+            rc = sb_problem_solve(p, level, d->sc, d->sn);
+            if (rc < 0) return rc;
+            d->have_newton = rc == SB_OK;
+        }
+        if (d->gHg > 0.0) {
+            double a = d->gg / d->gHg;          /* Cauchy step length, unconstrained */
+            for (int i = 0; i < n; i++) d->sc[i] = -a * g[i];
+        }
+    }
+    double gnorm = sqrt(d->gg);
+    r->iters = 1;
+    r->posdef = d->have_newton;
+    if (gnorm == 0.0) {
+        memset(s, 0, (size_t)n * sizeof *s);
+        r->pred = 0.0;
+        return SB_OK;
+    }
+    double snn = d->have_newton ? sb_norm2(n, d->sn) : INFINITY;
+    if (d->have_newton && snn <= delta) {
+        sb_copy(n, d->sn, s);
+    } else {
+        double scn = d->gHg > 0.0 ? sb_norm2(n, d->sc) : INFINITY;
+        if (scn >= delta || !d->have_newton) {
+            /* steepest descent to the boundary (or the interior Cauchy point) */
+            double a = scn < delta ? 1.0 : delta / gnorm;
+            if (scn < delta) sb_copy(n, d->sc, s);
+            else for (int i = 0; i < n; i++) s[i] = -a * g[i];
+            r->boundary = scn >= delta;
+        } else {
+            /* dogleg: s = sc + tau (sn - sc) with ||s|| = delta */
+            for (int i = 0; i < n; i++) s[i] = d->sn[i] - d->sc[i];
+            double tau = to_boundary(n, d->sc, s, delta);
+            for (int i = 0; i < n; i++) s[i] = d->sc[i] + tau * s[i];
+            r->boundary = 1;
+        }
+    }
+    r->snorm = sb_norm2(n, s);
+    /* predicted reduction, exact: -(g^T s + 1/2 s^T H s); hg is free scratch
+     * once g^T H g is cached */
+    r->pred = model_reduction(p, level, g, s, d->hg);
+    return SB_OK;
+}
+
+const sb_trs_type sb_trs_dogleg = { "dogleg", sizeof(dogleg_state), dogleg_alloc, dogleg_free, dogleg_solve };
+
+/* ---------------------------------------------------- Steihaug–Toint CG */
+typedef struct stcg_state {
+    int n;
+    double *r, *d, *Hd;
+} stcg_state;
+
+static int stcg_alloc(void *st, int n)
+{
+    stcg_state *c = st;
+    c->n = n;
+    c->r = malloc((size_t)n * sizeof(double));
+    c->d = malloc((size_t)n * sizeof(double));
+    c->Hd = malloc((size_t)n * sizeof(double));
+    return c->r && c->d && c->Hd ? SB_OK : SB_ERR_NOMEM;
+}
+
+static void stcg_free(void *st)
+{
+    stcg_state *c = st;
+    free(c->r);
+    free(c->d);
+    free(c->Hd);
+}
+
+/* Steihaug (1983) / Toint (1981) truncated CG (Nocedal & Wright Alg. 7.2),
+ * stopped at max_iter iterations (RMTR paper §7.3: 10 as a smoother), at
+ * ||r|| <= min(0.5, sqrt||g||) ||g||, at negative curvature or at the
+ * boundary.  Starts from s = 0, so the first iterate is the Cauchy point. */
+static int stcg_solve(void *st, sb_problem *p, int level, const double *g, double delta, int fresh,
+                      int max_iter, double *s, sb_trs_result *res)
+{
+    (void)fresh;
+    stcg_state *c = st;
+    const int n = c->n;
+    double *r = c->r, *d = c->d, *Hd = c->Hd;
+    memset(s, 0, (size_t)n * sizeof *s);
+    for (int i = 0; i < n; i++) { r[i] = g[i]; d[i] = -g[i]; }
+    double rr = sb_dot(n, r, r), g0 = sqrt(rr);
+    double tol = g0 * fmin(0.5, sqrt(g0));
+    int it = 0;
+    if (max_iter <= 0) max_iter = n;
+    while (it < max_iter && sqrt(rr) > tol) {
+        sb_problem_hess_mult(p, level, d, Hd);
+        it++;
+        double dHd = sb_dot(n, d, Hd);
+        if (dHd <= 0.0) {                         /* negative curvature: to the boundary */
+            double tau = to_boundary(n, s, d, delta);
+            sb_axpy(n, tau, d, s);
+            res->boundary = 1;
+            break;
+        }
+        double alpha = rr / dHd;
+        /* would leave the region: stop on the boundary */
+        double ss = sb_dot(n, s, s), sd = sb_dot(n, s, d), dd = sb_dot(n, d, d);
+        if (ss + 2 * alpha * sd + alpha * alpha * dd >= delta * delta) {
+            double tau = to_boundary(n, s, d, delta);
+            sb_axpy(n, tau, d, s);
+            res->boundary = 1;
+            break;
+        }
+        sb_axpy(n, alpha, d, s);
+        sb_axpy(n, alpha, Hd, r);
+        double rr1 = sb_dot(n, r, r);
+        double beta = rr1 / rr;
+        rr = rr1;
+        for (int i = 0; i < n; i++) d[i] = -r[i] + beta * d[i];
+    }
+    sb_problem_count_cg(p, level, it);
+    res->iters = it;
+    res->snorm = sb_norm2(n, s);
+    sb_problem_hess_mult(p, level, s, Hd);
+    res->pred = -(sb_dot(n, g, s) + 0.5 * sb_dot(n, s, Hd));
+    return SB_OK;
+}
+
+const sb_trs_type sb_trs_stcg = { "stcg", sizeof(stcg_state), stcg_alloc, stcg_free, stcg_solve };

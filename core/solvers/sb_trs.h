@@ -1,0 +1,46 @@
+/* sb_trs.h — trust-region subproblem (QP) solvers, as their own small type
+ * (GSL trs style):  min m(s) = g^T s + 1/2 s^T H s  subject to ||s|| <= Delta,
+ * with H the level's Hessian as last assembled by sb_problem_eval(). */
+#ifndef SB_TRS_H
+#define SB_TRS_H
+
+#include "sb_problem.h"
+
+typedef struct sb_trs_result {
+    double pred;        /* predicted reduction m(0) - m(s) >= 0 */
+    double snorm;       /* ||s|| */
+    int iters;          /* CG iterations, or 1 for a direct solve */
+    int boundary;       /* 1 when the step lies on the trust-region boundary */
+    int posdef;         /* dogleg: 1 when H factored (Newton point available) */
+} sb_trs_result;
+
+typedef struct sb_trs_type {
+    const char *name;
+    size_t state_size;
+    int  (*alloc)(void *state, int n);
+    void (*free)(void *state);
+    /* fresh = 1 when H or g changed since the last call on this state (a
+     * direct method then refactors; otherwise cached factors/points are reused). */
+    int  (*solve)(void *state, sb_problem *p, int level, const double *g, double delta,
+                  int fresh, int max_iter, double *s, sb_trs_result *r);
+} sb_trs_type;
+
+extern const sb_trs_type sb_trs_dogleg;   /* Nocedal & Wright §4.1; sparse direct Newton point */
+extern const sb_trs_type sb_trs_stcg;     /* Steihaug–Toint truncated CG */
+
+extern const char *const sb_trs_names[];  /* "dogleg", "stcg", NULL */
+const sb_trs_type *sb_trs_by_index(int i);
+
+/* A TRS instance: type + state. */
+typedef struct sb_trs {
+    const sb_trs_type *type;
+    void *state;
+} sb_trs;
+
+int  sb_trs_alloc(sb_trs *t, const sb_trs_type *type, int n);
+void sb_trs_free(sb_trs *t);
+/* Solve and count one QP work unit on `level` (RMTR paper Eq. 7.3). */
+int  sb_trs_solve(sb_trs *t, sb_problem *p, int level, const double *g, double delta, int fresh,
+                  int max_iter, double *s, sb_trs_result *r);
+
+#endif

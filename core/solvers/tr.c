@@ -1,0 +1,123 @@
+/* tr.c — single-level trust region (RMTR paper Alg. 4.1) with the radius
+ * update of Alg. 4.3 (single level: no coarse-correction bound, Delta^{L+1}
+ * = infinity), Table 2 parameters, derivatives recomputed only after
+ * accepted steps (paper §7.4.2), subproblem by dogleg or Steihaug–Toint CG. */
+#include "sb_solver.h"
+#include "sb_trs.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const sb_param_def tr_params[] = {
+    { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
+    { "eta2", SB_PARAM_REAL, 0.75, 0, 1, NULL, "enlarge when rho > eta2 (Table 2)" },
+    { "gamma1", SB_PARAM_REAL, 0.5, 1e-6, 1, NULL, "shrink factor (Table 2)" },
+    { "gamma2", SB_PARAM_REAL, 2.0, 1, 1e6, NULL, "enlarge factor (Table 2)" },
+    { "delta0", SB_PARAM_REAL, 1.0, 1e-300, 1e300, NULL, "initial radius of every step (Table 2)" },
+    { "delta_min", SB_PARAM_REAL, 1e-300, 0, 1, NULL, "fail when the radius drops below this" },
+    { "trs", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_names, "subproblem solver (RMTR paper §7.3: dogleg)" },
+    { "cg_max_iter", SB_PARAM_INT, 0, 0, 1e9, NULL, "Steihaug–Toint CG iteration cap (0 = n)" },
+    { NULL, 0, 0, 0, 0, NULL, NULL }
+};
+
+typedef struct tr_state {
+    int n, F;
+    double eta1, eta2, gamma1, gamma2, delta0, delta_min;
+    int cg_max;
+    sb_trs trs;
+    double *g, *s, *xt;
+    double f, delta, gnorm;
+    int fresh;
+} tr_state;
+
+static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
+{
+    tr_state *t = st;
+    t->F = sb_problem_finest(p);
+    t->n = sb_problem_n(p, t->F);
+    t->eta1 = sb_param(ps, "solver.eta1");
+    t->eta2 = sb_param(ps, "solver.eta2");
+    t->gamma1 = sb_param(ps, "solver.gamma1");
+    t->gamma2 = sb_param(ps, "solver.gamma2");
+    t->delta0 = sb_param(ps, "solver.delta0");
+    t->delta_min = sb_param(ps, "solver.delta_min");
+    t->cg_max = sb_param_int(ps, "solver.cg_max_iter");
+    t->g = malloc((size_t)t->n * sizeof(double));
+    t->s = malloc((size_t)t->n * sizeof(double));
+    t->xt = malloc((size_t)t->n * sizeof(double));
+    if (!t->g || !t->s || !t->xt) return SB_ERR_NOMEM;
+    return sb_trs_alloc(&t->trs, sb_trs_by_index(sb_param_int(ps, "solver.trs")), t->n);
+}
+
+static void tr_free(void *st)
+{
+    tr_state *t = st;
+    sb_trs_free(&t->trs);
+    free(t->g);
+    free(t->s);
+    free(t->xt);
+}
+
+static int tr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *info)
+{
+    tr_state *t = st;
+    t->delta = t->delta0;
+    int rc = sb_problem_eval(p, t->F, x, &t->f, t->g, sb_problem_hessian(p, t->F));
+    t->gnorm = sb_problem_norm(p, t->F, t->g);
+    t->fresh = 1;
+    info->f = t->f;
+    info->gnorm = t->gnorm;
+    info->delta = t->delta;
+    return rc;
+}
+
+/* Alg. 4.3, lines 2 and 7 with delta = infinity on the finest level. */
+static double radius_update(const tr_state *t, double rho, double delta)
+{
+    if (rho < t->eta1) return t->gamma1 * delta;
+    if (rho > t->eta2) return t->gamma2 * delta;
+    return delta;
+}
+
+static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
+{
+    tr_state *t = st;
+    const int n = t->n;
+    sb_trs_result r;
+    /* Alg. 4.1 line 2: constrained QP */
+    int rc = sb_trs_solve(&t->trs, p, t->F, t->g, t->delta, t->fresh, t->cg_max, t->s, &r);
+    if (rc < 0) return rc;
+    t->fresh = 0;
+    for (int i = 0; i < n; i++) t->xt[i] = x[i] + t->s[i];
+    double ft;
+    rc = sb_problem_eval(p, t->F, t->xt, &ft, NULL, NULL);
+    if (rc < 0) return rc;
+    /* Alg. 4.1 line 3: rho = actual / predicted reduction (Eq. 4.2) */
+    double rho = (rc == SB_OK && isfinite(ft) && r.pred > 0.0) ? (t->f - ft) / r.pred : -INFINITY;
+    info->linear_iters = r.iters;
+    info->rho = rho;
+    if (rho > t->eta1) {
+        /* line 5: accept; derivatives are recomputed only here */
+        sb_copy(n, t->xt, x);
+        info->df = t->f - ft;
+        info->step_norm = r.snorm;
+        info->accepted = 1;
+        rc = sb_problem_eval(p, t->F, x, &t->f, t->g, sb_problem_hessian(p, t->F));
+        t->gnorm = sb_problem_norm(p, t->F, t->g);
+        t->fresh = 1;
+        if (rc < 0) return rc;
+        if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+    }
+    t->delta = radius_update(t, rho, t->delta);
+    if (t->delta < t->delta_min) info->fail = SB_REASON_RADIUS;
+    info->f = t->f;
+    info->gnorm = t->gnorm;
+    info->delta = t->delta;
+    return SB_OK;
+}
+
+const sb_solver_type sb_solver_tr = {
+    "tr", "single-level trust region, RMTR paper Alg. 4.1 + 4.3 (dogleg or Steihaug–Toint CG)",
+    sizeof(tr_state), tr_params, SB_SOLVER_TRUST_REGION, tr_alloc, tr_set, tr_iterate, tr_free,
+};

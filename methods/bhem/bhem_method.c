@@ -1,0 +1,196 @@
+/* bhem_method.c — the bicubic Hermite element method as an sb_method_type
+ * (BHEM paper 001_…): creation from a scene, levels, step data, and the
+ * operation table `sb_method_bhem`. */
+#include "bhem.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const hess_choices[] = { "exact", "pseudo", "psd", NULL };
+
+const sb_param_def bhem_params[] = {
+    { "hessian", SB_PARAM_CHOICE, 0, 0, 0, hess_choices,
+      "Hessian of the elastic energy: exact, pseudo (BHEM §6.1, strain second derivatives dropped) "
+      "or psd (exact, eigenvalues clamped per patch)" },
+    { "imperfection", SB_PARAM_REAL, 0.0, 0.0, 1.0, NULL,
+      "amplitude (m) of a smooth deterministic out-of-plane imperfection of the reference surface "
+      "(symmetry breaking for buckling scenes; 0 = none)" },
+    { "cells_t", SB_PARAM_INT, 0, 0, 4096, NULL,
+      "patches along t on the finest level (0 = same as --res)" },
+    { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
+};
+
+static void bhem_destroy(void *state)
+{
+    bhem_state *S = state;
+    for (int l = 0; l < SB_MAX_LEVELS; l++) bhem_level_free(&S->lv[l]);
+    if (S->work) sb_shell_work_free(S->work);
+    free(S->Ke);
+    free(S->psd_work);
+    S->work = NULL;
+    S->Ke = S->psd_work = NULL;
+}
+
+static int read_params(bhem_state *S, const sb_method_config *cfg, int *cells_t)
+{
+    S->hess = SB_HESS_EXACT;
+    S->imperfection = 0.0;
+    *cells_t = 0;
+    if (!cfg->params) return SB_OK;
+    const char *h = sb_param_choice(cfg->params, "method.hessian");
+    if (strcmp(h, "pseudo") == 0) S->hess = SB_HESS_PSEUDO;
+    else if (strcmp(h, "psd") == 0) S->hess = SB_HESS_PSD;
+    S->imperfection = sb_param(cfg->params, "method.imperfection");
+    *cells_t = sb_param_int(cfg->params, "method.cells_t");
+    if (!(S->imperfection >= 0.0)) return bhem_fail(S, SB_ERR_INPUT, "method.imperfection must be >= 0");
+    return SB_OK;
+}
+
+static int bhem_create(void *state, const sb_scene *scene, const sb_method_config *cfg)
+{
+    bhem_state *S = state;
+    memset(S, 0, sizeof *S);
+    S->scene = scene;
+    S->ctx = cfg->ctx;
+    int cells_t, rc = read_params(S, cfg, &cells_t);
+    if (rc) return rc;
+    int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 8);
+    int m = cells_t > 0 ? cells_t : n;
+    int levels = cfg->levels > 0 ? cfg->levels : 1;
+    if (levels > SB_MAX_LEVELS)
+        return bhem_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, SB_MAX_LEVELS);
+    int div = 1 << (levels - 1);
+    if (n % div || m % div)
+        return bhem_fail(S, SB_ERR_INPUT,
+                         "--res %d (x %d) patches cannot be coarsened %d times: the resolution must be divisible by "
+                         "2^(levels-1) = %d", n, m, levels - 1, div);
+    if (scene->material.thickness <= 0.0 || scene->material.density < 0.0)
+        return bhem_fail(S, SB_ERR_INPUT, "material thickness must be > 0 and density >= 0");
+    if ((rc = sb_material_init(&S->mat, &scene->material, 0))) {
+        bhem_fail(S, rc < 0 ? rc : SB_ERR_INPUT, "material initialisation failed (status %d)", rc);
+        return rc < 0 ? rc : SB_ERR_INPUT;
+    }
+    S->n_levels = levels;
+    S->Ke = malloc(sizeof(double) * BHEM_NED * BHEM_NED);
+    S->psd_work = malloc(sizeof(double) * (sb_psd_work_size(BHEM_NED) + 1));
+    S->work = sb_shell_work_new();
+    if (!S->Ke || !S->psd_work || !S->work) { bhem_destroy(S); return SB_ERR_NOMEM; }
+    if ((rc = bhem_detect_periodic(S))) { bhem_destroy(S); return rc; }
+    for (int l = 0; l < levels && rc == SB_OK; l++) {
+        bhem_level *L = &S->lv[l];
+        int sh = levels - 1 - l;
+        rc = bhem_level_build(S, L, n >> sh, m >> sh);
+        if (!rc) rc = bhem_level_quadrature(S, L);
+        if (!rc) rc = bhem_bc_build(S, L);
+        if (!rc) rc = bhem_loads_build(S, L);
+    }
+    for (int l = 0; l + 1 < levels && rc == SB_OK; l++) rc = bhem_transfer_build(S, l);
+    if (rc) {
+        if (rc == SB_ERR_NOMEM) bhem_fail(S, rc, "out of memory building %dx%d patches", n, m);
+        bhem_destroy(S);
+        return rc;
+    }
+    return SB_OK;
+}
+
+static int bhem_n_levels(const void *state) { return ((const bhem_state *)state)->n_levels; }
+
+static int bhem_n_dofs(const void *state, int level)
+{
+    const bhem_state *S = state;
+    return level >= 0 && level < S->n_levels ? S->lv[level].n_dofs : 0;
+}
+
+static int bhem_pattern(const void *state, int level, sb_pattern_builder *pb)
+{
+    const bhem_state *S = state;
+    const bhem_level *L = &S->lv[level];
+    for (int e = 0; e < L->n_elems; e++) {
+        int rc = sb_pattern_builder_add(pb, BHEM_NED, L->elem_dofs + (size_t)e * BHEM_NED);
+        if (rc) return rc;
+    }
+    return SB_OK;
+}
+
+static int bhem_initial(const void *state, int level, double *x)
+{
+    const bhem_state *S = state;
+    const bhem_level *L = &S->lv[level];
+    memcpy(x, L->x_ref, sizeof(double) * (size_t)L->n_dofs);
+    return SB_OK;
+}
+
+static int bhem_set_step(void *state, const sb_step_info *si)
+{
+    bhem_state *S = state;
+    const sb_scene *sc = S->scene;
+    for (int k = 0; k < sc->n_loads; k++) S->load_factor[k] = si->load_factor[k];
+    for (int b = 0; b < sc->n_bcs; b++) S->motion_factor[b] = si->motion_factor[b];
+    for (int l = 0; l < S->n_levels; l++) {
+        bhem_bc_update(S, &S->lv[l]);
+        bhem_loads_update(S, &S->lv[l]);
+        S->lv[l].rebranch = 1;
+    }
+    return SB_OK;
+}
+
+static const sb_dirichlet *bhem_dirichlet(const void *state, int level)
+{
+    const bhem_state *S = state;
+    const bhem_level *L = &S->lv[level];
+    return L->n_con ? &L->dir : NULL;
+}
+
+static int bhem_energy_op(void *state, int level, const double *x, double *f, double *g, sb_matrix *H)
+{
+    return bhem_energy(state, level, x, f, g, H);
+}
+
+static int bhem_mass_op(void *state, int level, sb_matrix *M)
+{
+    bhem_state *S = state;
+    return bhem_mass(S, &S->lv[level], M);
+}
+
+static int bhem_eval_points(const void *state, int level, const double *x, int np, const double *st, double *pos)
+{
+    const bhem_state *S = state;
+    return bhem_eval(S, &S->lv[level], x, np, st, pos);
+}
+
+static int bhem_prolong_op(void *state, int lc, const double *xc, double *xf) { return bhem_prolong(state, lc, xc, xf); }
+static int bhem_restrict_op(void *state, int lc, const double *gf, double *gc) { return bhem_restrict(state, lc, gf, gc); }
+static int bhem_project_op(void *state, int lc, const double *xf, double *xc) { return bhem_project(state, lc, xf, xc); }
+
+static void bhem_describe(const void *state, char *buf, size_t len)
+{
+    const bhem_state *S = state;
+    const bhem_level *L = &S->lv[S->n_levels - 1];
+    snprintf(buf, len, "%dx%d bicubic Hermite patches (%d active), %d dofs, %d level%s, %s Hessian%s%s",
+             L->n1, L->n2, L->n_elems, L->n_dofs, S->n_levels, S->n_levels > 1 ? "s" : "", hess_choices[S->hess],
+             S->periodic_s ? ", periodic in s" : "", S->periodic_t ? ", periodic in t" : "");
+}
+
+const sb_method_type sb_method_bhem = {
+    .name = "bhem",
+    .description = "bicubic Hermite element method (Ni, Chen et al.): C1 Hermite patches, 12 dofs per node",
+    .state_size = sizeof(bhem_state),
+    .params = bhem_params,
+    .flags = SB_METHOD_HIERARCHY | SB_METHOD_POTENTIAL,
+    .create = bhem_create,
+    .destroy = bhem_destroy,
+    .n_levels = bhem_n_levels,
+    .n_dofs = bhem_n_dofs,
+    .pattern = bhem_pattern,
+    .initial = bhem_initial,
+    .set_step = bhem_set_step,
+    .dirichlet = bhem_dirichlet,
+    .energy = bhem_energy_op,
+    .mass = bhem_mass_op,
+    .eval_points = bhem_eval_points,
+    .prolong = bhem_prolong_op,
+    .restrict_adj = bhem_restrict_op,
+    .project = bhem_project_op,
+    .describe = bhem_describe,
+};
