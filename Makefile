@@ -29,6 +29,9 @@ LIB     := $(BUILD)/libshellbench.a
 BIN     := $(BUILD)/shellbench
 
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
+# every other tests/*.c is a helper linked into each test binary
+TEST_HELP := $(filter-out $(TEST_SRC),$(sort $(wildcard tests/*.c)))
+TEST_HELP_OBJ := $(TEST_HELP:%.c=$(BUILD)/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
@@ -70,12 +73,12 @@ $(LIB): $(LIB_OBJ)
 $(BIN): $(BUILD)/core/main.o $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/tests/sb_test.o: tests/sb_test.c | $(DEPS_STAMP)
+$(TEST_HELP_OBJ): $(BUILD)/tests/%.o: tests/%.c | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests -c $< -o $@
-$(BUILD)/tests/%: tests/%.c $(BUILD)/tests/sb_test.o $(LIB) | $(DEPS_STAMP)
+$(BUILD)/tests/%: tests/%.c $(TEST_HELP_OBJ) $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Itests -o $@ $< $(BUILD)/tests/sb_test.o $(LIB) $(LDFLAGS) $(LDLIBS)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(TEST_HELP_OBJ) $(LIB) $(LDFLAGS) $(LDLIBS)
 
 $(BUILD)/bench/%: bench/%.c $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)

@@ -6,6 +6,8 @@
 
 #include "sb_record.h"
 
+#include <hdf5.h>
+
 /* fsync a file by path; 0 or -1 with errno set. */
 int sb_record_fsync_path(const char *path);
 /* fsync the directory containing path (makes a rename durable); best effort. */
@@ -18,6 +20,27 @@ const char *sb_record_basename(const char *path);
  * file.  Returns SB_OK or SB_ERR_IO with a message. */
 int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h5_name,
                          char *err, size_t errlen);
+
+/* ---- HDF5 writers (sb_record_h5w.c): 0, or -1 after noting the object ---- */
+typedef struct sb_h5w {
+    char failed[160];      /* first object that could not be written */
+} sb_h5w;
+
+int   sb_h5w_fail(sb_h5w *w, hid_t loc, const char *name);
+int   sb_h5w_attr_long(sb_h5w *w, hid_t loc, const char *name, long v);
+int   sb_h5w_attr_dbl(sb_h5w *w, hid_t loc, const char *name, double v);
+int   sb_h5w_attr_str(sb_h5w *w, hid_t loc, const char *name, const char *s);
+/* n fixed-length strings of `width` bytes each, packed in buf */
+int   sb_h5w_attr_str_array(sb_h5w *w, hid_t loc, const char *name, int n, size_t width, const char *buf);
+hid_t sb_h5w_str_type(size_t width);
+/* Datasets of any shape (zero-sized allowed); units: optional "units" attribute. */
+int   sb_h5w_dset_dbl(sb_h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
+                      const double *buf, const char *units);
+int   sb_h5w_dset_int(sb_h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
+                      const int *buf, const char *units);
+int   sb_h5w_dset_long(sb_h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
+                       const long *buf, const char *units);
+hid_t sb_h5w_group(sb_h5w *w, hid_t file, const char *name);
 
 /* Plot log10 ||g|| against cumulative iteration for the n summaries (one
  * line each, titled scene/method/solver) through gnuplot into plot_path

@@ -29,170 +29,44 @@ void sb_run_init(sb_run *run)
     snprintf(run->error_kind, sizeof run->error_kind, "none");
 }
 
-/* ---- small HDF5 writers; each returns 0, or -1 after noting the object ---- */
-
-typedef struct h5w {
-    char failed[160];      /* first object that could not be written */
-} h5w;
-
-/* Notes "<object path>/<name>" (or just name when loc < 0) as the failure. */
-static int fail(h5w *w, hid_t loc, const char *name)
-{
-    if (w->failed[0]) return -1;
-    char where[96] = "";
-    if (loc >= 0 && H5Iget_name(loc, where, sizeof where) <= 0) where[0] = 0;
-    size_t n = strlen(where);
-    snprintf(w->failed, sizeof w->failed, "%s%s%s", where, n && where[n - 1] != '/' ? "/" : "", name);
-    return -1;
-}
-
-static int attr_raw(h5w *w, hid_t loc, const char *name, hid_t ftype, hid_t mtype,
-                    hid_t space, const void *buf)
-{
-    hid_t a = H5Acreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT);
-    if (a < 0) return fail(w, loc, name);
-    herr_t e = H5Awrite(a, mtype, buf);
-    H5Aclose(a);
-    return e < 0 ? fail(w, loc, name) : 0;
-}
-
-static int attr_scalar(h5w *w, hid_t loc, const char *name, hid_t ftype, hid_t mtype, const void *v)
-{
-    hid_t sp = H5Screate(H5S_SCALAR);
-    if (sp < 0) return fail(w, loc, name);
-    int rc = attr_raw(w, loc, name, ftype, mtype, sp, v);
-    H5Sclose(sp);
-    return rc;
-}
-
-static int attr_long(h5w *w, hid_t loc, const char *name, long v)
-{
-    return attr_scalar(w, loc, name, H5T_STD_I64LE, H5T_NATIVE_LONG, &v);
-}
-
-static int attr_dbl(h5w *w, hid_t loc, const char *name, double v)
-{
-    return attr_scalar(w, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &v);
-}
-
-/* Fixed-length, NUL-terminated string sized to its content. */
-static int attr_str(h5w *w, hid_t loc, const char *name, const char *s)
-{
-    if (!s) s = "";
-    hid_t t = H5Tcopy(H5T_C_S1);
-    if (t < 0 || H5Tset_size(t, strlen(s) + 1) < 0 || H5Tset_strpad(t, H5T_STR_NULLTERM) < 0) {
-        if (t >= 0) H5Tclose(t);
-        return fail(w, loc, name);
-    }
-    int rc = attr_scalar(w, loc, name, t, t, s);
-    H5Tclose(t);
-    return rc;
-}
-
-/* Array of n fixed-length strings, each `width` bytes in buf. */
-static hid_t str_type(size_t width)
-{
-    hid_t t = H5Tcopy(H5T_C_S1);
-    if (t < 0) return t;
-    if (H5Tset_size(t, width) < 0 || H5Tset_strpad(t, H5T_STR_NULLTERM) < 0) {
-        H5Tclose(t);
-        return -1;
-    }
-    return t;
-}
-
-static int attr_str_array(h5w *w, hid_t loc, const char *name, int n, size_t width, const char *buf)
-{
-    hsize_t d = (hsize_t)n;
-    hid_t sp = H5Screate_simple(1, &d, NULL);
-    hid_t t = str_type(width);
-    int rc = (sp < 0 || t < 0) ? fail(w, loc, name) : attr_raw(w, loc, name, t, t, sp, buf);
-    if (t >= 0) H5Tclose(t);
-    if (sp >= 0) H5Sclose(sp);
-    return rc;
-}
-
-/* Dataset of the given shape; zero-sized shapes create an empty dataset. */
-static int dset(h5w *w, hid_t loc, const char *name, hid_t ftype, hid_t mtype,
-                int rank, const hsize_t *dims, const void *buf, const char *units)
-{
-    hsize_t n = 1;
-    for (int i = 0; i < rank; i++) n *= dims[i];
-    hid_t sp = H5Screate_simple(rank, dims, NULL);
-    if (sp < 0) return fail(w, loc, name);
-    hid_t d = H5Dcreate2(loc, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5Sclose(sp);
-    if (d < 0) return fail(w, loc, name);
-    int rc = 0;
-    if (n > 0 && H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) rc = fail(w, loc, name);
-    if (!rc && units && attr_str(w, d, "units", units)) rc = -1;
-    H5Dclose(d);
-    return rc;
-}
-
-static int dset_dbl(h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
-                    const double *buf, const char *units)
-{
-    return dset(w, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rank, dims, buf, units);
-}
-
-static int dset_int(h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
-                    const int *buf, const char *units)
-{
-    return dset(w, loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, rank, dims, buf, units);
-}
-
-static int dset_long(h5w *w, hid_t loc, const char *name, int rank, const hsize_t *dims,
-                     const long *buf, const char *units)
-{
-    return dset(w, loc, name, H5T_STD_I64LE, H5T_NATIVE_LONG, rank, dims, buf, units);
-}
-
-static hid_t group(h5w *w, hid_t file, const char *name)
-{
-    hid_t g = H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (g < 0) fail(w, -1, name);
-    return g;
-}
-
 /* ---- the layout ---------------------------------------------------------- */
 
-static int write_root(h5w *w, hid_t f, const sb_run *r)
+static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
 {
     char host[128], now[32];
     sb_sysinfo_hostname(host, sizeof host);
     sb_sysinfo_now_iso(now, sizeof now);
     const char *blas = getenv("OPENBLAS_NUM_THREADS");
     int bad = 0;
-    bad |= attr_str(w, f, "format", SB_RECORD_FORMAT_NAME);
-    bad |= attr_long(w, f, "format_version", SB_RECORD_FORMAT_VERSION);
-    bad |= attr_str(w, f, "scene_name", r->scene_name);
-    bad |= attr_str(w, f, "scene_path", r->scene_path);
-    bad |= attr_str(w, f, "scene_json", r->scene_json);
-    bad |= attr_str(w, f, "method", r->method);
-    bad |= attr_str(w, f, "solver", r->solver);
-    bad |= attr_str(w, f, "method_info", r->method_info);
-    bad |= attr_long(w, f, "res", r->res);
-    bad |= attr_long(w, f, "levels", r->levels);
-    bad |= attr_long(w, f, "n_dofs", r->n_dofs);
-    bad |= attr_str(w, f, "build_id", r->build_id);
-    bad |= attr_str(w, f, "cpu_model", r->cpu_model);
-    bad |= attr_long(w, f, "n_cores", r->n_cores);
-    bad |= attr_str(w, f, "hostname", host);
-    bad |= attr_str(w, f, "openblas_num_threads", blas ? blas : "unset");
-    bad |= attr_str(w, f, "started", r->started);
-    bad |= attr_str(w, f, "written", now);
-    bad |= attr_long(w, f, "status", r->status);
-    bad |= attr_str(w, f, "reason", sb_reason_name((sb_reason)r->reason));
-    bad |= attr_long(w, f, "reason_code", r->reason);
-    bad |= attr_long(w, f, "steps_planned", r->steps_planned);
-    bad |= attr_long(w, f, "steps_done", r->steps_done);
+    bad |= sb_h5w_attr_str(w, f, "format", SB_RECORD_FORMAT_NAME);
+    bad |= sb_h5w_attr_long(w, f, "format_version", SB_RECORD_FORMAT_VERSION);
+    bad |= sb_h5w_attr_str(w, f, "scene_name", r->scene_name);
+    bad |= sb_h5w_attr_str(w, f, "scene_path", r->scene_path);
+    bad |= sb_h5w_attr_str(w, f, "scene_json", r->scene_json);
+    bad |= sb_h5w_attr_str(w, f, "method", r->method);
+    bad |= sb_h5w_attr_str(w, f, "solver", r->solver);
+    bad |= sb_h5w_attr_str(w, f, "method_info", r->method_info);
+    bad |= sb_h5w_attr_long(w, f, "res", r->res);
+    bad |= sb_h5w_attr_long(w, f, "levels", r->levels);
+    bad |= sb_h5w_attr_long(w, f, "n_dofs", r->n_dofs);
+    bad |= sb_h5w_attr_str(w, f, "build_id", r->build_id);
+    bad |= sb_h5w_attr_str(w, f, "cpu_model", r->cpu_model);
+    bad |= sb_h5w_attr_long(w, f, "n_cores", r->n_cores);
+    bad |= sb_h5w_attr_str(w, f, "hostname", host);
+    bad |= sb_h5w_attr_str(w, f, "openblas_num_threads", blas ? blas : "unset");
+    bad |= sb_h5w_attr_str(w, f, "started", r->started);
+    bad |= sb_h5w_attr_str(w, f, "written", now);
+    bad |= sb_h5w_attr_long(w, f, "status", r->status);
+    bad |= sb_h5w_attr_str(w, f, "reason", sb_reason_name((sb_reason)r->reason));
+    bad |= sb_h5w_attr_long(w, f, "reason_code", r->reason);
+    bad |= sb_h5w_attr_long(w, f, "steps_planned", r->steps_planned);
+    bad |= sb_h5w_attr_long(w, f, "steps_done", r->steps_done);
     return bad ? -1 : 0;
 }
 
-static int write_params(h5w *w, hid_t f, const sb_paramset *ps)
+static int write_params(sb_h5w *w, hid_t f, const sb_paramset *ps)
 {
-    hid_t g = group(w, f, "/params");
+    hid_t g = sb_h5w_group(w, f, "/params");
     if (g < 0) return -1;
     int bad = 0;
     char overridden[4096] = "";
@@ -203,18 +77,18 @@ static int write_params(h5w *w, hid_t f, const sb_paramset *ps)
         if (v->def->kind == SB_PARAM_CHOICE) {
             char text[SB_NAME_LEN];
             sb_param_format(v, text, sizeof text);
-            bad |= attr_str(w, g, v->key, text);
+            bad |= sb_h5w_attr_str(w, g, v->key, text);
         } else if (v->def->kind == SB_PARAM_INT) {
-            bad |= attr_long(w, g, v->key, (long)v->value);
+            bad |= sb_h5w_attr_long(w, g, v->key, (long)v->value);
         } else {
-            bad |= attr_dbl(w, g, v->key, v->value);
+            bad |= sb_h5w_attr_dbl(w, g, v->key, v->value);
         }
         if (v->overridden && used < sizeof overridden) {
             int n = snprintf(overridden + used, sizeof overridden - used, "%s%s", used ? "," : "", v->key);
             if (n > 0) used += (size_t)n;
         }
     }
-    if (!bad) bad |= attr_str(w, g, "_overridden", overridden);
+    if (!bad) bad |= sb_h5w_attr_str(w, g, "_overridden", overridden);
     H5Gclose(g);
     return bad ? -1 : 0;
 }
@@ -230,9 +104,9 @@ static int stats_rows(const sb_stats *s)
     return rows;
 }
 
-static int write_stats(h5w *w, hid_t f, const sb_stats *s)
+static int write_stats(sb_h5w *w, hid_t f, const sb_stats *s)
 {
-    hid_t g = group(w, f, "/stats");
+    hid_t g = sb_h5w_group(w, f, "/stats");
     if (g < 0) return -1;
     int rows = stats_rows(s);
     long cnt[SB_MAX_LEVELS * SB_EV_COUNT];
@@ -246,22 +120,25 @@ static int write_stats(h5w *w, hid_t f, const sb_stats *s)
     for (int e = 0; e < SB_EV_COUNT; e++) snprintf(names[e], sizeof names[e], "%s", sb_event_name((sb_event)e));
     hsize_t d2[2] = { (hsize_t)rows, SB_EV_COUNT }, d1 = (hsize_t)rows;
     int bad = 0;
-    bad |= dset_long(w, g, "events_count", 2, d2, cnt, "calls");
-    bad |= dset_dbl(w, g, "events_seconds", 2, d2, sec, "s");
-    bad |= attr_str_array(w, g, "event_names", SB_EV_COUNT, sizeof names[0], &names[0][0]);
-    bad |= dset_long(w, g, "n_dofs", 1, &d1, s->n_dofs, "dofs");
-    bad |= dset_dbl(w, g, "chol_flops", 1, &d1, s->chol_flops, "flop");
-    bad |= dset_dbl(w, g, "chol_nnz_l", 1, &d1, s->chol_nnz_l, "entries");
-    bad |= dset_long(w, g, "matrix_nnz", 1, &d1, s->matrix_nnz, "entries");
-    bad |= attr_dbl(w, g, "work_assembly", s->work_assembly);
-    bad |= attr_dbl(w, g, "work_qp", s->work_qp);
-    bad |= attr_dbl(w, g, "seconds_total", s->seconds_total);
-    bad |= attr_long(w, g, "not_posdef", s->not_posdef);
+    bad |= sb_h5w_dset_long(w, g, "events_count", 2, d2, cnt, "calls");
+    bad |= sb_h5w_dset_dbl(w, g, "events_seconds", 2, d2, sec, "s");
+    bad |= sb_h5w_attr_str_array(w, g, "event_names", SB_EV_COUNT, sizeof names[0], &names[0][0]);
+    bad |= sb_h5w_dset_long(w, g, "n_dofs", 1, &d1, s->n_dofs, "dofs");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_flops", 1, &d1, s->chol_flops, "flop");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_nnz_l", 1, &d1, s->chol_nnz_l, "entries");
+    bad |= sb_h5w_dset_long(w, g, "matrix_nnz", 1, &d1, s->matrix_nnz, "entries");
+    bad |= sb_h5w_attr_dbl(w, g, "work_assembly", s->work_assembly);
+    bad |= sb_h5w_attr_dbl(w, g, "work_qp", s->work_qp);
+    bad |= sb_h5w_attr_dbl(w, g, "seconds_total", s->seconds_total);
+    bad |= sb_h5w_attr_long(w, g, "not_posdef", s->not_posdef);
     H5Gclose(g);
     return bad ? -1 : 0;
 }
 
-/* One column of a record array: a struct member written as a 1-D dataset. */
+/* One column of a record array: a struct member written as a 1-D dataset.
+ * "units" attributes are written only where the unit does not depend on the
+ * method's DOF layout (||g||, Delta, step norms mix position DOFs (m) with
+ * Hermite derivative DOFs; see docs/recorded_figures.md). */
 typedef struct column { const char *name; size_t off; int is_int; const char *units; } column;
 
 static const column iter_cols[] = {
@@ -269,29 +146,29 @@ static const column iter_cols[] = {
     { "iter", offsetof(sb_iter_record, iter), 1, "" },
     { "level", offsetof(sb_iter_record, level), 1, "" },
     { "f", offsetof(sb_iter_record, f), 0, "J" },
-    { "gnorm", offsetof(sb_iter_record, gnorm), 0, "N" },
-    { "delta", offsetof(sb_iter_record, delta), 0, "m" },
+    { "gnorm", offsetof(sb_iter_record, gnorm), 0, "" },
+    { "delta", offsetof(sb_iter_record, delta), 0, "" },
     { "rho", offsetof(sb_iter_record, rho), 0, "" },
-    { "step_norm", offsetof(sb_iter_record, step_norm), 0, "m" },
-    { "shift", offsetof(sb_iter_record, shift), 0, "N/m" },
+    { "step_norm", offsetof(sb_iter_record, step_norm), 0, "" },
+    { "shift", offsetof(sb_iter_record, shift), 0, "" },
     { "accepted", offsetof(sb_iter_record, accepted), 1, "" },
     { "linear_iters", offsetof(sb_iter_record, linear_iters), 1, "" },
     { "reason", offsetof(sb_iter_record, reason), 1, "" },
 };
 static const column step_cols[] = {
     { "step", offsetof(sb_step_record, step), 1, "" },
-    { "t", offsetof(sb_step_record, t), 0, "s" },
+    { "t", offsetof(sb_step_record, t), 0, "" },
     { "iterations", offsetof(sb_step_record, iterations), 1, "" },
     { "reason", offsetof(sb_step_record, reason), 1, "" },
     { "f", offsetof(sb_step_record, f), 0, "J" },
-    { "gnorm", offsetof(sb_step_record, gnorm), 0, "N" },
+    { "gnorm", offsetof(sb_step_record, gnorm), 0, "" },
     { "seconds", offsetof(sb_step_record, seconds), 0, "s" },
     { "work_assembly", offsetof(sb_step_record, work_assembly), 0, "WU" },
     { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU" },
 };
 
 /* buf holds n doubles (reused for int columns). */
-static int write_columns(h5w *w, hid_t g, const column *cols, int ncols, const void *recs,
+static int write_columns(sb_h5w *w, hid_t g, const column *cols, int ncols, const void *recs,
                          size_t rec_size, size_t n, double *buf)
 {
     hsize_t d = (hsize_t)n;
@@ -302,25 +179,25 @@ static int write_columns(h5w *w, hid_t g, const column *cols, int ncols, const v
             if (cols[c].is_int) memcpy(&ibuf[i], base + i * rec_size, sizeof(int));
             else memcpy(&buf[i], base + i * rec_size, sizeof(double));
         }
-        int rc = cols[c].is_int ? dset_int(w, g, cols[c].name, 1, &d, ibuf, cols[c].units[0] ? cols[c].units : NULL)
-                                : dset_dbl(w, g, cols[c].name, 1, &d, buf, cols[c].units[0] ? cols[c].units : NULL);
+        int rc = cols[c].is_int ? sb_h5w_dset_int(w, g, cols[c].name, 1, &d, ibuf, cols[c].units[0] ? cols[c].units : NULL)
+                                : sb_h5w_dset_dbl(w, g, cols[c].name, 1, &d, buf, cols[c].units[0] ? cols[c].units : NULL);
         if (rc) return -1;
     }
     return 0;
 }
 
-static int write_history(h5w *w, hid_t f, const sb_stats *s)
+static int write_history(sb_h5w *w, hid_t f, const sb_stats *s)
 {
-    hid_t g = group(w, f, "/history");
+    hid_t g = sb_h5w_group(w, f, "/history");
     if (g < 0) return -1;
     char names[SB_REASON_COUNT][32];
     for (int r = 0; r < SB_REASON_COUNT; r++) snprintf(names[r], sizeof names[r], "%s", sb_reason_name((sb_reason)r));
-    int bad = attr_str_array(w, g, "reason_names", SB_REASON_COUNT, sizeof names[0], &names[0][0]);
+    int bad = sb_h5w_attr_str_array(w, g, "reason_names", SB_REASON_COUNT, sizeof names[0], &names[0][0]);
     size_t nmax = s->n_iters > s->n_steps ? s->n_iters : s->n_steps;
     double *buf = malloc((nmax ? nmax : 1) * sizeof *buf);
-    if (!buf) bad = -1, fail(w, g, "(out of memory)");
-    hid_t gi = bad ? -1 : group(w, f, "/history/iterations");
-    hid_t gs = gi < 0 ? -1 : group(w, f, "/history/steps");
+    if (!buf) bad = -1, sb_h5w_fail(w, g, "(out of memory)");
+    hid_t gi = bad ? -1 : sb_h5w_group(w, f, "/history/iterations");
+    hid_t gs = gi < 0 ? -1 : sb_h5w_group(w, f, "/history/steps");
     if (gi < 0 || gs < 0) bad = -1;
     if (!bad) bad |= write_columns(w, gi, iter_cols, (int)(sizeof iter_cols / sizeof *iter_cols), s->iters,
                                    sizeof *s->iters, s->n_iters, buf);
@@ -333,69 +210,69 @@ static int write_history(h5w *w, hid_t f, const sb_stats *s)
     return bad ? -1 : 0;
 }
 
-static int write_probes(h5w *w, hid_t f, const sb_run *r)
+static int write_probes(sb_h5w *w, hid_t f, const sb_run *r)
 {
-    hid_t g = group(w, f, "/probes");
+    hid_t g = sb_h5w_group(w, f, "/probes");
     if (g < 0) return -1;
     hsize_t np = (hsize_t)r->n_probes;
     hsize_t dt[3] = { (hsize_t)r->steps_done + 1, np, 3 }, de[2] = { np, 3 };
     int bad = 0;
     hsize_t d1 = np;
-    hid_t sp = H5Screate_simple(1, &d1, NULL), t = str_type(SB_NAME_LEN);
+    hid_t sp = H5Screate_simple(1, &d1, NULL), t = sb_h5w_str_type(SB_NAME_LEN);
     hid_t ds = (sp < 0 || t < 0) ? -1 : H5Dcreate2(g, "names", t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (ds < 0 || (np > 0 && H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, r->probe_names) < 0))
-        bad = fail(w, g, "names");
+        bad = sb_h5w_fail(w, g, "names");
     if (ds >= 0) H5Dclose(ds);
     if (t >= 0) H5Tclose(t);
     if (sp >= 0) H5Sclose(sp);
-    bad |= dset_dbl(w, g, "trajectory", 3, dt, r->probe_traj, "m");
-    bad |= dset_dbl(w, g, "expected", 2, de, r->probe_expected, "m");
-    bad |= dset_dbl(w, g, "rel_error", 1, &d1, r->probe_rel_error, NULL);
+    bad |= sb_h5w_dset_dbl(w, g, "trajectory", 3, dt, r->probe_traj, "m");
+    bad |= sb_h5w_dset_dbl(w, g, "expected", 2, de, r->probe_expected, "m");
+    bad |= sb_h5w_dset_dbl(w, g, "rel_error", 1, &d1, r->probe_rel_error, NULL);
     H5Gclose(g);
     return bad ? -1 : 0;
 }
 
-static int write_final(h5w *w, hid_t f, const sb_run *r)
+static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
 {
-    hid_t g = group(w, f, "/final");
+    hid_t g = sb_h5w_group(w, f, "/final");
     if (g < 0) return -1;
     size_t ns = (size_t)r->n_samples;
     double *disp = malloc((ns ? ns : 1) * 3 * sizeof *disp);
     if (!disp) {
         H5Gclose(g);
-        return fail(w, -1, "/final/displacement (out of memory)");
+        return sb_h5w_fail(w, -1, "/final/displacement (out of memory)");
     }
     for (size_t i = 0; i < 3 * ns; i++) disp[i] = r->sample_pos[i] - r->sample_ref[i];
     hsize_t dx = (hsize_t)r->n_x, d2[2] = { ns, 2 }, d3[2] = { ns, 3 }, dt[2] = { (hsize_t)r->n_tris, 3 };
     int bad = 0;
-    bad |= dset_dbl(w, g, "x", 1, &dx, r->x_final, "m");
-    bad |= dset_dbl(w, g, "sample_st", 2, d2, r->sample_st, NULL);
-    bad |= dset_dbl(w, g, "sample_ref", 2, d3, r->sample_ref, "m");
-    bad |= dset_dbl(w, g, "sample_pos", 2, d3, r->sample_pos, "m");
-    bad |= dset_dbl(w, g, "displacement", 2, d3, disp, "m");
-    bad |= dset_int(w, g, "triangles", 2, dt, r->tris, NULL);
+    bad |= sb_h5w_dset_dbl(w, g, "x", 1, &dx, r->x_final, NULL);
+    bad |= sb_h5w_dset_dbl(w, g, "sample_st", 2, d2, r->sample_st, NULL);
+    bad |= sb_h5w_dset_dbl(w, g, "sample_ref", 2, d3, r->sample_ref, "m");
+    bad |= sb_h5w_dset_dbl(w, g, "sample_pos", 2, d3, r->sample_pos, "m");
+    bad |= sb_h5w_dset_dbl(w, g, "displacement", 2, d3, disp, "m");
+    bad |= sb_h5w_dset_int(w, g, "triangles", 2, dt, r->tris, NULL);
     free(disp);
     H5Gclose(g);
     return bad ? -1 : 0;
 }
 
-static int write_error(h5w *w, hid_t f, const sb_run *r)
+static int write_error(sb_h5w *w, hid_t f, const sb_run *r)
 {
-    hid_t g = group(w, f, "/error");
+    hid_t g = sb_h5w_group(w, f, "/error");
     if (g < 0) return -1;
     int bad = 0;
-    bad |= attr_str(w, g, "kind", r->has_error ? r->error_kind : "none");
-    bad |= attr_long(w, g, "has_error", r->has_error);
-    bad |= attr_dbl(w, g, "rms", r->has_error ? r->error_rms : NAN);
-    bad |= attr_dbl(w, g, "max", r->has_error ? r->error_max : NAN);
-    bad |= attr_dbl(w, g, "probe", r->has_error ? r->error_probe : NAN);
+    bad |= sb_h5w_attr_str(w, g, "kind", r->has_error ? r->error_kind : "none");
+    bad |= sb_h5w_attr_long(w, g, "has_error", r->has_error);
+    bad |= sb_h5w_attr_dbl(w, g, "rms", r->has_error ? r->error_rms : NAN);
+    bad |= sb_h5w_attr_dbl(w, g, "max", r->has_error ? r->error_max : NAN);
+    bad |= sb_h5w_attr_dbl(w, g, "probe", r->has_error ? r->error_probe : NAN);
     H5Gclose(g);
     return bad ? -1 : 0;
 }
 
 /* Root attributes may exceed the 64 KiB limit of compact attribute storage
  * (scene_json): the 1.8 object format with dense attribute storage lifts it. */
-static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp, h5w *w)
+static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp, sb_h5w *w)
 {
     hid_t fcpl = H5Pcreate(H5P_FILE_CREATE), fapl = H5Pcreate(H5P_FILE_ACCESS);
     hid_t f = -1;
@@ -404,7 +281,7 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
         f = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, fapl);
     if (fcpl >= 0) H5Pclose(fcpl);
     if (fapl >= 0) H5Pclose(fapl);
-    if (f < 0) return fail(w, -1, "(file creation)");
+    if (f < 0) return sb_h5w_fail(w, -1, "(file creation)");
     int bad = write_root(w, f, run);
     if (!bad) bad = write_params(w, f, run->params);
     if (!bad) bad = write_stats(w, f, stats);
@@ -412,8 +289,8 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
     if (!bad) bad = write_probes(w, f, run);
     if (!bad) bad = write_final(w, f, run);
     if (!bad) bad = write_error(w, f, run);
-    if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = fail(w, -1, "(flush)");
-    if (H5Fclose(f) < 0 && !bad) bad = fail(w, -1, "(close)");
+    if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = sb_h5w_fail(w, -1, "(flush)");
+    if (H5Fclose(f) < 0 && !bad) bad = sb_h5w_fail(w, -1, "(close)");
     return bad;
 }
 
@@ -482,7 +359,7 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
     void *old_data = NULL;
     H5Eget_auto2(H5E_DEFAULT, &old_fn, &old_data);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    h5w w = { "" };
+    sb_h5w w = { "" };
     int bad = write_file(run, stats, tmp, &w);
     H5Eset_auto2(H5E_DEFAULT, old_fn, old_data);
     if (bad) {

@@ -153,6 +153,10 @@ static char *summary_json(run_state *R, const char *out_path)
     long iters = 0;
     for (size_t i = 0; i < st->n_steps; i++) iters += st->steps[i].iterations;
     json_object_set_new(o, "iterations", json_integer(iters));
+    if (st->n_steps) {
+        json_set_num(o, "f", st->steps[st->n_steps - 1].f);
+        json_set_num(o, "gnorm", st->steps[st->n_steps - 1].gnorm);
+    }
     json_t *wu = json_object();
     json_set_num(wu, "assembly", st->work_assembly);
     json_set_num(wu, "qp", st->work_qp);

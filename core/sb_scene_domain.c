@@ -37,7 +37,7 @@ static int positive_vec2(sbj_ctx *c, const json_t *obj, const char *key, double 
     for (int k = 0; k < 2; k++) {
         if (!(out[k] > 0)) {
             size_t mark = sbj_push(c, key);
-            char tok[4];
+            char tok[16];
             snprintf(tok, sizeof tok, "%d", k);
             r = sbj_fail(c, tok, 0, "must be > 0, got %g", out[k]);
             sbj_pop(c, mark);

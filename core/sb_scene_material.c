@@ -35,7 +35,7 @@ static int parse_per_direction(sbj_ctx *c, const json_t *mat, const char *key, i
         }
         for (int j = 0; j < 4 && !r; j++) {
             json_t *e = json_array_get(v, (size_t)j);
-            char tok[4];
+            char tok[16];
             snprintf(tok, sizeof tok, "%d", j);
             if (!json_is_number(e)) r = sbj_fail(c, tok, 0, "must be a number, got %s", sbj_type_name(e));
             else { out[j] = json_number_value(e); given[j] = 1; }
@@ -61,7 +61,7 @@ static int parse_per_direction(sbj_ctx *c, const json_t *mat, const char *key, i
     }
     for (int j = 0; j < 4 && !r; j++) {
         if (!given[j]) continue;
-        char tok[4];
+        char tok[16];
         snprintf(tok, sizeof tok, "%d", json_is_array(v) ? j : j + 1);
         if (!isfinite(out[j])) r = sbj_fail(c, tok, 0, "must be a finite number");
         else if (!integer && !(out[j] > 0)) r = sbj_fail(c, tok, 0, "k_%d must be > 0 Pa, got %g", j + 1, out[j]);

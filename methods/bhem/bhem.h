@@ -178,5 +178,6 @@ int  bhem_project(const bhem_state *S, int lc, const double *xf, double *xc);
 
 /* ---- creation (bhem_method.c) ------------------------------------------- */
 extern const sb_param_def bhem_params[];
+extern const sb_method_type sb_method_bhem;
 
 #endif

@@ -1,0 +1,180 @@
+/* test_sparse.c — block patterns and scatter maps against dense assembly;
+ * CHOLMOD wrapper: solve accuracy, NOT_POSDEF detection, shifted factorization. */
+#include "sb_test.h"
+#include "sb_context.h"
+#include "sb_linsolve.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static unsigned rng_state = 12345u;
+static double urand(void)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return (rng_state >> 8) / 16777216.0;
+}
+
+/* Random elements (with repeated and missing nodes), dense reference vs pattern. */
+static void check_assembly(sb_test_state *T, int nn, int bs, int ne, int kmax)
+{
+    sb_pattern_builder *pb = sb_pattern_builder_new(nn, bs);
+    int *nodes = malloc((size_t)ne * kmax * sizeof(int)), *ks = malloc((size_t)ne * sizeof(int));
+    for (int e = 0; e < ne; e++) {
+        ks[e] = 1 + (int)(urand() * kmax);
+        if (ks[e] > kmax) ks[e] = kmax;
+        for (int a = 0; a < ks[e]; a++) {
+            double u = urand();
+            nodes[e * kmax + a] = u < 0.05 ? -1 : (int)(urand() * nn);    /* -1: no node */
+        }
+        if (ks[e] >= 2 && urand() < 0.3) nodes[e * kmax + 1] = nodes[e * kmax];  /* repeated node */
+        CHECK_EQ_INT(sb_pattern_builder_add(pb, ks[e], nodes + e * kmax), 0);
+    }
+    sb_pattern *pat;
+    CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pat), 0);
+    int n = nn * bs;
+    CHECK_EQ_INT(pat->n, n);
+    sb_matrix A;
+    sb_matrix_init(&A, pat);
+    double *dense = calloc((size_t)n * n, sizeof(double));
+    for (int e = 0; e < ne; e++) {
+        int m = bs * ks[e];
+        double *Ke = malloc((size_t)m * m * sizeof(double));
+        for (int i = 0; i < m; i++)
+            for (int j = 0; j <= i; j++) Ke[i * m + j] = Ke[j * m + i] = urand() - 0.5;
+        sb_matrix_add_element(&A, e, Ke);
+        for (int a = 0; a < ks[e]; a++)
+            for (int b = 0; b < ks[e]; b++) {
+                int na = nodes[e * kmax + a], nb = nodes[e * kmax + b];
+                if (na < 0 || nb < 0) continue;
+                for (int i = 0; i < bs; i++)
+                    for (int j = 0; j < bs; j++) dense[(na * bs + i) * n + nb * bs + j] += Ke[(bs * a + i) * m + bs * b + j];
+            }
+        free(Ke);
+    }
+    /* compare every stored entry, and that the pattern holds every nonzero */
+    double maxerr = 0, stored = 0, total = 0;
+    for (int c = 0; c < n; c++)
+        for (long q = pat->colptr[c]; q < pat->colptr[c + 1]; q++) {
+            int r = pat->rowind[q];
+            CHECK(r <= c);
+            if (q > pat->colptr[c]) CHECK(pat->rowind[q - 1] < r);
+            maxerr = fmax(maxerr, fabs(A.val[q] - dense[r * n + c]));
+            stored += fabs(dense[r * n + c]);
+        }
+    for (int r = 0; r < n; r++)
+        for (int c = r; c < n; c++) total += fabs(dense[r * n + c]);
+    CHECK(maxerr < 1e-12);
+    CHECK_NEAR(stored, total, 1e-9 * (1 + total));
+    for (int c = 0; c < n; c++) CHECK_EQ_INT(pat->rowind[pat->diag[c]], c);
+    /* symv against dense */
+    double *x = malloc((size_t)n * sizeof(double)), *y = malloc((size_t)n * sizeof(double));
+    for (int i = 0; i < n; i++) x[i] = urand() - 0.5;
+    sb_matrix_symv(&A, x, y);
+    double err = 0;
+    for (int r = 0; r < n; r++) {
+        double s = 0;
+        for (int c = 0; c < n; c++) s += dense[r < c ? r * n + c : c * n + r] * x[c];
+        err = fmax(err, fabs(s - y[r]));
+    }
+    CHECK(err < 1e-12);
+    free(x); free(y); free(dense); free(nodes); free(ks);
+    sb_matrix_free(&A);
+    sb_pattern_free(pat);
+}
+
+SB_TEST(pattern_bs1) { check_assembly(T, 40, 1, 60, 4); }
+SB_TEST(pattern_bs3) { check_assembly(T, 30, 3, 40, 6); }
+SB_TEST(pattern_bs12) { check_assembly(T, 12, 12, 10, 4); }
+
+/* 1-D Laplacian with a Dirichlet-like diagonal: SPD, known solution */
+static sb_pattern *chain(int n)
+{
+    sb_pattern_builder *pb = sb_pattern_builder_new(n, 1);
+    for (int i = 0; i + 1 < n; i++) { int nd[2] = { i, i + 1 }; sb_pattern_builder_add(pb, 2, nd); }
+    sb_pattern *p;
+    sb_pattern_builder_finish(pb, &p);
+    return p;
+}
+
+SB_TEST(cholmod_solve_and_not_posdef)
+{
+    sb_context ctx;
+    CHECK_EQ_INT(sb_context_init(&ctx), 0);
+    const int n = 200;
+    sb_pattern *pat = chain(n);
+    sb_matrix A;
+    sb_matrix_init(&A, pat);
+    double K[4] = { 1, -1, -1, 1 };
+    for (int e = 0; e + 1 < n; e++) sb_matrix_add_element(&A, e, K);
+    sb_matrix_add(&A, 0, 0, 1.0);                 /* makes it SPD */
+    sb_linsolve *ls;
+    CHECK_EQ_INT(sb_linsolve_create(&ctx, 0, &A, &ls), 0);
+    CHECK_EQ_INT(sb_linsolve_factor(ls, 0.0), SB_OK);
+    double *xs = malloc(n * sizeof(double)), *b = malloc(n * sizeof(double)), *x = malloc(n * sizeof(double));
+    for (int i = 0; i < n; i++) xs[i] = sin(0.1 * i);
+    sb_matrix_symv(&A, xs, b);
+    CHECK_EQ_INT(sb_linsolve_solve(ls, b, x), SB_OK);
+    double err = 0;
+    for (int i = 0; i < n; i++) err = fmax(err, fabs(x[i] - xs[i]));
+    CHECK(err < 1e-8);
+    CHECK(sb_linsolve_nnz_l(ls) >= n);
+    CHECK(sb_linsolve_flops(ls) > 0);
+    /* make it indefinite: the factorization reports NOT_POSDEF, not an error */
+    sb_matrix_add(&A, n / 2, n / 2, -10.0);
+    CHECK_EQ_INT(sb_linsolve_factor(ls, 0.0), SB_NOT_POSDEF);
+    CHECK_EQ_INT(ctx.stats.not_posdef, 1);
+    /* a large enough shift repairs it: (A + 20 I) is SPD */
+    CHECK_EQ_INT(sb_linsolve_factor(ls, 20.0), SB_OK);
+    sb_matrix_symv(&A, xs, b);
+    for (int i = 0; i < n; i++) b[i] += 20.0 * xs[i];
+    CHECK_EQ_INT(sb_linsolve_solve(ls, b, x), SB_OK);
+    err = 0;
+    for (int i = 0; i < n; i++) err = fmax(err, fabs(x[i] - xs[i]));
+    CHECK(err < 1e-10);
+    CHECK_EQ_INT(ctx.stats.ev[0][SB_EV_ANALYZE].count, 1);      /* analysis once */
+    CHECK_EQ_INT(ctx.stats.ev[0][SB_EV_FACTORIZE].count, 3);
+    free(xs); free(b); free(x);
+    sb_linsolve_free(ls);
+    sb_matrix_free(&A);
+    sb_pattern_free(pat);
+    sb_context_free(&ctx);
+}
+
+SB_TEST(params_validation)
+{
+    static const char *const ch[] = { "a", "b", NULL };
+    static const sb_param_def defs[] = {
+        { "x", SB_PARAM_REAL, 0.5, 0, 1, NULL, "" },
+        { "k", SB_PARAM_INT, 3, 1, 10, NULL, "" },
+        { "c", SB_PARAM_CHOICE, 1, 0, 0, ch, "" },
+        { NULL, 0, 0, 0, 0, NULL, NULL },
+    };
+    sb_paramset ps;
+    sb_paramset_init(&ps);
+    CHECK_EQ_INT(sb_paramset_add(&ps, "solver", defs), 0);
+    char err[512];
+    CHECK_NEAR(sb_param(&ps, "solver.x"), 0.5, 0);
+    CHECK(strcmp(sb_param_choice(&ps, "solver.c"), "b") == 0);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.x=0.25", err, sizeof err), 0);
+    CHECK_NEAR(sb_param(&ps, "solver.x"), 0.25, 0);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.x=1.5", err, sizeof err), SB_ERR_INPUT);
+    CHECK(strstr(err, "[0, 1]") != NULL);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.k=2.5", err, sizeof err), SB_ERR_INPUT);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.x=abc", err, sizeof err), SB_ERR_INPUT);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.x=nan", err, sizeof err), SB_ERR_INPUT);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.c=z", err, sizeof err), SB_ERR_INPUT);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.c=a", err, sizeof err), 0);
+    CHECK_EQ_INT(sb_param_int(&ps, "solver.c"), 0);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "noequals", err, sizeof err), SB_ERR_INPUT);
+    CHECK_EQ_INT(sb_paramset_set(&ps, "solver.y=1", err, sizeof err), SB_ERR_INPUT);
+    CHECK(strstr(err, "unknown parameter") != NULL);
+}
+
+int main(int argc, char **argv)
+{
+    static const sb_test_case cases[] = {
+        SB_CASE(pattern_bs1), SB_CASE(pattern_bs3), SB_CASE(pattern_bs12), SB_CASE(cholmod_solve_and_not_posdef),
+        SB_CASE(params_validation), SB_END,
+    };
+    return sb_test_main(argc, argv, cases);
+}
