@@ -55,8 +55,13 @@ int sb_domain_contains_st(const sb_domain *d, double s, double t)
     double s01[2], t01[2], e = REL_TOL;
     if (!(s >= -e && s <= 1 + e && t >= -e && t <= 1 + e)) return 0;
     if (sb_domain_notch_st(d, s01, t01)) {
-        /* the notch is open: its boundary belongs to the domain */
-        if (s > s01[0] + e && s < s01[1] - e && t > t01[0] + e && t < t01[1] - e) return 0;
+        /* The removed set is the notch minus its two inner edges (notch_s,
+         * notch_t): those belong to the domain, the notch's sides on the
+         * bounding box (e.g. the notched corner itself) do not. */
+        int hi_s = s01[1] == 1, hi_t = t01[1] == 1;
+        int in_s = hi_s ? s > s01[0] + e : s < s01[1] - e;
+        int in_t = hi_t ? t > t01[0] + e : t < t01[1] - e;
+        if (in_s && in_t) return 0;
     }
     return 1;
 }

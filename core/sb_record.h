@@ -87,6 +87,7 @@ typedef struct sb_record_summary {
     int *hist_step;            /* owned */
     /* added by the recording module */
     int *hist_level;           /* owned; level of each history record */
+    int *hist_iter;            /* owned; iteration within its step (0 = start of step) */
     int steps_planned, n_cores;
     char build_id[64], cpu_model[128], started[32];
     char reason_name[32];      /* sb_reason_name(reason) as recorded */

@@ -199,12 +199,13 @@ static int read_event_seconds(h5r *r, hid_t f, sb_record_summary *s)
 
 static int read_history(h5r *r, hid_t f, sb_record_summary *s)
 {
-    hsize_t dg, ds, dl, dn;
+    hsize_t dg, ds, dl, di, dn;
     int *steps_iters = NULL;
     int rc = dset_read(r, f, "/history/iterations/gnorm", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dg, (void **)&s->hist_gnorm);
     if (!rc) rc = dset_read(r, f, "/history/iterations/step", 1, H5T_NATIVE_INT, sizeof(int), &ds, (void **)&s->hist_step);
     if (!rc) rc = dset_read(r, f, "/history/iterations/level", 1, H5T_NATIVE_INT, sizeof(int), &dl, (void **)&s->hist_level);
-    if (!rc && (ds != dg || dl != dg)) rc = rfail(r, SB_ERR_INPUT, "columns of different lengths in", "/history/iterations");
+    if (!rc) rc = dset_read(r, f, "/history/iterations/iter", 1, H5T_NATIVE_INT, sizeof(int), &di, (void **)&s->hist_iter);
+    if (!rc && (ds != dg || dl != dg || di != dg)) rc = rfail(r, SB_ERR_INPUT, "columns of different lengths in", "/history/iterations");
     if (!rc && dg > (hsize_t)INT32_MAX) rc = rfail(r, SB_ERR_INPUT, "too many records in", "/history/iterations");
     if (!rc) rc = dset_read(r, f, "/history/steps/iterations", 1, H5T_NATIVE_INT, sizeof(int), &dn, (void **)&steps_iters);
     if (rc) {
@@ -288,6 +289,8 @@ void sb_record_summary_free(sb_record_summary *s)
     free(s->hist_gnorm);
     free(s->hist_step);
     free(s->hist_level);
+    free(s->hist_iter);
+    s->hist_iter = NULL;
     s->hist_gnorm = NULL;
     s->hist_step = NULL;
     s->hist_level = NULL;

@@ -20,12 +20,14 @@ extern const sb_solver_type sb_solver_tr;
 extern const sb_solver_type sb_solver_lsnewton;
 extern const sb_solver_type sb_solver_damped;
 extern const sb_solver_type sb_solver_linearized;
+extern const sb_solver_type sb_solver_rmtr;
 
 static const sb_solver_type *const solvers[] = {
     &sb_solver_tr,
     &sb_solver_lsnewton,
     &sb_solver_damped,
     &sb_solver_linearized,
+    &sb_solver_rmtr,
 };
 
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))

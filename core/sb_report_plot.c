@@ -35,13 +35,13 @@ static void gp_quoted(FILE *f, const char *s)
 static int finest_level(const sb_record_summary *s)
 {
     int L = 0;
-    for (int i = 0; i < s->n_hist; i++) if (s->hist_level && s->hist_level[i] > L) L = s->hist_level[i];
+    for (int i = 0; i < s->n_hist; i++) if (s->hist_level[i] > L) L = s->hist_level[i];
     return L;
 }
 
 static int plottable(const sb_record_summary *s, int i, int L)
 {
-    return (!s->hist_level || s->hist_level[i] == L) && isfinite(s->hist_gnorm[i]) && s->hist_gnorm[i] > 0.0;
+    return s->hist_level[i] == L && isfinite(s->hist_gnorm[i]) && s->hist_gnorm[i] > 0.0;
 }
 
 /* Writes one data block per run with points ("index" k in gnuplot); marks
@@ -52,14 +52,25 @@ static int write_data(const char *path, int n, const sb_record_summary *s, int *
     if (!f) return -1;
     int blocks = 0;
     for (int k = 0; k < n; k++) {
-        int L = finest_level(&s[k]), it = 0;
+        int L = finest_level(&s[k]);
         has[k] = 0;
         for (int i = 0; i < s[k].n_hist; i++) if (plottable(&s[k], i, L)) has[k] = 1;
         if (!has[k]) continue;
         fprintf(f, "# %s/%s/%s\n", s[k].scene, s[k].method, s[k].solver);
+        /* x = iterations of the earlier steps + iteration within this step;
+         * a step's iteration-0 record (its starting point) lands on the
+         * previous step's last iteration. */
+        int base = 0, last = 0, step = s[k].n_hist ? s[k].hist_step[0] : 0;
         for (int i = 0; i < s[k].n_hist; i++) {
-            if (!s[k].hist_level || s[k].hist_level[i] == L) it++;   /* cumulative over steps */
-            if (plottable(&s[k], i, L)) fprintf(f, "%d %.17g\n", it, log10(s[k].hist_gnorm[i]));
+            if (s[k].hist_level[i] != L) continue;
+            if (s[k].hist_step[i] != step) {
+                base += last;
+                last = 0;
+                step = s[k].hist_step[i];
+            }
+            if (s[k].hist_iter[i] > last) last = s[k].hist_iter[i];
+            if (plottable(&s[k], i, L))
+                fprintf(f, "%d %.17g\n", base + s[k].hist_iter[i], log10(s[k].hist_gnorm[i]));
         }
         fputs("\n\n", f);   /* two blank lines end a gnuplot data block */
         blocks++;
@@ -84,7 +95,7 @@ static int write_script(const char *path, const char *data, const char *out, int
     gp_quoted(f, out);
     fputs("\nset title 'convergence: log10 ||g|| against cumulative iteration'\n"
           "set xlabel 'cumulative iteration'\nset ylabel 'log10 ||g||  (N)'\n"
-          "set grid\nset key outside right top\nplot ", f);
+          "set grid\nset key below\nplot ", f);
     int block = 0;
     for (int k = 0; k < n; k++) {
         if (!has[k]) continue;

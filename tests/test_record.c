@@ -230,13 +230,14 @@ SB_TEST(test_roundtrip_summary)
             CHECK_NEAR(s.hist_gnorm[i], g[i], 0);
             CHECK_EQ_INT(s.hist_step[i], i < 3 ? 1 : 2);
             CHECK_EQ_INT(s.hist_level[i], 2);
+            CHECK_EQ_INT(s.hist_iter[i], i < 3 ? i : i - 3);
         }
         CHECK(strcmp(s.build_id, fx.run.build_id) == 0);
         CHECK(strcmp(s.cpu_model, fx.run.cpu_model) == 0);
         CHECK(strcmp(s.started, fx.run.started) == 0);
         CHECK_EQ_INT(s.n_cores, fx.run.n_cores);
         sb_record_summary_free(&s);
-        CHECK(s.hist_gnorm == NULL && s.n_hist == 0);
+        CHECK(s.hist_gnorm == NULL && s.hist_iter == NULL && s.n_hist == 0);
     }
 
     int n = 0;

@@ -333,6 +333,9 @@ double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_she
                 for (int d = 0; d < 3; d++)
                     Mb[cc][d] = wi[0] * Q[cc][d] + wi[1] * Q[3 + cc][d] + wi[2] * Q[6 + cc][d] +
                                 wi[3] * Q[9 + cc][d] + wi[4] * Q[12 + cc][d];
+            if (I == J) /* exact symmetry despite the summation order */
+                for (int cc = 0; cc < 3; cc++)
+                    for (int d = cc + 1; d < 3; d++) Mb[cc][d] = Mb[d][cc] = 0.5 * (Mb[cc][d] + Mb[d][cc]);
             double *h0 = hess + (size_t)(3 * I) * n3 + 3 * J;
             for (int cc = 0; cc < 3; cc++)
                 for (int d = 0; d < 3; d++) h0[(size_t)cc * n3 + d] += Mb[cc][d];

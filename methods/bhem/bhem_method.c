@@ -102,12 +102,24 @@ static int bhem_n_dofs(const void *state, int level)
     return level >= 0 && level < S->n_levels ? S->lv[level].n_dofs : 0;
 }
 
+static int bhem_block_size(const void *state, int level)
+{
+    (void)state;
+    (void)level;
+    return 12;   /* x, hs x_s, ht x_t, hs ht x_st: 4 x 3 per node */
+}
+
+/* Patch node lists (corner order p + 2q).  With 12 dofs per node the local
+ * dof 12*corner + 3*kind + c equals the kernel's 3*I + c, I = 4*corner + kind. */
 static int bhem_pattern(const void *state, int level, sb_pattern_builder *pb)
 {
     const bhem_state *S = state;
     const bhem_level *L = &S->lv[level];
     for (int e = 0; e < L->n_elems; e++) {
-        int rc = sb_pattern_builder_add(pb, BHEM_NED, L->elem_dofs + (size_t)e * BHEM_NED);
+        const int *d = L->elem_dofs + (size_t)e * BHEM_NED;
+        int nodes[4];
+        for (int c = 0; c < 4; c++) nodes[c] = d[12 * c] / 12;
+        int rc = sb_pattern_builder_add(pb, 4, nodes);
         if (rc) return rc;
     }
     return SB_OK;
@@ -182,6 +194,7 @@ const sb_method_type sb_method_bhem = {
     .destroy = bhem_destroy,
     .n_levels = bhem_n_levels,
     .n_dofs = bhem_n_dofs,
+    .block_size = bhem_block_size,
     .pattern = bhem_pattern,
     .initial = bhem_initial,
     .set_step = bhem_set_step,

@@ -57,9 +57,9 @@ int cc_mesh_topology(cc_mesh *m, cc_err *e)
                     return cc_fail(e, SB_ERR_INPUT, "cage face %d repeats vertex %d", f, m->fv[4 * f + k]);
     half *h = malloc((size_t)nh * sizeof *h);
     m->fe = malloc((size_t)nh * sizeof *m->fe);
-    m->ev = malloc((size_t)nh * sizeof *m->ev);
-    m->ef = malloc((size_t)nh * sizeof *m->ef);
-    m->efk = malloc((size_t)nh * sizeof *m->efk);
+    m->ev = malloc((size_t)2 * nh * sizeof *m->ev);
+    m->ef = malloc((size_t)2 * nh * sizeof *m->ef);
+    m->efk = malloc((size_t)2 * nh * sizeof *m->efk);
     m->val = calloc((size_t)nv, sizeof *m->val);
     m->bnd = calloc((size_t)nv, 1);
     m->vfo = calloc((size_t)nv + 1, sizeof *m->vfo);

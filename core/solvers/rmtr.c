@@ -1,0 +1,324 @@
+/* rmtr.c — recursive multilevel trust region (RMTR paper Alg. 4.2 with the
+ * radius update of Alg. 4.3), generic over any method with a nested level
+ * hierarchy (prolongation I, restriction R = I^T, projection P).
+ *
+ * One iterate() is one V-cycle on the finest level L.  On level l < L the
+ * model is the coarse objective with the first-order coupling term
+ *     h^l(x) = f^l(x) + <dg^l, x - x0^l>,  dg^l = R g^{l+1} - grad f^l(x0^l)   (Eq. 4.3-4.4)
+ * so that grad h^l(x0^l) = R g^{l+1}                                             (Eq. 4.5).
+ * Smoothing: mu1 / mu2 trust-region steps with Steihaug–Toint CG (10
+ * iterations, paper §7.3) on every level but the coarsest, where the
+ * subproblem is solved by dogleg with CHOLMOD.
+ *
+ * Assumptions where the paper is silent or ambiguous (README "RMTR"):
+ *  - Alg. 4.3 line 4 as printed ("if ||x_i - x_0||_l > (1-eps) Delta^{l+1}
+ *    then delta = Delta^{l+1} - ||x_i - x_0||_l", delta = 0 otherwise)
+ *    contradicts §4.3.1, which says delta is zero when the condition is NOT
+ *    met because no further correction fits.  We implement the reading that
+ *    keeps the coarse iterates inside the fine radius (Gratton et al. 2008):
+ *    delta = Delta^{l+1} - ||x_i - x_0||_l while ||x_i - x_0||_l <= (1-eps)
+ *    Delta^{l+1}, else 0 (the level stops).
+ *  - The level norm (4.9) ||I...I s||_2 is evaluated exactly (by prolongation
+ *    to the finest level) for the radius bound; inside the subproblem solver
+ *    the Euclidean norm on level l is used with the radius divided by
+ *    c_l = ||I_l^L 1|| / ||1|| (exact for constant corrections), so no
+ *    fine-level work is done per CG iteration.
+ *  - Each level's radius starts from the finer level's radius at the time of
+ *    the recursive call (Alg. 4.2 line 4); the finest radius persists across
+ *    V-cycles and is reset to Delta_0 at the start of every time step.
+ *  - Coarse gradient tolerance eps_g^l = run.gtol on every level. */
+#include "sb_solver.h"
+#include "sb_trs.h"
+#include "sb_context.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const sb_param_def rmtr_params[] = {
+    { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
+    { "eta2", SB_PARAM_REAL, 0.75, 0, 1, NULL, "enlarge when rho > eta2 (Table 2)" },
+    { "gamma1", SB_PARAM_REAL, 0.5, 1e-6, 1, NULL, "shrink factor (Table 2)" },
+    { "gamma2", SB_PARAM_REAL, 2.0, 1, 1e6, NULL, "enlarge factor (Table 2)" },
+    { "delta0", SB_PARAM_REAL, 1.0, 1e-300, 1e300, NULL, "initial finest radius of every step (Table 2)" },
+    { "mu1", SB_PARAM_INT, 1, 0, 100, NULL, "pre-smoothing steps (Table 2)" },
+    { "mu2", SB_PARAM_INT, 1, 0, 100, NULL, "post-smoothing steps (Table 2)" },
+    { "eps_delta", SB_PARAM_REAL, 1e-3, 0, 1, NULL, "epsilon^Delta of Alg. 4.3 (Table 2)" },
+    { "smoother_cg_iter", SB_PARAM_INT, 10, 1, 1e6, NULL, "Steihaug–Toint CG iterations per smoothing step (§7.3)" },
+    { "coarse_trs", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_names, "coarsest-level subproblem solver (§7.3: dogleg)" },
+    { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
+    { NULL, 0, 0, 0, 0, NULL, NULL }
+};
+
+typedef struct rlevel {
+    int n;
+    double *x0, *x, *g, *dg, *s, *xt, *tmp;
+    double f;            /* h^l(x) */
+    double delta;
+    double cnorm;        /* c_l: norm scaling of the level to the finest space */
+    sb_trs trs;
+    int fresh;
+} rlevel;
+
+typedef struct rmtr_state {
+    int nl, L;
+    double eta1, eta2, gamma1, gamma2, delta0, eps_delta, gtol;
+    int mu1, mu2, cg_iter;
+    rlevel lv[SB_MAX_LEVELS];
+    double consistency_err;   /* max relative |grad h^l(x0) - R g^{l+1}| seen (Eq. 4.5) */
+} rmtr_state;
+
+double sb_rmtr_consistency_error(const void *state) { return ((const rmtr_state *)state)->consistency_err; }
+
+static void rmtr_free(void *st)
+{
+    rmtr_state *R = st;
+    for (int l = 0; l < R->nl; l++) {
+        rlevel *V = &R->lv[l];
+        free(V->x0); free(V->x); free(V->g); free(V->dg); free(V->s); free(V->xt); free(V->tmp);
+        sb_trs_free(&V->trs);
+    }
+}
+
+/* c_l = ||I_l^L 1|| / ||1|| (free dofs) */
+static int level_norm_scale(rmtr_state *R, sb_problem *p, int l, double *out)
+{
+    rlevel *V = &R->lv[l];
+    for (int i = 0; i < V->n; i++) V->tmp[i] = 1.0;
+    sb_problem_constrain(p, l, V->tmp);
+    double n0 = sb_problem_norm(p, l, V->tmp);
+    const double *cur = V->tmp;
+    for (int k = l; k < R->L; k++) {
+        int rc = sb_problem_prolong(p, k, cur, R->lv[k + 1].tmp);
+        if (rc) return rc;
+        cur = R->lv[k + 1].tmp;
+    }
+    *out = n0 > 0 ? sb_problem_norm(p, R->L, cur) / n0 : 1.0;
+    return SB_OK;
+}
+
+static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
+{
+    rmtr_state *R = st;
+    R->nl = sb_problem_levels(p);
+    R->L = R->nl - 1;
+    if (!sb_problem_has_hierarchy(p))
+        return sb_error(sb_problem_context(p), SB_ERR_UNSUPPORTED, "rmtr needs at least two levels of a hierarchy");
+    R->eta1 = sb_param(ps, "solver.eta1");
+    R->eta2 = sb_param(ps, "solver.eta2");
+    R->gamma1 = sb_param(ps, "solver.gamma1");
+    R->gamma2 = sb_param(ps, "solver.gamma2");
+    R->delta0 = sb_param(ps, "solver.delta0");
+    R->eps_delta = sb_param(ps, "solver.eps_delta");
+    R->mu1 = sb_param_int(ps, "solver.mu1");
+    R->mu2 = sb_param_int(ps, "solver.mu2");
+    R->cg_iter = sb_param_int(ps, "solver.smoother_cg_iter");
+    R->gtol = sb_param(ps, "solver.gtol_coarse");
+    const sb_trs_type *coarse = sb_trs_by_index(sb_param_int(ps, "solver.coarse_trs"));
+    for (int l = 0; l < R->nl; l++) {
+        rlevel *V = &R->lv[l];
+        V->n = sb_problem_n(p, l);
+        size_t b = (size_t)V->n * sizeof(double);
+        V->x0 = malloc(b); V->x = malloc(b); V->g = malloc(b); V->dg = calloc(1, b);
+        V->s = malloc(b); V->xt = malloc(b); V->tmp = malloc(b);
+        if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp) return SB_ERR_NOMEM;
+        int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
+        if (rc) return rc;
+    }
+    for (int l = 0; l < R->nl; l++) {
+        int rc = level_norm_scale(R, p, l, &R->lv[l].cnorm);
+        if (rc) return rc;
+    }
+    return SB_OK;
+}
+
+/* h^l(x) (and its gradient / Hessian); Eq. (4.3) */
+static int h_eval(rmtr_state *R, sb_problem *p, int l, const double *x, double *f, double *g, int hess)
+{
+    rlevel *V = &R->lv[l];
+    int rc = sb_problem_eval(p, l, x, f, g, hess ? sb_problem_hessian(p, l) : NULL);
+    if (rc < 0) return rc;
+    if (l < R->L) {
+        double lin = 0;
+        for (int i = 0; i < V->n; i++) lin += V->dg[i] * (x[i] - V->x0[i]);
+        *f += lin;
+        if (g) sb_axpy(V->n, 1.0, V->dg, g);
+    }
+    return rc;
+}
+
+/* ||x - x0||_l, Eq. (4.9): the correction prolongated to the finest level */
+static int level_norm(rmtr_state *R, sb_problem *p, int l, const double *x, double *out)
+{
+    rlevel *V = &R->lv[l];
+    for (int i = 0; i < V->n; i++) V->tmp[i] = x[i] - V->x0[i];
+    const double *cur = V->tmp;
+    for (int k = l; k < R->L; k++) {
+        int rc = sb_problem_prolong(p, k, cur, R->lv[k + 1].tmp);
+        if (rc) return rc;
+        cur = R->lv[k + 1].tmp;
+    }
+    *out = sb_problem_norm(p, R->L, cur);
+    return SB_OK;
+}
+
+/* Alg. 4.3 (see the header for the reading of line 4). */
+static int radius_update(rmtr_state *R, sb_problem *p, int l, double rho, double bound)
+{
+    rlevel *V = &R->lv[l];
+    double d = V->delta;
+    double dplus = rho < R->eta1 ? R->gamma1 * d : rho > R->eta2 ? R->gamma2 * d : d;
+    if (l == R->L || !isfinite(bound)) {
+        V->delta = dplus;
+        return SB_OK;
+    }
+    double nrm;
+    int rc = level_norm(R, p, l, V->x, &nrm);
+    if (rc) return rc;
+    double delta = nrm <= (1.0 - R->eps_delta) * bound ? bound - nrm : 0.0;
+    V->delta = fmin(dplus, delta);
+    return SB_OK;
+}
+
+/* Local_TR (Alg. 4.1) with mu steps on level l; bound = Delta^{l+1} */
+static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, int *lin_iters)
+{
+    rlevel *V = &R->lv[l];
+    const int max_cg = l == 0 ? 0 : R->cg_iter;
+    for (int it = 0; it < mu; it++) {
+        /* coarse levels stop at eps_g^l; the finest level's stopping is the core loop's (Eq. 7.1) */
+        if (V->delta <= 0.0 || (l < R->L && sb_problem_norm(p, l, V->g) <= R->gtol)) break;
+        sb_trs_result tr;
+        int rc = sb_trs_solve(&V->trs, p, l, V->g, V->delta / V->cnorm, V->fresh, max_cg, V->s, &tr);
+        if (rc < 0) return rc;
+        V->fresh = 0;
+        *lin_iters += tr.iters;
+        for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] + V->s[i];
+        double ft;
+        rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
+        if (rc < 0) return rc;
+        double rho = (rc == SB_OK && isfinite(ft) && tr.pred > 0) ? (V->f - ft) / tr.pred : -INFINITY;
+        if (rho > R->eta1) {
+            sb_copy(V->n, V->xt, V->x);
+            rc = h_eval(R, p, l, V->x, &V->f, V->g, 1);
+            if (rc < 0) return rc;
+            if (rc == SB_NONFINITE) return SB_NONFINITE;
+            V->fresh = 1;
+        }
+        if ((rc = radius_update(R, p, l, rho, bound))) return rc;
+    }
+    return SB_OK;
+}
+
+/* Alg. 4.2 on level l.  On entry V->x0 holds the initial iterate, V->delta its
+ * radius; for l < L, gc holds R g^{l+1}.  On exit V->x is the result. */
+static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, double bound, int *lin_iters,
+                      int *accepted_coarse)
+{
+    rlevel *V = &R->lv[l];
+    int rc;
+    sb_copy(V->n, V->x0, V->x);
+    if (l < R->L) {
+        /* line 1: dg = R g^{l+1} - grad f^l(x0) (Eq. 4.4) */
+        memset(V->dg, 0, (size_t)V->n * sizeof(double));
+        rc = sb_problem_eval(p, l, V->x, &V->f, V->g, sb_problem_hessian(p, l));
+        if (rc < 0) return rc;
+        if (rc == SB_NONFINITE) return SB_NONFINITE;
+        for (int i = 0; i < V->n; i++) V->dg[i] = gc[i] - V->g[i];
+        /* first-order consistency check (Eq. 4.5) through the model evaluation itself */
+        rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
+        if (rc < 0) return rc;
+        /* relative to the terms that cancel: dg = gc - grad f is formed in floating point */
+        double num = 0, den = 0;
+        for (int i = 0; i < V->n; i++) {
+            num += (V->g[i] - gc[i]) * (V->g[i] - gc[i]);
+            den += gc[i] * gc[i] + V->dg[i] * V->dg[i];
+        }
+        double e = den > 0 ? sqrt(num / den) : sqrt(num);
+        if (e > R->consistency_err) R->consistency_err = e;
+        V->fresh = 1;
+    }
+    /* line 2: pre-smoothing */
+    if ((rc = local_tr(R, p, l, R->mu1, bound, lin_iters))) return rc;
+    if (l > 0) {
+        rlevel *C = &R->lv[l - 1];
+        /* line 4: recursion from P x, with R grad h^l and the current radius */
+        if ((rc = sb_problem_project(p, l - 1, V->x, C->x0))) return rc;
+        /* R grad h^l goes to C->xt: read only at the coarse level's entry */
+        if ((rc = sb_problem_restrict(p, l - 1, V->g, C->xt))) return rc;
+        C->delta = V->delta;
+        double hc0;
+        rc = rmtr_level(R, p, l - 1, C->xt, V->delta, lin_iters, accepted_coarse);
+        if (rc) return rc;
+        /* coarse reduction h^{l-1}(x0) - h^{l-1}(x_end); h^{l-1}(x0) = f^{l-1}(x0) */
+        rc = h_eval(R, p, l - 1, C->x0, &hc0, NULL, 0);
+        if (rc < 0) return rc;
+        double cred = hc0 - C->f;
+        /* line 5: prolongate the correction (Eq. 4.10) */
+        for (int i = 0; i < C->n; i++) C->tmp[i] = C->x[i] - C->x0[i];
+        if ((rc = sb_problem_prolong(p, l - 1, C->tmp, V->s))) return rc;
+        for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] + V->s[i];
+        double ft;
+        rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
+        if (rc < 0) return rc;
+        /* line 6: multilevel ratio (Eq. 4.11) */
+        double rho = (rc == SB_OK && isfinite(ft) && cred > 0) ? (V->f - ft) / cred : -INFINITY;
+        if (rho > R->eta1) {                    /* lines 7-8 */
+            sb_copy(V->n, V->xt, V->x);
+            rc = h_eval(R, p, l, V->x, &V->f, V->g, 1);
+            if (rc < 0) return rc;
+            if (rc == SB_NONFINITE) return SB_NONFINITE;
+            V->fresh = 1;
+            if (l == R->L) (*accepted_coarse)++;
+        }
+        if ((rc = radius_update(R, p, l, rho, bound))) return rc;   /* line 12 */
+        if (l < R->L && sb_problem_norm(p, l, V->g) <= R->gtol) return SB_OK;   /* lines 13-14 */
+    }
+    /* line 17: post-smoothing */
+    return local_tr(R, p, l, R->mu2, bound, lin_iters);
+}
+
+static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *info)
+{
+    rmtr_state *R = st;
+    rlevel *V = &R->lv[R->L];
+    V->delta = R->delta0;
+    sb_copy(V->n, x, V->x);
+    int rc = sb_problem_eval(p, R->L, V->x, &V->f, V->g, sb_problem_hessian(p, R->L));
+    V->fresh = 1;
+    info->f = V->f;
+    info->gnorm = sb_problem_norm(p, R->L, V->g);
+    info->delta = V->delta;
+    return rc;
+}
+
+static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
+{
+    rmtr_state *R = st;
+    rlevel *V = &R->lv[R->L];
+    double f_old = V->f;
+    /* the finest level keeps f, g, H of x from the previous cycle (h^L = f^L) */
+    sb_copy(V->n, x, V->x0);
+    int lin = 0, acc = 0;
+    int rc = rmtr_level(R, p, R->L, NULL, INFINITY, &lin, &acc);
+    if (rc < 0) return rc;
+    if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+    double sn = 0;
+    for (int i = 0; i < V->n; i++) sn += (V->x[i] - x[i]) * (V->x[i] - x[i]);
+    sb_copy(V->n, V->x, x);
+    info->step_norm = sqrt(sn);
+    info->f = V->f;
+    info->df = f_old - V->f;
+    info->accepted = sn > 0;
+    info->rho = acc;                 /* number of accepted coarse corrections on the finest level */
+    info->gnorm = sb_problem_norm(p, R->L, V->g);
+    info->delta = V->delta;
+    info->linear_iters = lin;
+    return SB_OK;
+}
+
+const sb_solver_type sb_solver_rmtr = {
+    "rmtr", "recursive multilevel trust region V-cycles, RMTR paper Alg. 4.2 + 4.3 (needs a hierarchy)",
+    sizeof(rmtr_state), rmtr_params, SB_SOLVER_TRUST_REGION | SB_SOLVER_NEEDS_HIERARCHY,
+    rmtr_alloc, rmtr_set, rmtr_iterate, rmtr_free,
+};
