@@ -109,7 +109,7 @@ static const char *mode_name[MODE_COUNT] = { "energy", "energy+grad", "energy+gr
  *   gradient: forces 42, bending directions 63, local gradient 60, map 30k;
  *   Hessian: congruences 324, J build 30, D J 1080, J^T D J 1440, membrane 12,
  *   bending 2nd derivatives ~450 (exact only), Q = K W 450k,
- *   blocks 90 k(k+1), accumulation 9 k^2. */
+ *   blocks 45 k(k+1) (k(k+1)/2 blocks of 45 multiply-adds), accumulation 9 k^2. */
 static double kernel_flops(int mode, int k, int nt, int denim, double *tr)
 {
     double f = 30.0 * k + 100 + nt * (9 + 2 + (denim ? 60 : 12));
@@ -118,7 +118,7 @@ static double kernel_flops(int mode, int k, int nt, int denim, double *tr)
     f += nt * (12 + (denim ? 20 : 10)) + 42 + 63 + 60 + 30.0 * k;
     if (mode == MODE_EG) return f;
     f += nt * 54 + 324 + 30 + 1080 + 1440 + 12 + (mode == MODE_EGH ? 450 : 0);
-    f += 450.0 * k + 90.0 * k * (k + 1) + 9.0 * k * k;
+    f += 450.0 * k + 45.0 * k * (k + 1) + 9.0 * k * k;
     return f;
 }
 

@@ -196,6 +196,14 @@ int sb_material_init_msg(sb_material *m, const sb_material_spec *spec, int n_thi
             }
         }
         m->denim = *p;
+        for (int j = 0; j < 4; j++) {
+            m->denim_linear[j] = 1;
+            for (int i = 0; i < p->d[j]; i++) {
+                m->denim_mu_over_alpha[j][i] = p->mu[j][i] / p->alpha[j][i];
+                m->denim_mu_alpha_m1[j][i] = p->mu[j][i] * (p->alpha[j][i] - 1.0);
+                if (p->alpha[j][i] != 1.0) m->denim_linear[j] = 0;
+            }
+        }
         if (n_thick == 0) n_thick = SB_DENIM_N_THICK;
         break;
     }
@@ -281,20 +289,58 @@ double sb_denim_phi(const sb_denim_params *p, int j, double u, double *d1, doubl
     return f;
 }
 
+/* Same as sb_denim_phi with the coefficients cached in m (hot path):
+ * phi = sum c0 em1,  phi' = inv sum mu (em1 + 1),  phi'' = inv^2 sum c2 (em1 + 1)
+ * with em1 = expm1(alpha log1p(u)), inv = 1/(1+u), c0 = mu/alpha, c2 = mu (alpha-1).
+ * Same domain guard as sb_denim_phi. */
+static inline double phi_fast(const sb_material *m, int j, double u, double *d1, double *d2)
+{
+    const sb_denim_params *p = &m->denim;
+    const int d = p->d[j];
+    if (m->denim_linear[j]) {   /* every alpha = 1: phi = (sum mu) u */
+        double s = 0.0;
+        for (int i = 0; i < d; i++) s += p->mu[j][i];
+        *d1 = s;
+        *d2 = 0.0;
+        return s * u;
+    }
+    if (!(u > -1.0)) {
+        *d1 = *d2 = NAN;
+        return NAN;
+    }
+    const double L = log1p(u);
+    double f = 0.0, g = 0.0, g1 = 0.0, h = 0.0;
+    for (int i = 0; i < d; i++) {
+        const double al = p->alpha[j][i], mu = p->mu[j][i];
+        if (al == 1.0) {   /* exact linear term */
+            f += mu * u;
+            g1 += mu;
+            continue;
+        }
+        const double em1 = expm1(al * L), pw = em1 + 1.0;
+        f += m->denim_mu_over_alpha[j][i] * em1;
+        g += mu * pw;
+        h += m->denim_mu_alpha_m1[j][i] * pw;
+    }
+    const double inv = 1.0 / (1.0 + u);
+    *d1 = g1 + g * inv;
+    *d2 = h * inv * inv;
+    return f;
+}
+
 /* RMTR paper Eq. (3.3):
  *   psi = k1/2 phi1(E11^2) + k2 phi2(E11 E22) + k3/2 phi3(E22^2) + k4 phi4(E12^2)
  * with E the strain in the warp/weft frame (E~ = O^T E O of the paper).
  * Chain rule with u1 = e0^2, u2 = e0 e1, u3 = e1^2, u4 = e2^2. */
 static double denim_psi(const sb_material *m, const double e[3], double *dpsi, double *d2psi)
 {
-    const sb_denim_params *p = &m->denim;
-    const double *k = p->k;
+    const double *k = m->denim.k;
     double g1, g2, g3, g4, h1, h2, h3, h4;
     const double e0 = e[0], e1 = e[1], e2 = e[2];
-    double f1 = sb_denim_phi(p, 0, e0 * e0, &g1, &h1);
-    double f2 = sb_denim_phi(p, 1, e0 * e1, &g2, &h2);
-    double f3 = sb_denim_phi(p, 2, e1 * e1, &g3, &h3);
-    double f4 = sb_denim_phi(p, 3, e2 * e2, &g4, &h4);
+    const double f1 = phi_fast(m, 0, e0 * e0, &g1, &h1);
+    const double f2 = phi_fast(m, 1, e0 * e1, &g2, &h2);
+    const double f3 = phi_fast(m, 2, e1 * e1, &g3, &h3);
+    const double f4 = phi_fast(m, 3, e2 * e2, &g4, &h4);
     if (dpsi) {
         dpsi[0] = k[0] * g1 * e0 + k[1] * g2 * e1;
         dpsi[1] = k[1] * g2 * e0 + k[2] * g3 * e1;

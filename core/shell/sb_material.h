@@ -17,6 +17,12 @@ typedef struct sb_material {
     double warp_angle;          /* rad */
     int n_thick;                /* Gauss points through the thickness */
     double thick_pt[8], thick_w[8]; /* xi3 positions (m) and weights (m) */
+    /* added (additive): denim coefficients cached by sb_material_init, so
+     * re-run sb_material_init after changing `denim`:  mu/alpha, mu (alpha-1),
+     * and whether phi_j is linear (every alpha_ji = 1) */
+    double denim_mu_over_alpha[4][SB_DENIM_MAX_TERMS];
+    double denim_mu_alpha_m1[4][SB_DENIM_MAX_TERMS];
+    int denim_linear[4];
 } sb_material;
 
 /* RMTR paper Table 1 denim parameters (k converted from MPa to Pa), with the

@@ -181,6 +181,11 @@ int  cc_face_ring(const cc_mesh *m, int f, int *idx, int max, int *faces, int *n
  * regular sub-patch (exact, §5.2).  Setup-time routine (allocates). */
 int  cc_face_basis(const cc_mesh *m, int f, double u, double v, int *k, int *idx,
                    double *W, int max, cc_err *e);
+/* Canonical local cage of face f (its one-ring; face 0 = f in f's frame),
+ * inv[i] = cage index of local vertex i (at most max). */
+int  cc_face_local(const cc_mesh *m, int f, cc_mesh *L, int *inv, int max, cc_err *e);
+/* Basis of face 0 of a local cage at (u,v): W (6 x L->nv), overwritten. */
+int  cc_local_basis(const cc_mesh *L, double u, double v, double *W, cc_err *e);
 
 /* ---- limit stencils from OpenSubdiv (tests, cross-checks) --------------- */
 /* Dense limit stencils W[(6*p + r)*nv + I] at np points (face[p], uv[2p]). */
