@@ -87,7 +87,7 @@ $(BUILD)/bench/%: bench/%.c $(LIB) | $(DEPS_STAMP)
 # Each test binary writes its own result file; the summary sums them.
 $(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN)
 	@SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) OPENBLAS_NUM_THREADS=1 \
-	  ./$< > $@.log 2>&1; echo $$? > $@.rc; tail -n 1 $@.log > $@; \
+	  $(abspath $<) > $@.log 2>&1; echo $$? > $@.rc; tail -n 1 $@.log > $@; \
 	  if [ "$$(cat $@.rc)" != 0 ]; then echo "--- $< failed:"; grep -E 'FAIL|not ok|rror|Sanitizer' $@.log | head -n 30; fi
 
 test: $(BIN) $(TEST_BIN)

@@ -51,15 +51,13 @@ static int check_symmetry(sbj_ctx *c, const sb_scene *sc)
                 for (int q = 0; q < 3; q++) scale = fmax(scale, fabs(X.x[q]));
             }
             if (hi - lo > 1e-9 * scale) {
-                char ptr[64];
-                snprintf(ptr, sizeof ptr, "/boundary/%d/on", b);
-                size_t mark = strlen(c->ptr);
-                snprintf(c->ptr, sizeof c->ptr, "%s", ptr);
-                char tok[16];
-                snprintf(tok, sizeof tok, "%d", p);
-                int r = sbj_fail(c, tok, 0, "edge \"%s\" does not lie in a plane normal to %c (%c varies by %g)",
+                size_t mark = sbj_push(c, "boundary");
+                sbj_push_index(c, (size_t)b);
+                sbj_push(c, "on");
+                sbj_push_index(c, (size_t)p);
+                int r = sbj_fail(c, NULL, 0, "edge \"%s\" does not lie in a plane normal to %c (%c varies by %g)",
                                  pt->name, axis_name[bc->axis], axis_name[bc->axis], hi - lo);
-                c->ptr[mark] = '\0';
+                sbj_pop(c, mark);
                 return r;
             }
         }

@@ -87,7 +87,7 @@ typedef enum { SB_PART_EDGE, SB_PART_POINT } sb_part_kind;
 
 typedef struct sb_part {
     sb_part_kind kind;
-    char name[SB_NAME_LEN];
+    char name[SB_NAME_LEN]; /* edge name, or "point_N" for the N-th part given by "at" */
     double st0[2], st1[2];  /* edge: segment in (s,t), axis-aligned, st0 < st1 componentwise */
     double xi[2];           /* point: material coordinates */
     double st[2];           /* point: grid parameter of xi */

@@ -270,6 +270,9 @@ SB_TEST(init_rejects_bad_input)
     CHECK_EQ_INT(sb_material_init(&m, &s, 0), SB_ERR_INPUT);
     s.thickness = 1e-3;
     CHECK_EQ_INT(sb_material_init(&m, &s, 9), SB_ERR_INPUT);
+    CHECK_EQ_INT(sb_material_init_msg(&m, &s, 1, err, sizeof err), SB_ERR_INPUT);
+    CHECK(strstr(err, "n_thick") != NULL);
+    CHECK_EQ_INT(sb_material_init(&m, &s, 8), SB_OK);
     CHECK_EQ_INT(sb_material_init(&m, &s, -1), SB_ERR_INPUT);
     s.kind = (sb_material_kind)7;
     CHECK_EQ_INT(sb_material_init(&m, &s, 0), SB_ERR_INPUT);

@@ -449,6 +449,57 @@ SB_TEST(bad_input_gives_nonfinite)
     sb_shell_work_free(w);
 }
 
+/* the section law used by the kernel and offered to triangle elements */
+SB_TEST(section_law)
+{
+    sb_material st = mat_stvk(2e6, 0.3, 1e-3, 0);
+    const double A[3] = { 0.01, -0.004, 0.006 }, B[3] = { 30, -12, 8 };
+    const double z[3] = { 0, 0, 0 };
+    /* BHEM Eq. (7): h psi(A) + (h^3/3) psi(B) */
+    const double ref = st.thickness * sb_material_psi(&st, A, NULL, NULL) +
+                       pow(st.thickness, 3) / 3 * sb_material_psi(&st, B, NULL, NULL);
+    CHECK_REL(sb_shell_section(&st, A, B, NULL, NULL, NULL), ref, 1e-13);
+    CHECK_NEAR(sb_shell_section(&st, z, z, NULL, NULL, NULL), 0.0, 0.0);
+    /* denim: derivatives by central differences on the 6 strain entries */
+    sb_material dm = mat_denim();
+    double sA[3], sB[3], C[36];
+    const double A2[3] = { 0.02, 0.01, -0.01 }, B2[3] = { 20, -8, 5 };
+    sb_shell_section(&dm, A2, B2, sA, sB, C);
+    const double g6[6] = { sA[0], sA[1], sA[2], sB[0], sB[1], sB[2] };
+    double prev_g = INFINITY, prev_h = INFINITY;
+    for (int st_ = 0; st_ < 3; st_++) {
+        double eg = 0, eh = 0, gm = 0, hm = 0;
+        for (int j = 0; j < 6; j++) {
+            const double h = (j < 3 ? 1e-4 : 0.1) / pow(4.0, st_);
+            double Ap[3], Bp[3], Am[3], Bm[3], gAp[3], gBp[3], gAm[3], gBm[3];
+            memcpy(Ap, A2, sizeof Ap); memcpy(Am, A2, sizeof Am);
+            memcpy(Bp, B2, sizeof Bp); memcpy(Bm, B2, sizeof Bm);
+            if (j < 3) { Ap[j] += h; Am[j] -= h; } else { Bp[j - 3] += h; Bm[j - 3] -= h; }
+            const double fp = sb_shell_section(&dm, Ap, Bp, gAp, gBp, NULL);
+            const double fm = sb_shell_section(&dm, Am, Bm, gAm, gBm, NULL);
+            eg = fmax(eg, fabs((fp - fm) / (2 * h) - g6[j]));
+            gm = fmax(gm, fabs(g6[j]));
+            for (int i = 0; i < 6; i++) {
+                const double gp = i < 3 ? gAp[i] : gBp[i - 3], gmi = i < 3 ? gAm[i] : gBm[i - 3];
+                eh = fmax(eh, fabs((gp - gmi) / (2 * h) - C[6 * i + j]));
+                hm = fmax(hm, fabs(C[6 * i + j]));
+            }
+        }
+        eg /= gm;
+        eh /= hm;
+        CHECK_MSG(eg < prev_g / 8 || eg < 1e-9, "section gradient FD %.3g after %.3g", eg, prev_g);
+        CHECK_MSG(eh < prev_h / 8 || eh < 1e-9, "section Hessian FD %.3g after %.3g", eh, prev_h);
+        prev_g = eg;
+        prev_h = eh;
+    }
+    CHECK(prev_g < 1e-6 && prev_h < 1e-6);
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++) CHECK_NEAR(C[6 * i + j], C[6 * j + i], 1e-12 * fabs(C[0]));
+    sb_material bad = dm;
+    bad.n_thick = 0;
+    CHECK(isnan(sb_shell_section(&bad, A, B, NULL, NULL, NULL)));
+}
+
 static const sb_test_case cases[] = {
     SB_CASE(rigid_motions),
     SB_CASE(stvk_two_points_equal_bhem_eq7),
@@ -457,6 +508,7 @@ static const sb_test_case cases[] = {
     SB_CASE(denim_small_strain_warp_weft),
     SB_CASE(frame_and_reference),
     SB_CASE(bad_input_gives_nonfinite),
+    SB_CASE(section_law),
     SB_END
 };
 

@@ -122,7 +122,7 @@ SB_TEST(psd_element_hessian)
             X[1] = 0.1 * j;
             X[2] = 0.01 * (i - 1.5) * (j - 1.5);
         }
-    static double H[48 * 48], P[48 * 48];
+    double H[48 * 48], P[48 * 48];
     double lam[48], work_[48 + 48 * 48 + 34 * 48];
     CHECK(sb_psd_work_size(48) <= sizeof work_ / sizeof work_[0]);
     /* rest state: PSD (rigid modes at zero): the projection changes nothing
@@ -212,7 +212,7 @@ SB_TEST(follower_pressure_fd)
     tb_bspline(&b, 0.62, 0.41);
     sb_shell_basis v = tb_view(&b);
     double Xq[48], q[48], x[48], g[48], gp[48], gm[48];
-    static double H[48 * 48];
+    double H[48 * 48];
     unsigned long long s = 8;
     for (int j = 0; j < 4; j++)
         for (int i = 0; i < 4; i++) {

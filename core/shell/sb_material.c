@@ -157,8 +157,10 @@ int sb_material_init_msg(sb_material *m, const sb_material_spec *spec, int n_thi
         return fail(err, errlen, "material.density = %g: must be finite and >= 0", spec->density);
     if (!isfinite(spec->warp_angle))
         return fail(err, errlen, "material.warp_angle = %g: must be finite", spec->warp_angle);
-    if (n_thick < 0 || n_thick > SB_MAX_THICK)
-        return fail(err, errlen, "n_thick = %d: must lie in 0..%d (0 = default)", n_thick, SB_MAX_THICK);
+    /* one point (xi3 = 0) would see no bending strain at all: rejected */
+    if (n_thick < 0 || n_thick == 1 || n_thick > SB_MAX_THICK)
+        return fail(err, errlen, "n_thick = %d: must be 0 (default) or lie in 2..%d (one point sees no bending)",
+                    n_thick, SB_MAX_THICK);
 
     m->kind = spec->kind;
     m->thickness = spec->thickness;

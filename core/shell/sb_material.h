@@ -30,7 +30,8 @@ typedef struct sb_material {
 void sb_denim_defaults(sb_denim_params *p);
 
 /* n_thick = 0 picks the default: 2 for stvk (exact), the convergence-checked
- * number for denim (see sb_material.c). */
+ * number for denim (see sb_material.c); otherwise 2..SB_MAX_THICK.  Returns
+ * SB_OK or SB_ERR_INPUT (see sb_material_init_msg for the message). */
 int sb_material_init(sb_material *m, const sb_material_spec *spec, int n_thick);
 
 /* psi per unit reference volume (J/m^3); dpsi[3], d2psi[9] (row-major) optional.

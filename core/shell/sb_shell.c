@@ -15,8 +15,11 @@
  *    For a quadratic psi (StVK) two points integrate exactly:
  *      int_{-h/2}^{h/2} psi(A - 2 xi3 B) dxi3 = h psi(A) + 4 psi(B) h^3/12
  *                                             = h psi(A) + (h^3/3) psi(B),
- *    which is BHEM paper Eq. (7) with its H of Eq. (8) (psi(E) = H^abcd E_ab E_cd);
- *    tested in test_shell.c.
+ *    which is BHEM paper Eq. (7) with its H of Eq. (8) (psi(E) = H^abcd E_ab E_cd
+ *    = lambda/2 (tr E)^2 + mu tr(E^2)); tested in test_shell.c.  Factor
+ *    convention: Eq. (7) multiplies B B by h^3/3 with B = (b - bbar)/2; App. B
+ *    Eq. (42) writes the same with beta = 2 B and h^3/12 (4/12 = 1/3), so the
+ *    paper is self-consistent and agrees with E = A - 2 xi3 B.
  * 4. Energy e(y); gradient de/dy and Hessian d2e/dy2 (15 x 15) from
  *      d2e/dy2 = J^T D J + sum_i nA_i d2A_i/dy2 + sum_i nB_i d2B_i/dy2,
  *    J = d(A, B)/dy (6 x 15), D = d2e/d(A,B)^2 (6 x 6), nA, nB = de/dA, de/dB.
@@ -100,6 +103,48 @@ enum { S_X1 = 0, S_X2 = 1, S_X11 = 2, S_X12 = 3, S_X22 = 4 };
 /* bending component i (Voigt 11, 22, 12) -> slot of x_,ab */
 static const int bslot[3] = { S_X11, S_X22, S_X12 };
 
+/* Through-thickness integration (BHEM paper Eq. 6a-7, RMTR paper Eq. 3.2):
+ * energy/area = sum_g w_g psi(A - 2 xi_g B) with the material's Gauss points
+ * (metres).  Exact with 2 points for StVK: h psi(A) + (h^3/3) psi(B). */
+double sb_shell_section(const sb_material *m, const double A[3], const double B[3], double sA[3],
+                        double sB[3], double C[36])
+{
+    if (!m || !A || !B || m->n_thick < 1 || m->n_thick > 8) return NAN;
+    const int need_g = sA || sB || C, need_h = C != NULL;
+    double e = 0.0, gA[3] = { 0 }, gB[3] = { 0 }, CAA[9] = { 0 }, CAB[9] = { 0 }, CBB[9] = { 0 };
+    for (int g = 0; g < m->n_thick; g++) {
+        const double xi = m->thick_pt[g], wg = m->thick_w[g];
+        const double eps[3] = { A[0] - 2.0 * xi * B[0], A[1] - 2.0 * xi * B[1], A[2] - 2.0 * xi * B[2] };
+        double s[3], Cg[9];
+        e += wg * sb_material_psi(m, eps, need_g ? s : NULL, need_h ? Cg : NULL);
+        if (need_g) {
+            const double wb = -2.0 * xi * wg;   /* dE/dB = -2 xi3 */
+            for (int i = 0; i < 3; i++) {
+                gA[i] += wg * s[i];
+                gB[i] += wb * s[i];
+            }
+            if (need_h) {
+                const double wbb = 4.0 * xi * xi * wg;
+                for (int i = 0; i < 9; i++) {
+                    CAA[i] += wg * Cg[i];
+                    CAB[i] += wb * Cg[i];
+                    CBB[i] += wbb * Cg[i];
+                }
+            }
+        }
+    }
+    if (sA) memcpy(sA, gA, sizeof gA);
+    if (sB) memcpy(sB, gB, sizeof gB);
+    if (C)
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                C[6 * i + j] = CAA[3 * i + j];
+                C[6 * i + 3 + j] = C[6 * (3 + j) + i] = CAB[3 * i + j];
+                C[6 * (3 + i) + 3 + j] = CBB[3 * i + j];
+            }
+    return e;
+}
+
 double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_shell_basis *b,
                        const double *q, double *grad, double *hess, sb_hess_kind kind,
                        sb_shell_work *w)
@@ -145,33 +190,12 @@ double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_she
         TB[i] = T[3 * i] * B[0] + T[3 * i + 1] * B[1] + T[3 * i + 2] * B[2];
     }
 
-    /* 3. through the thickness: E(xi3) = A - 2 xi3 B (BHEM paper Eq. 6a) */
+    /* 3. through the thickness (BHEM paper Eq. 6a, 7) */
     const int need_g = grad || hess, need_h = hess != NULL;
-    double e = 0.0, sA[3] = { 0 }, sB[3] = { 0 }, CAA[9] = { 0 }, CAB[9] = { 0 }, CBB[9] = { 0 };
-    for (int g = 0; g < m->n_thick; g++) {
-        const double xi = m->thick_pt[g], wg = m->thick_w[g];
-        const double eps[3] = { TA[0] - 2.0 * xi * TB[0], TA[1] - 2.0 * xi * TB[1],
-                                TA[2] - 2.0 * xi * TB[2] };
-        double s[3], C[9];
-        e += wg * sb_material_psi(m, eps, need_g ? s : NULL, need_h ? C : NULL);
-        if (need_g) {
-            const double wb = -2.0 * xi * wg;
-            for (int i = 0; i < 3; i++) {
-                sA[i] += wg * s[i];
-                sB[i] += wb * s[i];
-            }
-            if (need_h) {
-                const double wbb = 4.0 * xi * xi * wg;
-                for (int i = 0; i < 9; i++) {
-                    CAA[i] += wg * C[i];
-                    CAB[i] += wb * C[i];
-                    CBB[i] += wbb * C[i];
-                }
-            }
-        }
-    }
+    double sA[3], sB[3], C6[36];
     const double dA = r->dA;
-    e *= dA;
+    const double e = dA * sb_shell_section(m, TA, TB, need_g ? sA : NULL, need_g ? sB : NULL,
+                                           need_h ? C6 : NULL);
     if (!need_g) return e;
 
     /* 4a. generalized forces in covariant components: nA = dA T^T sA, nB = dA T^T sB */
@@ -241,7 +265,13 @@ double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_she
             }
         }
         /* D = dA [T^T CAA T, T^T CAB T; T^T CAB T, T^T CBB T] */
-        double D[6][6], R[9];
+        double D[6][6], R[9], CAA[9], CAB[9], CBB[9];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                CAA[3 * i + j] = C6[6 * i + j];
+                CAB[3 * i + j] = C6[6 * i + 3 + j];
+                CBB[3 * i + j] = C6[6 * (3 + i) + 3 + j];
+            }
         congruence3(T, CAA, R);
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) D[i][j] = dA * R[3 * i + j];

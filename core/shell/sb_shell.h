@@ -49,6 +49,16 @@ int sb_shell_ref_init(sb_shell_ref *r, const double X1[3], const double X2[3],
 int sb_shell_ref_init_basis(sb_shell_ref *r, const sb_shell_basis *b, const double *Xq,
                             double warp_angle, double weight);
 
+/* The shell "section" law (added, additive): through-thickness Gauss
+ * integration of the material for local-frame membrane strain A and bending
+ * strain B (Voigt 11, 22, 12; E(xi3) = A - 2 xi3 B).  Returns energy per unit
+ * reference area; sA = d/dA, sB = d/dB (3 each) and C = d2/d(A,B)^2 (6 x 6
+ * row-major, order A11 A22 A12 B11 B22 B12) when non-NULL.  For triangle
+ * elements with a discrete second fundamental form, so that they integrate
+ * the same materials the same way. */
+double sb_shell_section(const sb_material *m, const double A[3], const double B[3], double sA[3],
+                        double sB[3], double C[36]);
+
 /* Scratch space, sized for SB_SHELL_MAX_BASIS; one per thread, never per call. */
 typedef struct sb_shell_work sb_shell_work;
 sb_shell_work *sb_shell_work_new(void);
@@ -57,22 +67,30 @@ void sb_shell_work_free(sb_shell_work *w);
 /* Elastic energy of one quadrature point (dA included).  q: k x 3 current
  * control values (row I = q_I).  grad (3k) and hess (3k x 3k, row-major,
  * dof index 3*I + c) are ACCUMULATED when non-NULL.  kind EXACT or PSEUDO
- * (BHEM paper §6.1: drop the second derivatives of the strains); PSD
- * projection is done per element with sb_psd_project(). */
+ * (BHEM paper §6.1 / App. B: drop the second derivatives of the bending
+ * strains, d2 beta/dq2; the membrane ones, Eq. 51-53, are kept as in the
+ * paper); kind PSD evaluates the exact Hessian: the projection is done per
+ * element with sb_psd_project().  Bad input (NULL pointers, k out of range,
+ * degenerate reference or current surface) gives a NaN / non-finite energy,
+ * which the caller records as SB_NONFINITE; never a crash. */
 double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_shell_basis *b,
                        const double *q, double *grad, double *hess, sb_hess_kind kind,
                        sb_shell_work *w);
 
 /* External potential of one quadrature point: gravity (dead, density * g)
  * and pressure p along the normal.  follower = 0: dead load on the reference
- * normal (linear potential); follower = 1: see sb_shell.c for the potential
- * used.  Returns energy, accumulates grad / hess (hess only for follower). */
+ * normal (linear potential); follower = 1: follows the deformed normal,
+ * made conservative by the enclosed-volume potential E = -p/3 x.(x_,1 x x_,2) w
+ * (exact p n da on closed surfaces and fixed boundaries; see sb_shell_ext.c).
+ * Returns energy, accumulates grad / hess (hess only for follower). */
 double sb_shell_external(const sb_material *m, const sb_shell_ref *r, const sb_shell_basis *b,
                          const double *q, const double gvec[3], double pressure, int follower,
                          double *grad, double *hess);
 
 /* Clamp the eigenvalues of a symmetric n x n (row-major) matrix at >= 0, in place.
- * Uses LAPACK dsyev; work must hold sb_psd_work_size(n) doubles. */
+ * Uses LAPACK dsyev; work must hold sb_psd_work_size(n) doubles.  An already
+ * PSD matrix comes back unchanged.  Returns SB_OK, SB_ERR_INPUT, or
+ * SB_NONFINITE (NaN/Inf entries, or dsyev failed to converge). */
 size_t sb_psd_work_size(int n);
 int sb_psd_project(int n, double *H, double *work);
 

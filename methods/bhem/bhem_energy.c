@@ -44,8 +44,12 @@ int bhem_energy(bhem_state *S, int level, const double *x, double *f, double *g,
             for (int a = 0; a < BHEM_NED; a++) g[d[a]] += ge[a];
         if (Ke) sb_matrix_add_element(H, e, Ke);
     }
-    /* dead loads: E_ext = -f_ext . x (BHEM Eq. 19 and 21) */
-    E -= sb_dot(L->n_dofs, L->f_ext, x);
+    /* dead loads: E_ext = -f_ext . (x - x_ref) (BHEM Eq. 19 and 21); measured
+     * from the reference so that f carries no large constant (the f-tests of
+     * RMTR Eq. 7.1 compare energy differences) */
+    double Eext = 0.0;
+    for (int i = 0; i < L->n_dofs; i++) Eext -= L->f_ext[i] * (x[i] - L->x_ref[i]);
+    E += Eext;
     if (g) sb_axpy(L->n_dofs, -1.0, L->f_ext, g);
     *f = E;
     if (!isfinite(E)) return SB_NONFINITE;

@@ -1,0 +1,287 @@
+/* cc_method.c — the Catmull–Clark subdivision discretization as an
+ * sb_method_type: `sb_method_subdiv`, registry name "rmtr" (DESIGN.md).
+ *
+ * Resolution: --res N = N x N elements (faces) of the domain's grid
+ * parameter (s,t) on the finest level, --levels L nested levels; the coarsest
+ * level has N / 2^(L-1) elements per side (N must be divisible by 2^(L-1)),
+ * every level carries one ring of ghost faces (§5.2.1).  The RMTR paper's
+ * levels 1..6 (147 ... 51,483 dofs) are --res 4, 8, 16, 32, 64, 128; its
+ * multilevel runs always start from the 4 x 4 cage, e.g. Table 4 with 3
+ * levels = --res 16 --levels 3.  L-shape: the coarse lines are uniform on
+ * either side of the notch line (cc_cage_lines), so the notch is exact.
+ * DOFs: 3 per control point, dof 3 I + c; level 0 is the coarsest.
+ * Boundary conditions: penalty (3.6) in the energy; dirichlet() is NULL. */
+#include "cc_method.h"
+#include "sb_context.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const proj_choices[] = { "reverse", "lsq", "restrict", NULL };
+static const char *const hess_choices[] = { "exact", "pseudo", "psd", NULL };
+static const char *const mass_choices[] = { "consistent", "lumped", NULL };
+static const char *const subdiv_choices[] = { "osd", "rules", NULL };
+
+const sb_param_def cc_params[] = {
+    { "projection", SB_PARAM_CHOICE, 0, 0, 0, proj_choices,
+      "fine-to-coarse iterate transfer: reverse subdivision (RMTR §5.3.2, App. B/C), lsq = (S^T S)^-1 S^T "
+      "(5.18), restrict = row-normalized S^T (keeps constants only)" },
+    { "sigma", SB_PARAM_REAL, 5.0, 0.0, 20.0, NULL, "penalty exponent: beta = beta_scale h^-sigma (RMTR §3.1, §7.1)" },
+    { "beta_scale", SB_PARAM_REAL, 1.0, 0.0, 1e30, NULL, "penalty factor: beta = beta_scale h^-sigma (h in m)" },
+    { "gauss", SB_PARAM_INT, 3, 2, 6, NULL, "Gauss points per direction on each face (and along boundary edges)" },
+    { "hessian", SB_PARAM_CHOICE, 0, 0, 0, hess_choices,
+      "Hessian of the elastic energy: exact, pseudo (strain second derivatives dropped) or psd (clamped per element)" },
+    { "mass", SB_PARAM_CHOICE, 0, 0, 0, mass_choices, "mass matrix: consistent or row-sum lumped" },
+    { "subdiv", SB_PARAM_CHOICE, 0, 0, 0, subdiv_choices,
+      "subdivision matrix from OpenSubdiv (RMTR §6) or from the rules (5.12)-(5.15) in C (identical, tested)" },
+    { "n_thick", SB_PARAM_INT, 0, 0, 8, NULL, "Gauss points through the thickness (0 = material default)" },
+    { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
+};
+
+int cc_state_fail(const cc_state *S, int status, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (S && S->ctx) sb_error(S->ctx, status, "rmtr: %s", msg);
+    else fprintf(stderr, "rmtr: %s\n", msg);
+    return status;
+}
+
+static void cc_destroy(void *state)
+{
+    cc_state *S = state;
+    for (int l = 0; l < CC_MAX_LEVELS; l++) cc_level_free(&S->lv[l]);
+    cc_hier_free(&S->hier);
+    if (S->work) sb_shell_work_free(S->work);
+    free(S->Ke);
+    free(S->ge);
+    free(S->qe);
+    free(S->psd);
+    S->work = NULL;
+    S->Ke = S->ge = S->qe = S->psd = NULL;
+}
+
+static double param(const sb_method_config *cfg, const char *name)
+{
+    char key[SB_NAME_LEN];
+    snprintf(key, sizeof key, "method.%s", name);
+    if (cfg->params)
+        for (int i = 0; i < cfg->params->n; i++)
+            if (strcmp(cfg->params->v[i].key, key) == 0) return cfg->params->v[i].value;
+    for (const sb_param_def *d = cc_params; d->name; d++)
+        if (strcmp(d->name, name) == 0) return d->def;
+    return 0;
+}
+
+/* Coarse cage of the scene's domain with n elements per side. */
+static int coarse_cage(const sb_scene *sc, int n, cc_mesh *m, cc_err *e)
+{
+    double sl[4097], tl[4097];
+    if (n < 1 || n > 4096) return cc_fail(e, SB_ERR_INPUT, "coarsest level of %d elements per side is out of range", n);
+    const sb_domain *d = &sc->domain;
+    if (d->kind == SB_DOMAIN_ANNULUS_SECTOR && (d->theta[1] - d->theta[0] >= 6.283185307 || d->r_in <= 0))
+        return cc_fail(e, SB_ERR_UNSUPPORTED, "annulus sectors must be open (angle < 2 pi) with r_in > 0 for rmtr");
+    double s01[2], t01[2];
+    if (d->kind != SB_DOMAIN_L_SHAPE || !sb_domain_notch_st(d, s01, t01)) {
+        cc_cage_lines(n, 0, 0, sl, NULL);
+        cc_cage_lines(n, 0, 0, tl, NULL);
+        return cc_cage_grid(sl, n, tl, n, -1, 0, 0, m, e);
+    }
+    int corner = d->notch_corner, hs = corner == SB_CORNER_10 || corner == SB_CORNER_11;
+    int ht = corner == SB_CORNER_11 || corner == SB_CORNER_01, ns, nt;
+    if (cc_cage_lines(n, hs ? s01[0] : s01[1], hs, sl, &ns) || cc_cage_lines(n, ht ? t01[0] : t01[1], ht, tl, &nt))
+        return cc_fail(e, SB_ERR_INPUT, "an L-shape needs at least 2 coarse elements per side (got %d)", n);
+    return cc_cage_grid(sl, n, tl, n, corner, ns, nt, m, e);
+}
+
+static int cc_create(void *state, const sb_scene *scene, const sb_method_config *cfg)
+{
+    cc_state *S = state;
+    memset(S, 0, sizeof *S);
+    S->scene = scene;
+    S->ctx = cfg->ctx;
+    S->proj = (cc_proj_kind)(int)param(cfg, "projection");
+    S->sigma = param(cfg, "sigma");
+    S->beta_scale = param(cfg, "beta_scale");
+    S->ng = (int)param(cfg, "gauss");
+    int h = (int)param(cfg, "hessian");
+    S->hess = h == 1 ? SB_HESS_PSEUDO : h == 2 ? SB_HESS_PSD : SB_HESS_EXACT;
+    S->lumped = (int)param(cfg, "mass") == 1;
+    S->use_osd = (int)param(cfg, "subdiv") == 0;
+    char msg[256];
+    if (sb_material_init_msg(&S->mat, &scene->material, (int)param(cfg, "n_thick"), msg, sizeof msg) != SB_OK)
+        return cc_state_fail(S, SB_ERR_INPUT, "material: %s", msg);
+    int levels = cfg->levels > 0 ? cfg->levels : 1;
+    int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
+    if (levels > CC_MAX_LEVELS)
+        return cc_state_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, CC_MAX_LEVELS);
+    if (n % (1 << (levels - 1)))
+        return cc_state_fail(S, SB_ERR_INPUT, "--res %d cannot be coarsened %d times: it must be divisible by 2^(levels-1) = %d",
+                             n, levels - 1, 1 << (levels - 1));
+    S->n_fine = n;
+    S->n_coarse = n >> (levels - 1);
+    cc_err e = { "" };
+    cc_mesh cage;
+    int st = coarse_cage(scene, S->n_coarse, &cage, &e);
+    if (!st) st = cc_hier_build(&S->hier, &cage, levels, S->use_osd, &e);
+    if (!st) S->nlev = levels;
+    for (int l = 0; l < levels && !st; l++) st = cc_level_build(S, l, &e);
+    if (!st) {
+        int kmax = 0;
+        for (int l = 0; l < levels; l++)
+            for (int el = 0; el < S->lv[l].quad.ne; el++) {
+                int k = S->lv[l].quad.eoff[el + 1] - S->lv[l].quad.eoff[el];
+                kmax = k > kmax ? k : kmax;
+            }
+        int nm = 3 * kmax;
+        S->Ke = malloc((size_t)nm * nm * sizeof *S->Ke);
+        S->ge = malloc((size_t)nm * sizeof *S->ge);
+        S->qe = malloc((size_t)nm * sizeof *S->qe);
+        S->psd = malloc((sb_psd_work_size(nm) + 1) * sizeof *S->psd);
+        S->work = sb_shell_work_new();
+        if (!S->Ke || !S->ge || !S->qe || !S->psd || !S->work) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+    }
+    if (st) {
+        cc_state_fail(S, st, "%s", e.msg[0] ? e.msg : "cannot build the subdivision hierarchy");
+        cc_destroy(S);
+        return st;
+    }
+    return SB_OK;
+}
+
+static int cc_n_levels(const void *state) { return ((const cc_state *)state)->nlev; }
+
+static int cc_n_dofs(const void *state, int level)
+{
+    const cc_state *S = state;
+    return level >= 0 && level < S->nlev ? 3 * S->lv[level].nv : 0;
+}
+
+static int cc_block_size(const void *state, int level)
+{
+    (void)state;
+    (void)level;
+    return 3;
+}
+
+static int cc_pattern(const void *state, int level, sb_pattern_builder *pb)
+{
+    const cc_state *S = state;
+    const cc_quad *Q = &S->lv[level].quad;
+    for (int el = 0; el < Q->ne; el++) {
+        int st = sb_pattern_builder_add(pb, Q->eoff[el + 1] - Q->eoff[el], Q->enode + Q->eoff[el]);
+        if (st) return st;
+    }
+    return SB_OK;
+}
+
+static int cc_initial(const void *state, int level, double *x)
+{
+    const cc_state *S = state;
+    memcpy(x, S->lv[level].X, (size_t)3 * S->lv[level].nv * sizeof *x);
+    return SB_OK;
+}
+
+static int cc_set_step(void *state, const sb_step_info *si)
+{
+    cc_state *S = state;
+    memcpy(S->load_factor, si->load_factor, sizeof S->load_factor);
+    memcpy(S->motion_factor, si->motion_factor, sizeof S->motion_factor);
+    for (int l = 0; l < S->nlev; l++) cc_points_update(S, l);   /* boundary data on every level, §6 */
+    return SB_OK;
+}
+
+static const sb_dirichlet *cc_dirichlet(const void *state, int level)
+{
+    (void)state;
+    (void)level;
+    return NULL;   /* penalty method (3.6) */
+}
+
+static int cc_energy_op(void *state, int level, const double *x, double *f, double *g, sb_matrix *H)
+{
+    return cc_energy(state, level, x, f, g, H);
+}
+
+static int cc_mass_op(void *state, int level, sb_matrix *M) { return cc_mass(state, level, M); }
+
+static int cc_eval_points(const void *state, int level, const double *x, int np, const double *st, double *pos)
+{
+    const cc_state *S = state;
+    const cc_level *L = &S->lv[level];
+    int idx[CC_MAX_BASIS], k, f;
+    double W[6 * CC_MAX_BASIS], u, v;
+    cc_err e = { "" };
+    for (int p = 0; p < np; p++) {
+        if (cc_level_locate(L, st[2 * p], st[2 * p + 1], &f, &u, &v))
+            return cc_state_fail(S, SB_ERR_INPUT, "point (s,t) = (%g, %g) is outside the domain", st[2 * p], st[2 * p + 1]);
+        int rc = cc_face_basis(L->mesh, f, u, v, &k, idx, W, CC_MAX_BASIS, &e);
+        if (rc) return cc_state_fail(S, rc, "%s", e.msg);
+        for (int c = 0; c < 3; c++) {
+            double s = 0;
+            for (int a = 0; a < k; a++) s += W[a] * x[3 * idx[a] + c];
+            pos[3 * p + c] = s;
+        }
+    }
+    return SB_OK;
+}
+
+static int cc_prolong(void *state, int lc, const double *xc, double *xf)
+{
+    cc_state *S = state;
+    cc_csr_apply(&S->hier.S[lc], 3, xc, xf);                 /* q^{l+1} = S q^l (5.11) */
+    return SB_OK;
+}
+
+static int cc_restrict(void *state, int lc, const double *gf, double *gc)
+{
+    cc_state *S = state;
+    cc_csr_apply_t(&S->hier.S[lc], 3, gf, gc);               /* R = S^T */
+    return SB_OK;
+}
+
+static int cc_project(void *state, int lc, const double *xf, double *xc)
+{
+    cc_state *S = state;
+    cc_level *L = &S->lv[lc];
+    if (L->lsq) return cc_lsq_apply(L->lsq, 3, xf, xc);
+    cc_csr_apply(&L->P, 3, xf, xc);
+    return SB_OK;
+}
+
+static void cc_describe(const void *state, char *buf, size_t len)
+{
+    const cc_state *S = state;
+    const cc_level *L = &S->lv[S->nlev - 1];
+    snprintf(buf, len, "Catmull-Clark subdivision, %d levels, %dx%d -> %dx%d elements (+ghost ring), %d dofs, %s projection",
+             S->nlev, S->n_coarse, S->n_coarse, S->n_fine, S->n_fine, 3 * L->nv, proj_choices[S->proj]);
+}
+
+const sb_method_type sb_method_subdiv = {
+    .name = "rmtr",
+    .description = "Catmull-Clark subdivision shell elements with level hierarchy, penalty BCs (RMTR paper §3, §5)",
+    .state_size = sizeof(cc_state),
+    .params = cc_params,
+    .flags = SB_METHOD_HIERARCHY | SB_METHOD_POTENTIAL,
+    .create = cc_create,
+    .destroy = cc_destroy,
+    .n_levels = cc_n_levels,
+    .n_dofs = cc_n_dofs,
+    .block_size = cc_block_size,
+    .pattern = cc_pattern,
+    .initial = cc_initial,
+    .set_step = cc_set_step,
+    .dirichlet = cc_dirichlet,
+    .energy = cc_energy_op,
+    .mass = cc_mass_op,
+    .eval_points = cc_eval_points,
+    .prolong = cc_prolong,
+    .restrict_adj = cc_restrict,
+    .project = cc_project,
+    .describe = cc_describe,
+};
