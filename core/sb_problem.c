@@ -251,6 +251,28 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
     return SB_OK;
 }
 
+/* d^T A d for symmetric A stored as its upper triangle, and g += scale A d
+ * (when g is non-NULL), in one pass over the columns. */
+static double quad_form(const sb_matrix *A, const double *d, double scale, double *g)
+{
+    const sb_pattern *pat = A->pat;
+    double quad = 0.0;
+    for (int c = 0; c < pat->n; c++) {
+        long end = pat->colptr[c + 1] - 1;          /* the diagonal closes each column */
+        double acc = 0.0;
+        for (long q = pat->colptr[c]; q < end; q++) {
+            int r = pat->rowind[q];
+            double v = A->val[q];
+            acc += v * d[r];
+            if (g) g[r] += scale * v * d[c];
+        }
+        acc += A->val[end] * d[c];
+        quad += d[c] * (2.0 * acc - A->val[end] * d[c]);
+        if (g) g[c] += scale * acc;
+    }
+    return quad;
+}
+
 int sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H)
 {
     level_data *L = &p->lv[level];
@@ -263,48 +285,17 @@ int sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double
     int rc = p->mt->energy(p->ms, level, x, &e, g, H);
     if (rc < 0) return rc;
     if (p->dynamic) {
+        /* inertia: 1/(2 dt^2) (x - xhat)^T M (x - xhat)  (DESIGN.md) */
         const double idt2 = 1.0 / (p->dt * p->dt);
         double *d = L->tmp;
         for (int i = 0; i < n; i++) d[i] = x[i] - L->xhat[i];
-        /* inertia: 1/(2 dt^2) (x - xhat)^T M (x - xhat)  (DESIGN.md).  M d is
-         * formed column-wise on the upper-triangle storage, accumulating the
-         * quadratic form and the gradient in the same pass. */
-        const sb_pattern *pat = L->pat;
-        double quad = 0.0;
-        for (int c = 0; c < n; c++) {
-            long end = pat->colptr[c + 1] - 1;
-            double acc = 0.0;
-            for (long q = pat->colptr[c]; q < end; q++) {
-                int r = pat->rowind[q];
-                double v = L->M.val[q];
-                acc += v * d[r];
-                if (g) g[r] += idt2 * v * d[c];
-            }
-            acc += L->M.val[end] * d[c];
-            quad += d[c] * (2.0 * acc - L->M.val[end] * d[c]);
-            if (g) g[c] += idt2 * acc;
-        }
-        e += 0.5 * idt2 * quad;
+        e += 0.5 * idt2 * quad_form(&L->M, d, idt2, g);
         if (H) sb_matrix_axpy(H, idt2, &L->M);
         if (p->damping) {
-            /* 1/(2 dt) (x - x_n)^T D (x - x_n) */
+            /* Rayleigh damping: 1/(2 dt) (x - x_n)^T D (x - x_n) */
             const double idt = 1.0 / p->dt;
             for (int i = 0; i < n; i++) d[i] = x[i] - L->xn[i];
-            double dq = 0.0;
-            for (int c = 0; c < n; c++) {
-                long end = pat->colptr[c + 1] - 1;
-                double acc = 0.0;
-                for (long q = pat->colptr[c]; q < end; q++) {
-                    int r = pat->rowind[q];
-                    double v = L->D.val[q];
-                    acc += v * d[r];
-                    if (g) g[r] += idt * v * d[c];
-                }
-                acc += L->D.val[end] * d[c];
-                dq += d[c] * (2.0 * acc - L->D.val[end] * d[c]);
-                if (g) g[c] += idt * acc;
-            }
-            e += 0.5 * idt * dq;
+            e += 0.5 * idt * quad_form(&L->D, d, idt, g);
             if (H) sb_matrix_axpy(H, idt, &L->D);
         }
     }

@@ -80,21 +80,29 @@ static void rmtr_free(void *st)
     }
 }
 
+/* ||I_l^L v||_2 (free dofs) for v in lv[l].tmp; uses the tmp of finer levels */
+static int prolonged_norm(rmtr_state *R, sb_problem *p, int l, double *out)
+{
+    const double *cur = R->lv[l].tmp;
+    for (int k = l; k < R->L; k++) {
+        int rc = sb_problem_prolong(p, k, cur, R->lv[k + 1].tmp);
+        if (rc) return rc;
+        cur = R->lv[k + 1].tmp;
+    }
+    *out = sb_problem_norm(p, R->L, cur);
+    return SB_OK;
+}
+
 /* c_l = ||I_l^L 1|| / ||1|| (free dofs) */
 static int level_norm_scale(rmtr_state *R, sb_problem *p, int l, double *out)
 {
     rlevel *V = &R->lv[l];
     for (int i = 0; i < V->n; i++) V->tmp[i] = 1.0;
     sb_problem_constrain(p, l, V->tmp);
-    double n0 = sb_problem_norm(p, l, V->tmp);
-    const double *cur = V->tmp;
-    for (int k = l; k < R->L; k++) {
-        int rc = sb_problem_prolong(p, k, cur, R->lv[k + 1].tmp);
-        if (rc) return rc;
-        cur = R->lv[k + 1].tmp;
-    }
-    *out = n0 > 0 ? sb_problem_norm(p, R->L, cur) / n0 : 1.0;
-    return SB_OK;
+    double n0 = sb_problem_norm(p, l, V->tmp), nf;
+    int rc = prolonged_norm(R, p, l, &nf);
+    *out = n0 > 0 && nf > 0 ? nf / n0 : 1.0;
+    return rc;
 }
 
 static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
@@ -152,14 +160,7 @@ static int level_norm(rmtr_state *R, sb_problem *p, int l, const double *x, doub
 {
     rlevel *V = &R->lv[l];
     for (int i = 0; i < V->n; i++) V->tmp[i] = x[i] - V->x0[i];
-    const double *cur = V->tmp;
-    for (int k = l; k < R->L; k++) {
-        int rc = sb_problem_prolong(p, k, cur, R->lv[k + 1].tmp);
-        if (rc) return rc;
-        cur = R->lv[k + 1].tmp;
-    }
-    *out = sb_problem_norm(p, R->L, cur);
-    return SB_OK;
+    return prolonged_norm(R, p, l, out);
 }
 
 /* Alg. 4.3 (see the header for the reading of line 4). */
