@@ -17,6 +17,7 @@ command -v cc >/dev/null 2>&1                     || need+=(gcc)
 command -v c++ >/dev/null 2>&1                    || need+=(g++)
 command -v make >/dev/null 2>&1                   || need+=(make)
 command -v git >/dev/null 2>&1                    || need+=(git)
+command -v python3 >/dev/null 2>&1                || need+=(python3)    # benchmark report scripts (standard library only)
 if [ ${#need[@]} -eq 0 ]; then
   exit 0
 fi

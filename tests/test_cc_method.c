@@ -58,10 +58,10 @@ static void make_scene(sb_scene *sc, int kind, int gravity)
     }
 }
 
-static void *create(const sb_scene *sc, int res, int levels, int *rc)
+static void *create_ps(const sb_scene *sc, int res, int levels, int *rc, const sb_paramset *ps)
 {
     void *st = calloc(1, sb_method_subdiv.state_size);
-    sb_method_config cfg = { res, levels, NULL, NULL };
+    sb_method_config cfg = { res, levels, ps, NULL };
     *rc = sb_method_subdiv.create(st, sc, &cfg);
     if (*rc) {
         free(st);
@@ -69,6 +69,8 @@ static void *create(const sb_scene *sc, int res, int levels, int *rc)
     }
     return st;
 }
+
+static void *create(const sb_scene *sc, int res, int levels, int *rc) { return create_ps(sc, res, levels, rc, NULL); }
 
 static void destroy(void *st)
 {
@@ -185,22 +187,31 @@ SB_TEST(penalty_and_gravity_closed_form)
     sb_scene sc;
     make_scene(&sc, SC_TRAMPOLINE, 0);
     int rc;
-    void *st = create(&sc, 8, 2, &rc);
-    CHECK(st != NULL);
-    if (!st) return;
-    step(st, 1.0);
-    for (int l = 0; l < 2; l++) {
-        int n = sb_method_subdiv.n_dofs(st, l);
-        double *x = malloc(sizeof(double) * 2 * n), *g = x + n, f;
-        sb_method_subdiv.initial(st, l, x);
-        CHECK(sb_method_subdiv.energy(st, l, x, &f, NULL, NULL) == SB_OK);
-        CHECK_NEAR(f, 0.0, 1e-12);
-        for (int i = 2; i < n; i += 3) x[i] += 1e-3;
-        CHECK(sb_method_subdiv.energy(st, l, x, &f, NULL, NULL) == SB_OK);
-        double h = 1.0 / (4 << l), beta = pow(h, -5.0);
-        CHECK_REL(f, 0.5 * beta * 1e-6 * 4.0, 1e-10);
-        free(x);
-        (void)g;
+    void *st = NULL;
+    for (int per_level = 0; per_level < 2; per_level++) {
+        sb_paramset ps;
+        sb_paramset_init(&ps);
+        sb_paramset_add(&ps, "method", sb_method_subdiv.params);
+        char err[256];
+        if (per_level) CHECK(sb_paramset_set(&ps, "method.penalty_h=level", err, sizeof err) == SB_OK);
+        st = create_ps(&sc, 8, 2, &rc, &ps);
+        CHECK(st != NULL);
+        if (!st) return;
+        step(st, 1.0);
+        for (int l = 0; l < 2; l++) {
+            int n = sb_method_subdiv.n_dofs(st, l);
+            double *x = malloc(sizeof(double) * n), f;
+            sb_method_subdiv.initial(st, l, x);
+            CHECK(sb_method_subdiv.energy(st, l, x, &f, NULL, NULL) == SB_OK);
+            CHECK_NEAR(f, 0.0, 1e-12);
+            for (int i = 2; i < n; i += 3) x[i] += 1e-3;
+            CHECK(sb_method_subdiv.energy(st, l, x, &f, NULL, NULL) == SB_OK);
+            /* beta/2 dz^2 |d omega|, beta = h^-5 with the finest h (default) or the level's */
+            double h = per_level ? 1.0 / (4 << l) : 1.0 / 8, beta = pow(h, -5.0);
+            CHECK_REL(f, 0.5 * beta * 1e-6 * 4.0, 1e-10);
+            free(x);
+        }
+        if (per_level == 0) destroy(st);
     }
     destroy(st);
     make_scene(&sc, SC_TRAMPOLINE, 1);
@@ -235,25 +246,31 @@ SB_TEST(penalty_and_gravity_closed_form)
 }
 
 /* drape corners: at the reference, after set_step(f = 1), the two point
- * penalties give beta/2 (0.2^2) each */
+ * penalties give beta/2 (0.2^2) each, on every level of the hierarchy (§6:
+ * boundary data distributed to all levels each step) */
 SB_TEST(moving_corners)
 {
     sb_scene sc;
     make_scene(&sc, SC_DRAPE, 0);
     int rc;
-    void *st = create(&sc, 4, 1, &rc);
+    void *st = create(&sc, 8, 2, &rc);
     CHECK(st != NULL);
     if (!st) return;
-    int n = sb_method_subdiv.n_dofs(st, 0);
-    double *x = malloc(sizeof(double) * n), f;
-    sb_method_subdiv.initial(st, 0, x);
-    step(st, 0.0);
-    CHECK(sb_method_subdiv.energy(st, 0, x, &f, NULL, NULL) == SB_OK);
-    CHECK_NEAR(f, 0.0, 1e-12);
-    step(st, 1.0);
-    CHECK(sb_method_subdiv.energy(st, 0, x, &f, NULL, NULL) == SB_OK);
-    CHECK_REL(f, 2 * 0.5 * pow(0.25, -5.0) * 0.04, 1e-12);
-    free(x);
+    for (int l = 0; l < 2; l++) {
+        int n = sb_method_subdiv.n_dofs(st, l);
+        double *x = malloc(sizeof(double) * n), f;
+        sb_method_subdiv.initial(st, l, x);
+        step(st, 0.0);
+        CHECK(sb_method_subdiv.energy(st, l, x, &f, NULL, NULL) == SB_OK);
+        CHECK_NEAR(f, 0.0, 1e-12);
+        step(st, 1.0);
+        CHECK(sb_method_subdiv.energy(st, l, x, &f, NULL, NULL) == SB_OK);
+        CHECK_REL(f, 2 * 0.5 * pow(0.125, -5.0) * 0.04, 1e-12);
+        step(st, 0.5);
+        CHECK(sb_method_subdiv.energy(st, l, x, &f, NULL, NULL) == SB_OK);
+        CHECK_REL(f, 2 * 0.5 * pow(0.125, -5.0) * 0.01, 1e-12);
+        free(x);
+    }
     destroy(st);
 }
 
@@ -301,6 +318,112 @@ SB_TEST(eval_points_and_transfers)
     }
 }
 
+/* the three projection choices: lsq is a projection too, restrict keeps
+ * constants (translations) only */
+SB_TEST(projection_choices)
+{
+    static const char *set[3] = { "method.projection=reverse", "method.projection=lsq", "method.projection=restrict" };
+    sb_scene sc;
+    make_scene(&sc, SC_TRAMPOLINE, 1);
+    for (int c = 0; c < 3; c++) {
+        sb_paramset ps;
+        sb_paramset_init(&ps);
+        sb_paramset_add(&ps, "method", sb_method_subdiv.params);
+        char err[256];
+        CHECK(sb_paramset_set(&ps, set[c], err, sizeof err) == SB_OK);
+        int rc;
+        void *st = create_ps(&sc, 8, 2, &rc, &ps);
+        CHECK(st != NULL);
+        if (!st) return;
+        int nc = sb_method_subdiv.n_dofs(st, 0), nf = sb_method_subdiv.n_dofs(st, 1);
+        double *xc = malloc(sizeof(double) * (2 * nc + nf)), *yc = xc + nc, *xf = yc + nc;
+        unsigned long seed = 5;
+        for (int i = 0; i < nc; i++) xc[i] = i % 3 == 1 ? 0.25 : rnd(&seed);
+        sb_method_subdiv.prolong(st, 0, xc, xf);
+        CHECK(sb_method_subdiv.project(st, 0, xf, yc) == SB_OK);
+        double d = 0, dy = 0;
+        for (int i = 0; i < nc; i++) {
+            d = fmax(d, fabs(yc[i] - xc[i]));
+            if (i % 3 == 1) dy = fmax(dy, fabs(yc[i] - 0.25));
+        }
+        if (c < 2) CHECK(d < 1e-12);
+        else CHECK(d > 1e-3 && dy < 1e-14);
+        free(xc);
+        destroy(st);
+    }
+}
+
+/* Galerkin property of the hierarchy: with the finest h in every level's
+ * penalty and Gauss rules exact for the reference Hessian (4 points), the
+ * coarse Hessian at the reference equals S^T H_fine S.  Checks S, nested
+ * reference geometry, quadrature and the boundary penalty at once. */
+static void hessian_of(void *st, int level, sb_pattern **pat, sb_matrix *H)
+{
+    int n = sb_method_subdiv.n_dofs(st, level);
+    sb_pattern_builder *pb = sb_pattern_builder_new(n / 3, 3);
+    sb_method_subdiv.pattern(st, level, pb);
+    sb_pattern_builder_finish(pb, pat);
+    sb_matrix_init(H, *pat);
+    sb_matrix_zero(H);
+    double *x = malloc(sizeof(double) * 2 * n), f;
+    sb_method_subdiv.initial(st, level, x);
+    memset(x + n, 0, sizeof(double) * n);
+    sb_method_subdiv.energy(st, level, x, &f, x + n, H);
+    free(x);
+}
+
+SB_TEST(galerkin_coarse_hessian)
+{
+    /* square: affine reference, 4 Gauss points are exact; L-shape: the
+     * non-uniform spline map makes the metric rational, so only the
+     * quadrature error remains (6 points) */
+    static const char *gauss[2] = { "method.gauss=4", "method.gauss=6" };
+    static const double tol[2] = { 1e-13, 1e-8 };
+    for (int kind = 0; kind < 2; kind++) {
+        sb_paramset ps;
+        sb_paramset_init(&ps);
+        sb_paramset_add(&ps, "method", sb_method_subdiv.params);
+        char err[256];
+        CHECK(sb_paramset_set(&ps, gauss[kind], err, sizeof err) == SB_OK);
+        CHECK(sb_paramset_set(&ps, "method.penalty_h=finest", err, sizeof err) == SB_OK);
+        sb_scene sc;
+        make_scene(&sc, kind ? SC_LSHAPE : SC_TRAMPOLINE, 1);
+        sc.material.kind = SB_MAT_STVK;
+        sc.material.young = 1e6;
+        sc.material.poisson = 0.3;
+        int rc;
+        void *st = create_ps(&sc, 8, 2, &rc, &ps);
+        CHECK(st != NULL);
+        if (!st) return;
+        step(st, 1.0);
+        sb_pattern *pf, *pc;
+        sb_matrix Hf, Hc;
+        hessian_of(st, 1, &pf, &Hf);
+        hessian_of(st, 0, &pc, &Hc);
+        int nf = sb_method_subdiv.n_dofs(st, 1), nc = sb_method_subdiv.n_dofs(st, 0);
+        double *v = malloc(sizeof(double) * (2 * nc + 2 * nf)), *a = v + nc, *vf = a + nc, *hf = vf + nf;
+        unsigned long seed = 11;
+        for (int i = 0; i < nc; i++) v[i] = rnd(&seed);
+        sb_method_subdiv.prolong(st, 0, v, vf);
+        sb_matrix_symv(&Hf, vf, hf);
+        sb_method_subdiv.restrict_adj(st, 0, hf, a);          /* S^T H_f S v */
+        sb_matrix_symv(&Hc, v, hf);                            /* H_c v (hf reused, nc <= nf) */
+        double num = 0, den = 0;
+        for (int i = 0; i < nc; i++) {
+            num += (a[i] - hf[i]) * (a[i] - hf[i]);
+            den += hf[i] * hf[i];
+        }
+        printf("    %s: |S^T H_f S v - H_c v| / |H_c v| = %.2e\n", kind ? "L-shape" : "square", sqrt(num / den));
+        CHECK(sqrt(num / den) < tol[kind]);
+        free(v);
+        sb_matrix_free(&Hf);
+        sb_matrix_free(&Hc);
+        sb_pattern_free(pf);
+        sb_pattern_free(pc);
+        destroy(st);
+    }
+}
+
 SB_TEST(bad_input)
 {
     sb_scene sc;
@@ -329,6 +452,8 @@ int main(int argc, char **argv)
         SB_CASE(penalty_and_gravity_closed_form),
         SB_CASE(moving_corners),
         SB_CASE(eval_points_and_transfers),
+        SB_CASE(projection_choices),
+        SB_CASE(galerkin_coarse_hessian),
         SB_CASE(bad_input),
         SB_END
     };

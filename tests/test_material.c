@@ -244,6 +244,27 @@ SB_TEST(denim_nonfinite_guards)
     CHECK(isfinite(sb_material_psi(&m2, ok, d, H)));
 }
 
+/* Table 1's weft law phi_3 loses monotonicity at u ~ 0.1025 and is unbounded
+ * below beyond: such states are inadmissible (NaN energy), see sb_material.c */
+SB_TEST(denim_admissible_range)
+{
+    sb_material m = denim(0);
+    CHECK(m.denim_u_max[2] > 0.09 && m.denim_u_max[2] < 0.11);
+    double d1, d2;
+    /* phi_3' > 0 just inside, <= 0 just outside */
+    sb_denim_phi(&m.denim, 2, 0.999 * m.denim_u_max[2], &d1, &d2);
+    CHECK(d1 > 0);
+    sb_denim_phi(&m.denim, 2, 1.001 * m.denim_u_max[2], &d1, &d2);
+    CHECK(d1 <= 0);
+    double e_in[3] = { 0.0, 0.99 * sqrt(m.denim_u_max[2]), 0.0 }, e_out[3] = { 0.0, 1.01 * sqrt(m.denim_u_max[2]), 0.0 };
+    CHECK(isfinite(sb_material_psi(&m, e_in, NULL, NULL)));
+    CHECK(isnan(sb_material_psi(&m, e_out, NULL, NULL)));
+    /* the unbounded branch the guard removes: phi_3 at u = 0.36 is hugely negative */
+    CHECK(sb_denim_phi(&m.denim, 2, 0.36, NULL, NULL) < -1e3);
+    /* the linear mixed law and the monotone warp / shear laws have no bound within reach */
+    CHECK(!isfinite(m.denim_u_max[1]) && m.denim_u_max[0] > 1.0 && m.denim_u_max[3] > 1.0);
+}
+
 SB_TEST(init_rejects_bad_input)
 {
     sb_material m;
@@ -400,7 +421,7 @@ static const sb_test_case cases[] = {
     SB_CASE(denim_small_strain_is_linear_orthotropic),
     SB_CASE(denim_fd_derivatives),
     SB_CASE(denim_nonfinite_guards),
-    SB_CASE(init_rejects_bad_input),
+    SB_CASE(denim_admissible_range), SB_CASE(init_rejects_bad_input),
     SB_CASE(gauss_rules),
     SB_CASE(denim_thickness_convergence),
     SB_END

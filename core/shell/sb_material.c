@@ -145,6 +145,8 @@ static int fail(char *err, size_t len, const char *fmt, ...)
     return SB_ERR_INPUT;
 }
 
+static void denim_admissible_range(sb_material *m, int j);
+
 int sb_material_init_msg(sb_material *m, const sb_material_spec *spec, int n_thick,
                          char *err, size_t errlen)
 {
@@ -206,6 +208,7 @@ int sb_material_init_msg(sb_material *m, const sb_material_spec *spec, int n_thi
                 if (p->alpha[j][i] != 1.0) m->denim_linear[j] = 0;
             }
         }
+        for (int j = 0; j < 4; j++) denim_admissible_range(m, j);
         if (n_thick == 0) n_thick = SB_DENIM_N_THICK;
         break;
     }
@@ -330,6 +333,55 @@ static inline double phi_fast(const sb_material *m, int j, double u, double *d1,
     return f;
 }
 
+/* Admissible range of phi_j (assumption; the RMTR paper is silent).  Table
+ * 1's fit is a sum of powers (u+1)^alpha with coefficients of both signs, and
+ * the weft law phi_3 loses monotonicity at u ~ 0.1025 (Green weft strain
+ * ~ 0.32) and is unbounded below beyond it: a trust-region or line-search
+ * trial step that reaches that branch would see an arbitrarily large "energy
+ * decrease" and be accepted.  We therefore treat every state whose argument
+ * leaves [u_min, u_max] — the interval around 0 on which phi_j' > 0 — as
+ * inadmissible: the energy is NaN there, so trial points are rejected and the
+ * solvers back off; a converged state never lies there.  The interval is
+ * found by scanning phi_j' on a fine grid and refining by bisection. */
+static double phi_prime(const sb_material *m, int j, double u)
+{
+    double d1, d2;
+    phi_fast(m, j, u, &d1, &d2);
+    return d1;
+}
+
+static double first_nonmonotone(const sb_material *m, int j, double dir, double limit)
+{
+    const int n = 4000;
+    double prev = 0.0;
+    for (int k = 1; k <= n; k++) {
+        double u = dir * limit * k / n;
+        double d = phi_prime(m, j, u);
+        if (!(d > 0.0)) {
+            double lo = prev, hi = u;         /* phi' > 0 at lo, <= 0 (or NaN) at hi */
+            for (int it = 0; it < 60; it++) {
+                double mid = 0.5 * (lo + hi);
+                if (phi_prime(m, j, mid) > 0.0) lo = mid;
+                else hi = mid;
+            }
+            return lo;
+        }
+        prev = u;
+    }
+    return dir * INFINITY;
+}
+
+static void denim_admissible_range(sb_material *m, int j)
+{
+    m->denim_u_max[j] = first_nonmonotone(m, j, 1.0, 100.0);
+    /* only the mixed argument u_2 = E11 E22 can be negative; the others are squares */
+    m->denim_u_min[j] = j == 1 ? first_nonmonotone(m, j, -1.0, 1.0 - 1e-9) : 0.0;
+    if (m->denim_linear[j]) {
+        m->denim_u_max[j] = INFINITY;
+        m->denim_u_min[j] = -INFINITY;
+    }
+}
+
 /* RMTR paper Eq. (3.3):
  *   psi = k1/2 phi1(E11^2) + k2 phi2(E11 E22) + k3/2 phi3(E22^2) + k4 phi4(E12^2)
  * with E the strain in the warp/weft frame (E~ = O^T E O of the paper).
@@ -339,10 +391,18 @@ static double denim_psi(const sb_material *m, const double e[3], double *dpsi, d
     const double *k = m->denim.k;
     double g1, g2, g3, g4, h1, h2, h3, h4;
     const double e0 = e[0], e1 = e[1], e2 = e[2];
-    const double f1 = phi_fast(m, 0, e0 * e0, &g1, &h1);
-    const double f2 = phi_fast(m, 1, e0 * e1, &g2, &h2);
-    const double f3 = phi_fast(m, 2, e1 * e1, &g3, &h3);
-    const double f4 = phi_fast(m, 3, e2 * e2, &g4, &h4);
+    const double u1 = e0 * e0, u2 = e0 * e1, u3 = e1 * e1, u4 = e2 * e2;
+    if (u1 > m->denim_u_max[0] || u2 > m->denim_u_max[1] || u2 < m->denim_u_min[1] || u3 > m->denim_u_max[2] ||
+        u4 > m->denim_u_max[3]) {
+        /* outside the admissible range (see denim_admissible_range) */
+        if (dpsi) dpsi[0] = dpsi[1] = dpsi[2] = NAN;
+        if (d2psi) for (int i = 0; i < 9; i++) d2psi[i] = NAN;
+        return NAN;
+    }
+    const double f1 = phi_fast(m, 0, u1, &g1, &h1);
+    const double f2 = phi_fast(m, 1, u2, &g2, &h2);
+    const double f3 = phi_fast(m, 2, u3, &g3, &h3);
+    const double f4 = phi_fast(m, 3, u4, &g4, &h4);
     if (dpsi) {
         dpsi[0] = k[0] * g1 * e0 + k[1] * g2 * e1;
         dpsi[1] = k[1] * g2 * e0 + k[2] * g3 * e1;

@@ -23,6 +23,9 @@ typedef struct sb_material {
     double denim_mu_over_alpha[4][SB_DENIM_MAX_TERMS];
     double denim_mu_alpha_m1[4][SB_DENIM_MAX_TERMS];
     int denim_linear[4];
+    /* admissible range of each phi_j argument: [u_min, u_max] up to the first
+     * loss of monotonicity of phi_j (see sb_material.c, denim_admissible_range) */
+    double denim_u_min[4], denim_u_max[4];
 } sb_material;
 
 /* RMTR paper Table 1 denim parameters (k converted from MPa to Pa), with the

@@ -62,6 +62,7 @@ typedef struct rlevel {
 
 typedef struct rmtr_state {
     int nl, L;
+    double *fa, *fb;          /* finest-level scratch for the level-norm bound */
     double eta1, eta2, gamma1, gamma2, delta0, eps_delta, gtol;
     int mu1, mu2, cg_iter;
     rlevel lv[SB_MAX_LEVELS];
@@ -73,6 +74,8 @@ double sb_rmtr_consistency_error(const void *state) { return ((const rmtr_state 
 static void rmtr_free(void *st)
 {
     rmtr_state *R = st;
+    free(R->fa);
+    free(R->fb);
     for (int l = 0; l < R->nl; l++) {
         rlevel *V = &R->lv[l];
         free(V->x0); free(V->x); free(V->g); free(V->dg); free(V->s); free(V->xt); free(V->tmp);
@@ -90,6 +93,43 @@ static int prolonged_norm(rmtr_state *R, sb_problem *p, int l, double *out)
         cur = R->lv[k + 1].tmp;
     }
     *out = sb_problem_norm(p, R->L, cur);
+    return SB_OK;
+}
+
+/* out = I_l^L v (finest level), through the tmp vectors of the levels */
+static int prolong_to_finest(rmtr_state *R, sb_problem *p, int l, const double *v, double *out)
+{
+    sb_copy(R->lv[l].n, v, R->lv[l].tmp);
+    const double *cur = R->lv[l].tmp;
+    for (int k = l; k < R->L; k++) {
+        int rc = sb_problem_prolong(p, k, cur, R->lv[k + 1].tmp);
+        if (rc) return rc;
+        cur = R->lv[k + 1].tmp;
+    }
+    sb_copy(R->lv[R->L].n, cur, out);
+    return SB_OK;
+}
+
+/* Eq. (4.7)-(4.8): scale a coarse step s so that the prolongated iterate
+ * correction I(x + tau s - x0) stays inside the fine radius `bound`; returns
+ * tau in (0, 1] (1 when s already fits).  Exact in the level norm (4.9). */
+static int fit_in_bound(rmtr_state *R, sb_problem *p, int l, double bound, double *tau)
+{
+    rlevel *V = &R->lv[l];
+    const int nf = R->lv[R->L].n;
+    *tau = 1.0;
+    for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] - V->x0[i];
+    int rc = prolong_to_finest(R, p, l, V->xt, R->fa);
+    if (!rc) rc = prolong_to_finest(R, p, l, V->s, R->fb);
+    if (rc) return rc;
+    sb_problem_constrain(p, R->L, R->fa);
+    sb_problem_constrain(p, R->L, R->fb);
+    double aa = sb_dot(nf, R->fa, R->fa), ab = sb_dot(nf, R->fa, R->fb), bb = sb_dot(nf, R->fb, R->fb);
+    if (aa + 2 * ab + bb <= bound * bound || bb <= 0) return SB_OK;
+    /* largest root of bb tau^2 + 2 ab tau + (aa - bound^2) = 0 */
+    double disc = ab * ab + bb * (bound * bound - aa);
+    double t = (-ab + sqrt(disc > 0 ? disc : 0)) / bb;
+    *tau = t > 0 ? (t < 1 ? t : 1) : 0;
     return SB_OK;
 }
 
@@ -133,6 +173,9 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
         if (rc) return rc;
     }
+    R->fa = malloc((size_t)R->lv[R->L].n * sizeof(double));
+    R->fb = malloc((size_t)R->lv[R->L].n * sizeof(double));
+    if (!R->fa || !R->fb) return SB_ERR_NOMEM;
     for (int l = 0; l < R->nl; l++) {
         int rc = level_norm_scale(R, p, l, &R->lv[l].cnorm);
         if (rc) return rc;
@@ -194,6 +237,16 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
         if (rc < 0) return rc;
         V->fresh = 0;
         *lin_iters += tr.iters;
+        if (l < R->L && isfinite(bound)) {
+            double tau, gs = sb_dot(V->n, V->g, V->s);
+            if ((rc = fit_in_bound(R, p, l, bound, &tau))) return rc;
+            if (tau < 1.0) {
+                /* m(tau s) from g^T s and s^T H s = -2 (pred + g^T s) */
+                double sHs = -2.0 * (tr.pred + gs);
+                sb_scal(V->n, tau, V->s);
+                tr.pred = -(tau * gs + 0.5 * tau * tau * sHs);
+            }
+        }
         for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] + V->s[i];
         double ft;
         rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);

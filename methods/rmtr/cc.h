@@ -14,8 +14,11 @@
  *   cc_basis.c    basis functions and derivatives (B-spline fast path,
  *                 local subdivision next to extraordinary vertices)
  *   cc_quad.c     per-level quadrature tables (§6: precomputed once)
+ *   cc_level.c    one level: reference geometry, lookup, projection
  *   cc_penalty.c  boundary penalty (3.6), point penalties, line/point loads
+ *   cc_energy.c   energy / gradient / Hessian and mass of a level
  *   cc_method.c   the sb_method_type table sb_method_subdiv ("rmtr")
+ *   cc_method.h   private state of the method (levels, tables, points)
  *
  * Cages are quad meshes (every face has 4 vertices, counter-clockwise).  A
  * face is parametrized by (u,v) in [0,1]^2, u along fv[0]->fv[1], v along

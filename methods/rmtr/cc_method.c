@@ -10,7 +10,13 @@
  * levels = --res 16 --levels 3.  L-shape: the coarse lines are uniform on
  * either side of the notch line (cc_cage_lines), so the notch is exact.
  * DOFs: 3 per control point, dof 3 I + c; level 0 is the coarsest.
- * Boundary conditions: penalty (3.6) in the energy; dirichlet() is NULL. */
+ * Boundary conditions: penalty (3.6) in the energy; dirichlet() is NULL.
+ * Penalty on coarse levels (ASSUMPTION, the paper only says "beta = h^-sigma,
+ * h the mesh size"): by default every level uses the finest level's h, so a
+ * coarse level is the fine problem restricted to the nested subspace (its
+ * Hessian at the reference equals S^T H_fine S, tests/test_cc_method.c); with
+ * per-level h ("penalty_h=level") the coarse boundary is 2^(5(L-l)) times
+ * softer and RMTR rejected most coarse corrections in our trampoline runs. */
 #include "cc_method.h"
 #include "sb_context.h"
 
@@ -23,6 +29,7 @@ static const char *const proj_choices[] = { "reverse", "lsq", "restrict", NULL }
 static const char *const hess_choices[] = { "exact", "pseudo", "psd", NULL };
 static const char *const mass_choices[] = { "consistent", "lumped", NULL };
 static const char *const subdiv_choices[] = { "osd", "rules", NULL };
+static const char *const penh_choices[] = { "finest", "level", NULL };
 
 const sb_param_def cc_params[] = {
     { "projection", SB_PARAM_CHOICE, 0, 0, 0, proj_choices,
@@ -30,6 +37,9 @@ const sb_param_def cc_params[] = {
       "(5.18), restrict = row-normalized S^T (keeps constants only)" },
     { "sigma", SB_PARAM_REAL, 5.0, 0.0, 20.0, NULL, "penalty exponent: beta = beta_scale h^-sigma (RMTR §3.1, §7.1)" },
     { "beta_scale", SB_PARAM_REAL, 1.0, 0.0, 1e30, NULL, "penalty factor: beta = beta_scale h^-sigma (h in m)" },
+    { "penalty_h", SB_PARAM_CHOICE, 0, 0, 0, penh_choices,
+      "h in beta = h^-sigma: the finest level's on every level (finest: coarse models are Galerkin, "
+      "S^T H S = H_c) or each level's own mesh size (level)" },
     { "gauss", SB_PARAM_INT, 3, 2, 6, NULL, "Gauss points per direction on each face (and along boundary edges)" },
     { "hessian", SB_PARAM_CHOICE, 0, 0, 0, hess_choices,
       "Hessian of the elastic energy: exact, pseudo (strain second derivatives dropped) or psd (clamped per element)" },
@@ -113,6 +123,7 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     S->hess = h == 1 ? SB_HESS_PSEUDO : h == 2 ? SB_HESS_PSD : SB_HESS_EXACT;
     S->lumped = (int)param(cfg, "mass") == 1;
     S->use_osd = (int)param(cfg, "subdiv") == 0;
+    S->beta_finest = (int)param(cfg, "penalty_h") == 0;
     char msg[256];
     if (sb_material_init_msg(&S->mat, &scene->material, (int)param(cfg, "n_thick"), msg, sizeof msg) != SB_OK)
         return cc_state_fail(S, SB_ERR_INPUT, "material: %s", msg);
@@ -130,7 +141,7 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     int st = coarse_cage(scene, S->n_coarse, &cage, &e);
     if (!st) st = cc_hier_build(&S->hier, &cage, levels, S->use_osd, &e);
     if (!st) S->nlev = levels;
-    for (int l = 0; l < levels && !st; l++) st = cc_level_build(S, l, &e);
+    for (int l = levels - 1; l >= 0 && !st; l--) st = cc_level_build(S, l, &e);   /* finest first (penalty_h) */
     if (!st) {
         int kmax = 0;
         for (int l = 0; l < levels; l++)

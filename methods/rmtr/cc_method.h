@@ -77,7 +77,7 @@ typedef struct cc_state {
     /* parameters */
     cc_proj_kind proj;
     sb_hess_kind hess;
-    int lumped, ng, use_osd;
+    int lumped, ng, use_osd, beta_finest;
     double sigma, beta_scale;
     /* step data */
     double load_factor[SB_SCENE_MAX_LOADS];

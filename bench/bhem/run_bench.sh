@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# bench/bhem/run_bench.sh — BHEM validation and paper-scene runs (issue 4).
+#
+#   bash bench/bhem/run_bench.sh [SHELLBENCH] [quick]
+#
+# Runs every case once through `shellbench run --summary json --out FILE.h5`
+# and keeps, per run, the HDF5 record and the JSON summary under
+# results/bhem/runs/.  The report (results/bhem_report.md) is then generated
+# from those files by bench/bhem/report.py — never by re-running.
+# "quick" skips the 30x30 paper scenes and the RMTR-scene sweep.
+set -u
+BIN=${1:-build/shellbench}
+MODE=${2:-full}
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+cd "$ROOT"
+OUT=results/bhem/runs
+mkdir -p "$OUT"
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+SC=bench/bhem/scenes
+
+# the profile tool reads /final/x of a record (wrinkle statistics)
+LIB=${LIB:-build/libshellbench.a}
+if [ -e "$LIB" ]; then
+  cc -std=c11 -O2 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Icore -I/usr/include/suitesparse \
+     $(pkg-config --cflags hdf5-serial jansson gsl) bench/bhem/bhem_profile.c "$LIB" -o "$OUT/../bhem_profile" \
+     -lcholmod -lsuitesparseconfig $(pkg-config --libs hdf5-serial jansson gsl) -llapack -lblas -lm || true
+fi
+
+# run TAG SCENE SOLVER RES [--set ...]: one run, summary to $OUT/TAG.json
+run() {
+  local tag=$1 scene=$2 solver=$3 res=$4; shift 4
+  echo "== $tag: $scene $solver --res $res $*" >&2
+  "$BIN" run --scene "$scene" --method bhem --solver "$solver" --res "$res" --out "$OUT/$tag.h5" \
+    --summary json "$@" > "$OUT/$tag.json" 2> "$OUT/$tag.log"
+  echo "   exit $?" >&2
+}
+
+# ---- validation ----------------------------------------------------------
+for r in 2 4 8 16; do
+  run plate_clamped_r$r $SC/plate_clamped.json lsnewton $r
+  run plate_ss_r$r $SC/plate_simply_supported.json lsnewton $r
+  run scordelis_r$r $SC/scordelis_lo_linear.json lsnewton $r --set run.gtol=1e-5
+done
+run scordelis_full_r16 $SC/scordelis_lo.json lsnewton 16
+for g in 1 5 20 100; do
+  for r in 8 16 32; do
+    run cantilever_G${g}_r$r $SC/cantilever_G$g.json lsnewton $r --set method.cells_t=1
+  done
+done
+for r in 8 16; do
+  run rollup_quarter_r$r $SC/rollup_quarter.json lsnewton $r --set method.cells_t=1
+  run rollup_full_r$r $SC/rollup_full.json lsnewton $r --set method.cells_t=1
+done
+run rollup_quarter_tr_r16 $SC/rollup_quarter.json tr 16 --set method.cells_t=1
+
+[ "$MODE" = quick ] && exit 0
+
+# ---- paper scenes ----------------------------------------------------------
+for r in 10 15 20 30; do
+  run wrinkled_r$r $SC/wrinkled_sheet.json lsnewton $r --set method.imperfection=1e-6
+done
+run wrinkled_tr_r15 $SC/wrinkled_sheet.json tr 15 --set method.imperfection=1e-6
+run wrinkled_pseudo_r15 $SC/wrinkled_sheet.json lsnewton 15 --set method.imperfection=1e-6 --set method.hessian=pseudo
+run twisting_r30 $SC/twisting_cloth.json lsnewton 30
+run draped_r30 $SC/draped_cloth.json lsnewton 30
+
+# ---- the four RMTR-paper scenes (denim, dt = 1 s), capped iterations -------
+for s in trampoline drooping drape; do
+  for solver in lsnewton tr; do
+    for r in 4 8 16 32; do
+      run rmtr_${s}_${solver}_r$r $s $solver $r --set run.max_iter=300
+    done
+  done
+done
+for solver in lsnewton tr; do            # notch at 0.3: resolutions divisible by 10
+  for r in 10 20 30; do
+    run rmtr_reentrant_corner_${solver}_r$r reentrant_corner $solver $r --set run.max_iter=300
+  done
+done
