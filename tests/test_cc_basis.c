@@ -3,7 +3,7 @@
  * B-spline fast path and local subdivision against OpenSubdiv limit stencils,
  * C^1 (tangent-plane) continuity across an edge at an extraordinary vertex. */
 #include "sb_test.h"
-#include "../methods/rmtr/cc.h"
+#include "../methods/rmtr/cc_method.h"
 #include "sb_scene.h"
 
 #include <stdlib.h>
@@ -240,6 +240,45 @@ SB_TEST(c1_across_extraordinary_edge)
     }
 }
 
+/* §6: tables precomputed once per face configuration and shared between
+ * faces with the same canonical local cage must equal direct evaluation */
+SB_TEST(quadrature_tables_match_direct_evaluation)
+{
+    cc_err e = { "" };
+    for (int a = 0; a < 5; a++) {
+        static const int vals[4] = { 3, 5, 6, 8 };
+        cc_mesh m;
+        CHECK((a < 4 ? cc_cage_star(vals[a], 4, &m, &e) : cc_cage_multi(&m, &e)) == SB_OK);
+        cc_quad Q;
+        int st = cc_quad_build(&Q, &m, 3, &e);
+        CHECK_MSG(st == SB_OK, "%s", e.msg);
+        if (st) {
+            cc_mesh_free(&m);
+            continue;
+        }
+        int irregular = 0;
+        double d = 0, W[6 * CC_MAX_BASIS];
+        for (int el = 0; el < Q.ne; el++) {
+            int k0 = Q.eoff[el + 1] - Q.eoff[el], k, idx[CC_MAX_BASIS];
+            irregular += Q.ecfg[el] != 0;
+            for (int q = 0; q < Q.nq; q++) {
+                CHECK(cc_face_basis(&m, Q.face[el], Q.gp[q % 3], Q.gp[q / 3], &k, idx, W, CC_MAX_BASIS, &e) == SB_OK);
+                CHECK(k == k0 && memcmp(idx, Q.enode + Q.eoff[el], sizeof(int) * (size_t)k) == 0);
+                sb_shell_basis b = cc_quad_basis(&Q, el, q);
+                const double *rows[6] = { b.N, b.N1, b.N2, b.N11, b.N12, b.N22 };
+                for (int r = 0; r < 6; r++)
+                    for (int i = 0; i < k; i++) d = fmax(d, fabs(rows[r][i] - W[r * k + i]));
+            }
+        }
+        printf("    cage %d: %d elements, %d irregular, %d configurations, max table error %.1e\n", a, Q.ne,
+               irregular, Q.ncfg, d);
+        CHECK(d < 1e-14);
+        CHECK(Q.ncfg < irregular + 1);       /* configurations are shared */
+        cc_quad_free(&Q);
+        cc_mesh_free(&m);
+    }
+}
+
 SB_TEST(bad_points_are_errors)
 {
     cc_err e = { "" };
@@ -262,6 +301,7 @@ int main(int argc, char **argv)
         SB_CASE(derivatives_by_finite_differences),
         SB_CASE(fast_path_and_local_subdivision_equal_opensubdiv),
         SB_CASE(c1_across_extraordinary_edge),
+        SB_CASE(quadrature_tables_match_direct_evaluation),
         SB_CASE(bad_points_are_errors),
         SB_END
     };

@@ -212,6 +212,7 @@ static int radius_update(rmtr_state *R, sb_problem *p, int l, double rho, double
     rlevel *V = &R->lv[l];
     double d = V->delta;
     double dplus = rho < R->eta1 ? R->gamma1 * d : rho > R->eta2 ? R->gamma2 * d : d;
+    if (dplus > 1e300) dplus = 1e300;   /* keep the radius finite (the paper's radius is unbounded) */
     if (l == R->L || !isfinite(bound)) {
         V->delta = dplus;
         return SB_OK;

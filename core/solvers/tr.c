@@ -76,7 +76,7 @@ static int tr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *inf
 static double radius_update(const tr_state *t, double rho, double delta)
 {
     if (rho < t->eta1) return t->gamma1 * delta;
-    if (rho > t->eta2) return t->gamma2 * delta;
+    if (rho > t->eta2) return fmin(t->gamma2 * delta, 1e300);   /* finite, else unbounded as in the paper */
     return delta;
 }
 

@@ -175,9 +175,6 @@ void cc_bspline_patch(double u, double v, double W[6][16]);
 int  cc_face_regular(const cc_mesh *m, int f);
 /* The 4x4 control points of a regular face, idx[a + 4b]. */
 int  cc_face_gather16(const cc_mesh *m, int f, int idx[16]);
-/* Control points of face f: the vertices of all faces sharing a vertex with f
- * (first the four face vertices).  Returns the count (<= max) or < 0. */
-int  cc_face_ring(const cc_mesh *m, int f, int *idx, int max, int *faces, int *nfaces);
 /* Basis functions of any face at (u,v) (not at an extraordinary corner):
  * writes k control indices and W (6 x k, row r = derivative r). Regular faces
  * use the B-spline; others are subdivided locally until (u,v) lies in a

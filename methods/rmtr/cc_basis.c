@@ -218,30 +218,6 @@ int cc_local_basis(const cc_mesh *L, double u, double v, double *W, cc_err *e)
     return local_eval(L, u, v, 0, W, e);
 }
 
-int cc_face_ring(const cc_mesh *m, int f, int *idx, int max, int *faces, int *nfaces)
-{
-    int n = 0, nfc = 0;
-    for (int k = 0; k < 4; k++) {
-        int c = m->fv[4 * f + k];
-        for (int p = m->vfo[c]; p < m->vfo[c + 1]; p++) {
-            int g = m->vf[p], seen = 0;
-            for (int a = 0; a < nfc && !seen; a++) seen = faces[a] == g;
-            if (seen) continue;
-            faces[nfc++] = g;
-            for (int j = 0; j < 4; j++) {
-                int v = m->fv[4 * g + (cc_face_corner(m, g, c) + j) % 4], s = 0;
-                for (; s < n && idx[s] != v; s++) {}
-                if (s == n) {
-                    if (n == max) return -1;
-                    idx[n++] = v;
-                }
-            }
-        }
-    }
-    if (nfaces) *nfaces = nfc;
-    return n;
-}
-
 int cc_face_basis(const cc_mesh *m, int f, double u, double v, int *k, int *idx, double *W, int max, cc_err *e)
 {
     if (f < 0 || f >= m->nf) return cc_fail(e, SB_ERR_INPUT, "face %d does not exist", f);
