@@ -155,8 +155,8 @@ SB_TEST(fast_path_and_local_subdivision_equal_opensubdiv)
     cc_err e = { "" };
     cc_mesh m;
     double lines[5];
-    int face[64];
-    double uv[128];
+    int face[128];
+    double uv[256];
     CHECK(cc_cage_lines(4, 0, 0, lines, NULL) == SB_OK);
     CHECK(cc_cage_grid(lines, 4, lines, 4, -1, 0, 0, &m, &e) == SB_OK);
     int np = 0;
@@ -179,6 +179,13 @@ SB_TEST(fast_path_and_local_subdivision_equal_opensubdiv)
                 face[np] = star_center_face(j, 3);
                 uv[2 * np] = p < 3 ? G3[p] : 0.04;
                 uv[2 * np + 1] = p < 3 ? G3[2 - p] : 0.06;
+            }
+        for (int f = 0; f < m.nf; f++)          /* every domain face, regular ones next to the EV included */
+            if (m.dom[f]) {
+                face[np] = f;
+                uv[2 * np] = G3[1];
+                uv[2 * np + 1] = G3[0];
+                np++;
             }
         d = compare_osd(&m, np, face, uv);
         CHECK_MSG(d < 1e-9, "valence %d: max diff %g", vals[a], d);

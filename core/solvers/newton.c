@@ -32,7 +32,7 @@ typedef struct newton_state {
     int n, F;
     double c1, backtrack, shift0, shift_factor, alpha;
     int max_backtracks, max_shifts;
-    double *g, *d, *xt;
+    double *g, *gt, *d, *xt;
     double f, gnorm;
 } newton_state;
 
@@ -42,9 +42,10 @@ static int alloc_common(newton_state *s, sb_problem *p, newton_kind kind)
     s->F = sb_problem_finest(p);
     s->n = sb_problem_n(p, s->F);
     s->g = malloc((size_t)s->n * sizeof(double));
+    s->gt = malloc((size_t)s->n * sizeof(double));
     s->d = malloc((size_t)s->n * sizeof(double));
     s->xt = malloc((size_t)s->n * sizeof(double));
-    return s->g && s->d && s->xt ? SB_OK : SB_ERR_NOMEM;
+    return s->g && s->gt && s->d && s->xt ? SB_OK : SB_ERR_NOMEM;
 }
 
 static int lsnewton_alloc(void *st, sb_problem *p, const sb_paramset *ps)
@@ -77,6 +78,7 @@ static void newton_free(void *st)
 {
     newton_state *s = st;
     free(s->g);
+    free(s->gt);
     free(s->d);
     free(s->xt);
 }
@@ -133,48 +135,57 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
         return rc;
     }
     double alpha = s->kind == KIND_DAMPED ? s->alpha : 1.0;
+    double fold = s->f;
+    /* the linearized solver evaluates the gradient only, to report the
+     * residual its single step leaves */
+    sb_matrix *H = s->kind == KIND_LINEARIZED ? NULL : sb_problem_hessian(p, s->F);
     if (s->kind == KIND_LS) {
-        /* backtracking Armijo: f(x + a d) <= f(x) + c1 a g^T d (Nocedal & Wright Alg. 3.1) */
+        /* backtracking Armijo: f(x + a d) <= f(x) + c1 a g^T d (Nocedal & Wright
+         * Alg. 3.1); a trial point with finite energy but non-finite
+         * derivatives is backtracked from as well */
         double slope = sb_dot(n, s->g, s->d);
         int ok = 0;
         if (slope < 0.0) {
-            for (int k = 0; k < s->max_backtracks; k++) {
+            for (int k = 0; k < s->max_backtracks && !ok; k++, alpha *= s->backtrack) {
                 for (int i = 0; i < n; i++) s->xt[i] = x[i] + alpha * s->d[i];
                 double ft;
                 rc = sb_problem_eval(p, s->F, s->xt, &ft, NULL, NULL);
                 if (rc < 0) return rc;
-                if (rc == SB_OK && isfinite(ft) && ft <= s->f + s->c1 * alpha * slope) {
-                    ok = 1;
-                    break;
-                }
-                alpha *= s->backtrack;
+                if (!(rc == SB_OK && isfinite(ft) && ft <= s->f + s->c1 * alpha * slope)) continue;
+                rc = sb_problem_eval(p, s->F, s->xt, &ft, s->gt, H);
+                if (rc < 0) return rc;
+                if (rc == SB_OK) { ok = 1; s->f = ft; break; }
             }
         }
         if (!ok) {
+            /* restore the derivatives at x if a rejected trial overwrote H */
+            double f0;
+            rc = sb_problem_eval(p, s->F, x, &f0, s->g, H);
+            if (rc < 0) return rc;
             info->fail = SB_REASON_LINESEARCH;
             info->f = s->f;
             info->gnorm = s->gnorm;
             return SB_OK;
         }
+        sb_copy(n, s->xt, x);
+        double *sw = s->g; s->g = s->gt; s->gt = sw;
+    } else {
+        sb_axpy(n, alpha, s->d, x);
+        rc = sb_problem_eval(p, s->F, x, &s->f, s->g, H);
+        if (rc < 0) return rc;
+        if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
     }
-    double fold = s->f;
-    sb_axpy(n, alpha, s->d, x);
-    /* new derivatives at the new iterate (the linearized solver evaluates the
-     * gradient only, to report the residual its single step leaves) */
-    sb_matrix *H = s->kind == KIND_LINEARIZED ? NULL : sb_problem_hessian(p, s->F);
-    rc = sb_problem_eval(p, s->F, x, &s->f, s->g, H);
-    if (rc < 0) return rc;
     s->gnorm = sb_problem_norm(p, s->F, s->g);
     info->rho = alpha;
     info->accepted = 1;
-    /* "Newton regime" for the stagnation tests of Eq. (7.1): a full,
-     * unshifted Newton step plays the role of Delta > delta_big */
-    info->delta = (alpha == 1.0 && info->shift == 0.0) ? INFINITY : 0.0;
+    /* "Newton regime" for the stagnation tests of Eq. (7.1): an unshifted
+     * Newton direction plays the role of Delta > delta_big (a shortened step
+     * near the limiting accuracy must still be able to stop on f/x) */
+    info->delta = (info->shift == 0.0 && s->kind != KIND_DAMPED) ? INFINITY : 0.0;
     info->df = fold - s->f;
     info->step_norm = alpha * sb_norm2(n, s->d);
     info->f = s->f;
     info->gnorm = s->gnorm;
-    if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
     return SB_OK;
 }
 

@@ -26,7 +26,7 @@ typedef struct tr_state {
     double eta1, eta2, gamma1, gamma2, delta0, delta_min;
     int cg_max;
     sb_trs trs;
-    double *g, *s, *xt;
+    double *g, *gt, *s, *xt;
     double f, delta, gnorm;
     int fresh;
 } tr_state;
@@ -44,9 +44,10 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     t->delta_min = sb_param(ps, "solver.delta_min");
     t->cg_max = sb_param_int(ps, "solver.cg_max_iter");
     t->g = malloc((size_t)t->n * sizeof(double));
+    t->gt = malloc((size_t)t->n * sizeof(double));
     t->s = malloc((size_t)t->n * sizeof(double));
     t->xt = malloc((size_t)t->n * sizeof(double));
-    if (!t->g || !t->s || !t->xt) return SB_ERR_NOMEM;
+    if (!t->g || !t->gt || !t->s || !t->xt) return SB_ERR_NOMEM;
     return sb_trs_alloc(&t->trs, sb_trs_by_index(sb_param_int(ps, "solver.trs")), t->n);
 }
 
@@ -55,6 +56,7 @@ static void tr_free(void *st)
     tr_state *t = st;
     sb_trs_free(&t->trs);
     free(t->g);
+    free(t->gt);
     free(t->s);
     free(t->xt);
 }
@@ -99,15 +101,25 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     info->rho = rho;
     if (rho > t->eta1) {
         /* line 5: accept; derivatives are recomputed only here */
-        sb_copy(n, t->xt, x);
-        info->df = t->f - ft;
-        info->step_norm = r.snorm;
-        info->accepted = 1;
-        rc = sb_problem_eval(p, t->F, x, &t->f, t->g, sb_problem_hessian(p, t->F));
-        t->gnorm = sb_problem_norm(p, t->F, t->g);
-        t->fresh = 1;
+        double fnew;
+        rc = sb_problem_eval(p, t->F, t->xt, &fnew, t->gt, sb_problem_hessian(p, t->F));
         if (rc < 0) return rc;
-        if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+        t->fresh = 1;
+        if (rc == SB_OK) {
+            sb_copy(n, t->xt, x);
+            double *sw = t->g; t->g = t->gt; t->gt = sw;
+            info->df = t->f - fnew;
+            info->step_norm = r.snorm;
+            info->accepted = 1;
+            t->f = fnew;
+            t->gnorm = sb_problem_norm(p, t->F, t->g);
+        } else {
+            /* finite energy but non-finite derivatives at the trial point:
+             * reject it like a failed ratio test and restore H at x (rare) */
+            rho = -INFINITY;
+            rc = sb_problem_eval(p, t->F, x, &fnew, t->gt, sb_problem_hessian(p, t->F));
+            if (rc < 0) return rc;
+        }
     }
     t->delta = radius_update(t, rho, t->delta);
     if (t->delta < t->delta_min) info->fail = SB_REASON_RADIUS;
