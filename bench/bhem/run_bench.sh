@@ -35,6 +35,8 @@ run() {
   echo "   exit $?" >&2
 }
 
+# MODE rmtr-scenes: only the four RMTR-paper scenes (last section)
+if [ "$MODE" != rmtr-scenes ]; then
 # ---- validation ----------------------------------------------------------
 for r in 2 4 8 16; do
   run plate_clamped_r$r $SC/plate_clamped.json lsnewton $r
@@ -63,6 +65,7 @@ run wrinkled_tr_r15 $SC/wrinkled_sheet.json tr 15 --set method.imperfection=1e-6
 run wrinkled_pseudo_r15 $SC/wrinkled_sheet.json lsnewton 15 --set method.imperfection=1e-6 --set method.hessian=pseudo
 run twisting_r30 $SC/twisting_cloth.json lsnewton 30
 run draped_r30 $SC/draped_cloth.json lsnewton 30
+fi
 
 # ---- the four RMTR-paper scenes (denim, dt = 1 s), capped iterations -------
 for s in trampoline drooping drape; do
