@@ -57,7 +57,8 @@ typedef struct rlevel {
     double delta;
     double cnorm;        /* c_l: norm scaling of the level to the finest space */
     sb_trs trs;
-    int fresh;
+    int fresh;           /* H or g changed since the last subproblem solve */
+    int hess_ok;         /* H holds the Hessian at x (assembled lazily, see local_tr) */
 } rlevel;
 
 typedef struct rmtr_state {
@@ -233,8 +234,17 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
     for (int it = 0; it < mu; it++) {
         /* coarse levels stop at eps_g^l; the finest level's stopping is the core loop's (Eq. 7.1) */
         if (V->delta <= 0.0 || (l < R->L && sb_problem_norm(p, l, V->g) <= R->gtol)) break;
+        int rc;
+        if (!V->hess_ok) {
+            /* the Hessian is assembled only when a subproblem needs it: after an
+             * accepted step only the gradient is formed, since the next use of
+             * the point may be a restriction or a coarse correction */
+            if ((rc = h_eval(R, p, l, V->x, &V->f, V->g, 1)) < 0) return rc;
+            V->hess_ok = 1;
+            V->fresh = 1;
+        }
         sb_trs_result tr;
-        int rc = sb_trs_solve(&V->trs, p, l, V->g, V->delta / V->cnorm, V->fresh, max_cg, V->s, &tr);
+        rc = sb_trs_solve(&V->trs, p, l, V->g, V->delta / V->cnorm, V->fresh, max_cg, V->s, &tr);
         if (rc < 0) return rc;
         V->fresh = 0;
         *lin_iters += tr.iters;
@@ -255,9 +265,10 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
         double rho = (rc == SB_OK && isfinite(ft) && tr.pred > 0) ? (V->f - ft) / tr.pred : -INFINITY;
         if (rho > R->eta1) {
             sb_copy(V->n, V->xt, V->x);
-            rc = h_eval(R, p, l, V->x, &V->f, V->g, 1);
+            rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
             if (rc < 0) return rc;
             if (rc == SB_NONFINITE) return SB_NONFINITE;
+            V->hess_ok = 0;
             V->fresh = 1;
         }
         if ((rc = radius_update(R, p, l, rho, bound))) return rc;
@@ -276,7 +287,8 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
     if (l < R->L) {
         /* line 1: dg = R g^{l+1} - grad f^l(x0) (Eq. 4.4) */
         memset(V->dg, 0, (size_t)V->n * sizeof(double));
-        rc = sb_problem_eval(p, l, V->x, &V->f, V->g, sb_problem_hessian(p, l));
+        rc = sb_problem_eval(p, l, V->x, &V->f, V->g, NULL);
+        V->hess_ok = 0;
         if (rc < 0) return rc;
         if (rc == SB_NONFINITE) return SB_NONFINITE;
         for (int i = 0; i < V->n; i++) V->dg[i] = gc[i] - V->g[i];
@@ -320,9 +332,10 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         double rho = (rc == SB_OK && isfinite(ft) && cred > 0) ? (V->f - ft) / cred : -INFINITY;
         if (rho > R->eta1) {                    /* lines 7-8 */
             sb_copy(V->n, V->xt, V->x);
-            rc = h_eval(R, p, l, V->x, &V->f, V->g, 1);
+            rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
             if (rc < 0) return rc;
             if (rc == SB_NONFINITE) return SB_NONFINITE;
+            V->hess_ok = 0;
             V->fresh = 1;
             if (l == R->L) (*accepted_coarse)++;
         }
@@ -341,6 +354,7 @@ static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *i
     sb_copy(V->n, x, V->x);
     int rc = sb_problem_eval(p, R->L, V->x, &V->f, V->g, sb_problem_hessian(p, R->L));
     V->fresh = 1;
+    V->hess_ok = 1;
     info->f = V->f;
     info->gnorm = sb_problem_norm(p, R->L, V->g);
     info->delta = V->delta;
