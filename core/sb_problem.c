@@ -273,7 +273,65 @@ static double quad_form(const sb_matrix *A, const double *d, double scale, doubl
     return quad;
 }
 
+static int eval_impl(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H, int eliminate);
+
 int sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H)
+{
+    return eval_impl(p, level, x, f, g, H, 1);
+}
+
+static void eliminate_hessian(const level_data *L, sb_matrix *H)
+{
+    for (long i = 0; i < L->n_zero; i++) H->val[L->zero_pos[i]] = 0.0;
+    for (long i = 0; i < L->n_diag; i++) H->val[L->diag_pos[i]] = 1.0;
+}
+
+/* Lifting of prescribed boundary motion (assumption, README "Moving
+ * boundaries"): when constrained values jump from x_n to their new values,
+ * the elimination start x0 moves those dofs alone, which can tear the first
+ * ring of elements (a denim state beyond its admissible strain, or a huge
+ * energy).  The lifted start solves K_ff dx_f = -K_fc dx_c with the Hessian
+ * of Phi at x_n: the linear elastic response of the free dofs to the
+ * boundary increment.  It is used only when its energy is finite and not
+ * above that of the plain start. */
+int sb_problem_lift(sb_problem *p, const double *x_n, double *x0)
+{
+    const int F = p->nl - 1;
+    level_data *L = &p->lv[F];
+    const int n = L->n;
+    if (!L->bc || !L->bc->n) return SB_OK;
+    double *d = calloc((size_t)n, sizeof *d), *r = malloc((size_t)n * sizeof *r);
+    double *xl = malloc((size_t)n * sizeof *xl);
+    if (!d || !r || !xl) { free(d); free(r); free(xl); return SB_ERR_NOMEM; }
+    int moved = 0, rc;
+    for (int i = 0; i < L->bc->n; i++) {
+        int k = L->bc->dofs[i];
+        d[k] = x0[k] - x_n[k];
+        if (d[k] != 0.0) moved = 1;
+    }
+    if (!moved) goto out;
+    double f;
+    rc = eval_impl(p, F, x_n, &f, NULL, &L->H, 0);
+    if (rc != SB_OK) goto out;                    /* no lifting from a bad x_n */
+    sb_matrix_symv(&L->H, d, r);                  /* K d: K_fc dx_c on free rows */
+    for (int i = 0; i < n; i++) r[i] = L->fixed[i] ? 0.0 : -r[i];
+    eliminate_hessian(L, &L->H);
+    rc = sb_problem_factor(p, F, 0.0);
+    if (rc != SB_OK) goto out;                    /* indefinite at x_n: keep the plain start */
+    if (sb_problem_solve(p, F, r, xl) != SB_OK) goto out;
+    for (int i = 0; i < n; i++) xl[i] = L->fixed[i] ? x0[i] : x_n[i] + xl[i];
+    double f0, fl;
+    int r0 = eval_impl(p, F, x0, &f0, NULL, NULL, 1);
+    int rl = eval_impl(p, F, xl, &fl, NULL, NULL, 1);
+    if (rl == SB_OK && isfinite(fl) && (r0 != SB_OK || !isfinite(f0) || fl <= f0)) sb_copy(n, xl, x0);
+out:
+    free(d);
+    free(r);
+    free(xl);
+    return SB_OK;
+}
+
+static int eval_impl(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H, int eliminate)
 {
     level_data *L = &p->lv[level];
     const int n = L->n;
@@ -300,12 +358,9 @@ int sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double
         }
     }
     /* Dirichlet elimination */
-    if (L->bc) {
+    if (L->bc && eliminate) {
         if (g) sb_problem_constrain(p, level, g);
-        if (H) {
-            for (long i = 0; i < L->n_zero; i++) H->val[L->zero_pos[i]] = 0.0;
-            for (long i = 0; i < L->n_diag; i++) H->val[L->diag_pos[i]] = 1.0;
-        }
+        if (H) eliminate_hessian(L, H);
     }
     *f = e;
     sb_stats *st = &p->ctx->stats;

@@ -39,6 +39,11 @@ void *sb_problem_method_state(sb_problem *p);
 int  sb_problem_begin_step(sb_problem *p, const sb_step_info *si,
                            const double *x_n, const double *v_n, double *x0);
 
+/* Optional predictor for moving boundaries: replace the elimination start x0
+ * (x_n with jumped constrained values) by the linear elastic lifting of the
+ * boundary increment when that is admissible and not worse (sb_problem.c). */
+int  sb_problem_lift(sb_problem *p, const double *x_n, double *x0);
+
 /* f = Phi(x) at `level`; g and H optional (H: the level's Hessian matrix,
  * sb_problem_hessian()).  Returns SB_OK or SB_NONFINITE. */
 int  sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H);

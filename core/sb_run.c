@@ -434,6 +434,14 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
             exit_code = SB_EXIT_INTERNAL;
             goto done;
         }
+        /* lifting of boundary motion; not for the single-step solver, which is
+         * by definition one Newton step from x_n */
+        if (sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
+            (rc = sb_problem_lift(R->prob, R->xn, R->x)) < 0) {
+            fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+            exit_code = SB_EXIT_INTERNAL;
+            goto done;
+        }
         int iters = 0;
         double f = 0, gn = 0;
         reason = sb_solve_step(R->stype, R->ss, R->prob, ps, step, R->x, &iters, &f, &gn);

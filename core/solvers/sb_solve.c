@@ -18,6 +18,8 @@ const sb_param_def sb_solve_params[] = {
     { "max_iter", SB_PARAM_INT, 10000, 1, 1e9, NULL, "iteration cap per step" },
     { "diverge", SB_PARAM_REAL, 1e6, 1, 1e300, NULL,
       "diverged when max|x - x_0| exceeds diverge * (1 + max|x_0|)" },
+    { "lifting", SB_PARAM_INT, 1, 0, 1, NULL,
+      "start a step with moving boundaries from the linear lifting of the boundary increment (0 = off)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
