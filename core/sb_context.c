@@ -44,3 +44,12 @@ int sb_error(sb_context *ctx, int status, const char *fmt, ...)
     ctx->status = status;
     return status;
 }
+
+int sb_verror(sb_context *ctx, int status, const char *prefix, const char *fmt, va_list ap)
+{
+    char msg[900];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    if (ctx) return sb_error(ctx, status, "%s: %s", prefix, msg);
+    fprintf(stderr, "%s: %s\n", prefix, msg);
+    return status;
+}

@@ -7,6 +7,8 @@
 #include "sb_params.h"
 #include "sb_stats.h"
 
+#include <stdarg.h>
+
 typedef struct sb_context {
     sb_paramset params;
     sb_stats stats;
@@ -21,5 +23,9 @@ void sb_context_free(sb_context *ctx);
 /* printf-style error: stores the message, returns `status` for chaining. */
 int  sb_error(sb_context *ctx, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+
+/* The same with a component prefix ("bhem: ...") and a va_list, for the
+ * error helpers of methods; with ctx == NULL the message goes to stderr. */
+int  sb_verror(sb_context *ctx, int status, const char *prefix, const char *fmt, va_list ap);
 
 #endif

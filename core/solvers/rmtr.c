@@ -70,6 +70,8 @@ typedef struct rmtr_state {
     double consistency_err;   /* max relative |grad h^l(x0) - R g^{l+1}| seen (Eq. 4.5) */
 } rmtr_state;
 
+enum { COARSE_UNUSABLE = 100 };   /* internal: a coarse level could not build its model */
+
 double sb_rmtr_consistency_error(const void *state) { return ((const rmtr_state *)state)->consistency_err; }
 
 static void rmtr_free(void *st)
@@ -290,7 +292,11 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         rc = sb_problem_eval(p, l, V->x, &V->f, V->g, NULL);
         V->hess_ok = 0;
         if (rc < 0) return rc;
-        if (rc == SB_NONFINITE) return SB_NONFINITE;
+        /* the projected iterate may be inadmissible on this level (a coarse
+         * surface through projected control points can exceed the material's
+         * admissible strain): no coarse model, the finer level goes on without
+         * a correction */
+        if (rc == SB_NONFINITE) return COARSE_UNUSABLE;
         for (int i = 0; i < V->n; i++) V->dg[i] = gc[i] - V->g[i];
         /* first-order consistency check (Eq. 4.5) through the model evaluation itself */
         rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
@@ -316,6 +322,7 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         C->delta = V->delta;
         double hc0;
         rc = rmtr_level(R, p, l - 1, C->xt, V->delta, lin_iters, accepted_coarse);
+        if (rc == COARSE_UNUSABLE) goto post_smoothing;
         if (rc) return rc;
         /* coarse reduction h^{l-1}(x0) - h^{l-1}(x_end); h^{l-1}(x0) = f^{l-1}(x0) */
         rc = h_eval(R, p, l - 1, C->x0, &hc0, NULL, 0);
@@ -342,6 +349,7 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         if ((rc = radius_update(R, p, l, rho, bound))) return rc;   /* line 12 */
         if (l < R->L && sb_problem_norm(p, l, V->g) <= R->gtol) return SB_OK;   /* lines 13-14 */
     }
+post_smoothing:
     /* line 17: post-smoothing */
     return local_tr(R, p, l, R->mu2, bound, lin_iters);
 }

@@ -12,13 +12,10 @@
 
 int bhem_fail(const bhem_state *S, int status, const char *fmt, ...)
 {
-    char msg[1024];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    sb_verror(S ? S->ctx : NULL, status, "bhem", fmt, ap);
     va_end(ap);
-    if (S && S->ctx) sb_error(S->ctx, status, "bhem: %s", msg);
-    else fprintf(stderr, "bhem: %s\n", msg);
     return status;
 }
 

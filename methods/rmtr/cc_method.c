@@ -52,13 +52,10 @@ const sb_param_def cc_params[] = {
 
 int cc_state_fail(const cc_state *S, int status, const char *fmt, ...)
 {
-    char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    sb_verror(S ? S->ctx : NULL, status, "rmtr", fmt, ap);
     va_end(ap);
-    if (S && S->ctx) sb_error(S->ctx, status, "rmtr: %s", msg);
-    else fprintf(stderr, "rmtr: %s\n", msg);
     return status;
 }
 
