@@ -46,6 +46,8 @@ static const sb_param_def rmtr_params[] = {
     { "eps_delta", SB_PARAM_REAL, 1e-3, 0, 1, NULL, "epsilon^Delta of Alg. 4.3 (Table 2)" },
     { "smoother_cg_iter", SB_PARAM_INT, 10, 1, 1e6, NULL, "Steihaug–Toint CG iterations per smoothing step (§7.3)" },
     { "coarse_trs", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_names, "coarsest-level subproblem solver (§7.3: dogleg)" },
+    { "smoother_rtol", SB_PARAM_REAL, -1, -1, 1, NULL,
+      "ST-CG smoother residual tolerance relative to ||g|| (-1: inexact-Newton forcing min(0.5, sqrt||g||); 0: always all iterations)" },
     { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
@@ -175,6 +177,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp) return SB_ERR_NOMEM;
         int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
         if (rc) return rc;
+        sb_trs_set_cg_rtol(&V->trs, sb_param(ps, "solver.smoother_rtol"));
     }
     R->fa = malloc((size_t)R->lv[R->L].n * sizeof(double));
     R->fb = malloc((size_t)R->lv[R->L].n * sizeof(double));

@@ -157,6 +157,7 @@ const sb_trs_type sb_trs_dogleg = { "dogleg", sizeof(dogleg_state), dogleg_alloc
 /* ---------------------------------------------------- Steihaug–Toint CG */
 typedef struct stcg_state {
     int n;
+    double rtol;        /* < 0: forcing term min(0.5, sqrt||g||) */
     double *r, *d, *Hd;
 } stcg_state;
 
@@ -164,6 +165,7 @@ static int stcg_alloc(void *st, int n)
 {
     stcg_state *c = st;
     c->n = n;
+    c->rtol = -1.0;
     c->r = malloc((size_t)n * sizeof(double));
     c->d = malloc((size_t)n * sizeof(double));
     c->Hd = malloc((size_t)n * sizeof(double));
@@ -192,7 +194,7 @@ static int stcg_solve(void *st, sb_problem *p, int level, const double *g, doubl
     memset(s, 0, (size_t)n * sizeof *s);
     for (int i = 0; i < n; i++) { r[i] = g[i]; d[i] = -g[i]; }
     double rr = sb_dot(n, r, r), g0 = sqrt(rr);
-    double tol = g0 * fmin(0.5, sqrt(g0));
+    double tol = c->rtol < 0 ? g0 * fmin(0.5, sqrt(g0)) : g0 * c->rtol;
     int it = 0;
     if (max_iter <= 0) max_iter = n;
     while (it < max_iter && sqrt(rr) > tol) {
@@ -230,3 +232,8 @@ static int stcg_solve(void *st, sb_problem *p, int level, const double *g, doubl
 }
 
 const sb_trs_type sb_trs_stcg = { "stcg", sizeof(stcg_state), stcg_alloc, stcg_free, stcg_solve };
+
+void sb_trs_set_cg_rtol(sb_trs *t, double rtol)
+{
+    if (t->type == &sb_trs_stcg && t->state) ((stcg_state *)t->state)->rtol = rtol;
+}

@@ -38,6 +38,10 @@ typedef struct sb_trs {
 } sb_trs;
 
 int  sb_trs_alloc(sb_trs *t, const sb_trs_type *type, int n);
+/* Steihaug–Toint CG stopping on the residual: rtol < 0 (default) uses the
+ * forcing term min(0.5, sqrt||g||) of inexact Newton methods; rtol >= 0 stops
+ * at ||r|| <= rtol ||g|| (0: run all max_iter iterations, as a smoother). */
+void sb_trs_set_cg_rtol(sb_trs *t, double rtol);
 void sb_trs_free(sb_trs *t);
 /* Solve and count one QP work unit on `level` (RMTR paper Eq. 7.3). */
 int  sb_trs_solve(sb_trs *t, sb_problem *p, int level, const double *g, double delta, int fresh,
