@@ -2,6 +2,7 @@
  * minimizers, through the same code path as `shellbench run`. */
 #include "sb_test.h"
 #include "sb_run.h"
+#include "solvers/sb_trs.h"
 
 #include <jansson.h>
 #include <stdlib.h>
@@ -134,6 +135,25 @@ SB_TEST(saddle_tr_escapes)
     CHECK_NEAR(o.f, -0.25, 1e-12);
 }
 
+SB_TEST(saddle_tr_cauchy_escapes)
+{
+    const char *sets[] = { "solver.indefinite=cauchy" };   /* the paper's dogleg */
+    outcome o = run("fixture_saddle", "tr", 1, sets);
+    CHECK_EQ_INT(o.exit_code, 0);
+    CHECK_NEAR(o.f, -0.25, 1e-12);
+}
+
+/* the trust-region ratio at the limiting accuracy (sb_tr_ratio) */
+SB_TEST(tr_ratio_roundoff)
+{
+    CHECK_NEAR(sb_tr_ratio(SB_OK, 1.0, 1.0 - 2e-16, 1e-16), 1.0, 0);        /* both below round-off: 1 */
+    CHECK_NEAR(sb_tr_ratio(SB_OK, 1.0, 0.5, 1.0), 0.5, 1e-15);              /* ordinary ratio */
+    CHECK(sb_tr_ratio(SB_OK, 1.0, 1.0 + 1e-3, 1e-16) < 0);                  /* real increase: rejected */
+    CHECK(isinf(sb_tr_ratio(SB_NONFINITE, 1.0, 0.0, 1.0)));
+    CHECK(isinf(sb_tr_ratio(SB_OK, 1.0, NAN, 1.0)));
+    CHECK(isinf(sb_tr_ratio(SB_OK, 1.0, 0.5, 0.0)));                        /* no predicted decrease */
+}
+
 SB_TEST(saddle_tr_stcg_escapes)
 {
     const char *sets[] = { "solver.trs=stcg" };
@@ -183,7 +203,7 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = {
         SB_CASE(rosenbrock_tr_dogleg), SB_CASE(rosenbrock_tr_stcg), SB_CASE(rosenbrock_lsnewton),
         SB_CASE(quadratic_convex_all_newton_solvers_one_step), SB_CASE(quadratic_ill_conditioned_1e10),
-        SB_CASE(quadratic_damped_converges_linearly), SB_CASE(saddle_tr_escapes), SB_CASE(saddle_tr_stcg_escapes),
+        SB_CASE(quadratic_damped_converges_linearly), SB_CASE(saddle_tr_escapes), SB_CASE(saddle_tr_cauchy_escapes), SB_CASE(tr_ratio_roundoff), SB_CASE(saddle_tr_stcg_escapes),
         SB_CASE(saddle_lsnewton_shifts_and_escapes), SB_CASE(saddle_damped_records_not_posdef),
         SB_CASE(max_iter_is_recorded), SB_CASE(bad_parameter_is_input_error), SB_END,
     };

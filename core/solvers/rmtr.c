@@ -46,6 +46,8 @@ static const sb_param_def rmtr_params[] = {
     { "eps_delta", SB_PARAM_REAL, 1e-3, 0, 1, NULL, "epsilon^Delta of Alg. 4.3 (Table 2)" },
     { "smoother_cg_iter", SB_PARAM_INT, 10, 1, 1e6, NULL, "Steihaug–Toint CG iterations per smoothing step (§7.3)" },
     { "coarse_trs", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_names, "coarsest-level subproblem solver (§7.3: dogleg)" },
+    { "indefinite", SB_PARAM_CHOICE, 1, 0, 0, sb_trs_indefinite_names,
+      "coarsest-level dogleg on an indefinite Hessian: shift or cauchy (the paper's configuration)" },
     { "smoother_rtol", SB_PARAM_REAL, -1, -1, 1, NULL,
       "ST-CG smoother residual tolerance relative to ||g|| (-1: inexact-Newton forcing min(0.5, sqrt||g||); 0: always all iterations)" },
     { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
@@ -178,6 +180,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
         if (rc) return rc;
         sb_trs_set_cg_rtol(&V->trs, sb_param(ps, "solver.smoother_rtol"));
+        sb_trs_set_shift_indefinite(&V->trs, sb_param_int(ps, "solver.indefinite"));
     }
     R->fa = malloc((size_t)R->lv[R->L].n * sizeof(double));
     R->fb = malloc((size_t)R->lv[R->L].n * sizeof(double));
@@ -267,7 +270,7 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
         double ft;
         rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
         if (rc < 0) return rc;
-        double rho = (rc == SB_OK && isfinite(ft) && tr.pred > 0) ? (V->f - ft) / tr.pred : -INFINITY;
+        double rho = sb_tr_ratio(rc, V->f, ft, tr.pred);
         if (rho > R->eta1) {
             sb_copy(V->n, V->xt, V->x);
             rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
@@ -339,7 +342,7 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
         if (rc < 0) return rc;
         /* line 6: multilevel ratio (Eq. 4.11) */
-        double rho = (rc == SB_OK && isfinite(ft) && cred > 0) ? (V->f - ft) / cred : -INFINITY;
+        double rho = sb_tr_ratio(rc, V->f, ft, cred);
         if (rho > R->eta1) {                    /* lines 7-8 */
             sb_copy(V->n, V->xt, V->x);
             rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);

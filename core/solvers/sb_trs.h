@@ -29,6 +29,7 @@ extern const sb_trs_type sb_trs_dogleg;   /* Nocedal & Wright §4.1; sparse dire
 extern const sb_trs_type sb_trs_stcg;     /* Steihaug–Toint truncated CG */
 
 extern const char *const sb_trs_names[];  /* "dogleg", "stcg", NULL */
+extern const char *const sb_trs_indefinite_names[];  /* "cauchy", "shift", NULL */
 const sb_trs_type *sb_trs_by_index(int i);
 
 /* A TRS instance: type + state. */
@@ -42,9 +43,19 @@ int  sb_trs_alloc(sb_trs *t, const sb_trs_type *type, int n);
  * forcing term min(0.5, sqrt||g||) of inexact Newton methods; rtol >= 0 stops
  * at ||r|| <= rtol ||g|| (0: run all max_iter iterations, as a smoother). */
 void sb_trs_set_cg_rtol(sb_trs *t, double rtol);
+/* Dogleg on an indefinite H: 0 (default, paper) Cauchy point; 1 Newton point
+ * of a shifted, positive definite H + tau I. */
+void sb_trs_set_shift_indefinite(sb_trs *t, int on);
 void sb_trs_free(sb_trs *t);
 /* Solve and count one QP work unit on `level` (RMTR paper Eq. 7.3). */
 int  sb_trs_solve(sb_trs *t, sb_problem *p, int level, const double *g, double delta, int fresh,
                   int max_iter, double *s, sb_trs_result *r);
+
+/* Trust-region ratio rho = (f - f_trial) / pred (RMTR paper Eq. 4.2, 4.11),
+ * -inf for a failed or non-finite trial.  When the actual and the predicted
+ * reduction are both below the round-off of f (100 eps |f|), the ratio carries
+ * no information and is taken as 1 (Conn, Gould & Toint, Trust-Region Methods,
+ * §17.4.2): otherwise the radius collapses at the limiting accuracy. */
+double sb_tr_ratio(int trial_status, double f, double f_trial, double pred);
 
 #endif

@@ -17,6 +17,8 @@ static const sb_param_def tr_params[] = {
     { "delta0", SB_PARAM_REAL, 1.0, 1e-300, 1e300, NULL, "initial radius of every step (Table 2)" },
     { "delta_min", SB_PARAM_REAL, 1e-300, 0, 1, NULL, "fail when the radius drops below this" },
     { "trs", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_names, "subproblem solver (RMTR paper §7.3: dogleg)" },
+    { "indefinite", SB_PARAM_CHOICE, 1, 0, 0, sb_trs_indefinite_names,
+      "dogleg on an indefinite Hessian: shift (Newton point of H + tau I) or cauchy (the paper's configuration)" },
     { "cg_max_iter", SB_PARAM_INT, 0, 0, 1e9, NULL, "Steihaug–Toint CG iteration cap (0 = n)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
@@ -48,7 +50,9 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     t->s = malloc((size_t)t->n * sizeof(double));
     t->xt = malloc((size_t)t->n * sizeof(double));
     if (!t->g || !t->gt || !t->s || !t->xt) return SB_ERR_NOMEM;
-    return sb_trs_alloc(&t->trs, sb_trs_by_index(sb_param_int(ps, "solver.trs")), t->n);
+    int rc = sb_trs_alloc(&t->trs, sb_trs_by_index(sb_param_int(ps, "solver.trs")), t->n);
+    if (rc == SB_OK) sb_trs_set_shift_indefinite(&t->trs, sb_param_int(ps, "solver.indefinite"));
+    return rc;
 }
 
 static void tr_free(void *st)
@@ -96,7 +100,7 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     rc = sb_problem_eval(p, t->F, t->xt, &ft, NULL, NULL);
     if (rc < 0) return rc;
     /* Alg. 4.1 line 3: rho = actual / predicted reduction (Eq. 4.2) */
-    double rho = (rc == SB_OK && isfinite(ft) && r.pred > 0.0) ? (t->f - ft) / r.pred : -INFINITY;
+    double rho = sb_tr_ratio(rc, t->f, ft, r.pred);
     info->linear_iters = r.iters;
     info->rho = rho;
     if (rho > t->eta1) {
