@@ -99,6 +99,14 @@ if any(a is not None for _, a, _ in t8):
         ib = int(b["iterations"]) if ok(b) else None
         print("| %s | %s | %s | %s | %s |" % (NAMES[s], num(T8[s][0]), num(T8[s][1]), num(ia), num(ib)))
 
+cond = os.path.join(os.path.dirname(RUNS.rstrip("/")), "cond.md")
+if os.path.exists(cond):
+    print("\n## Fig. 9 (left) — condition number of H against dofs (trampoline, dt = 1)\n")
+    print("Hessian of the incremental potential at the converged first step (lsnewton); lambda_max by")
+    print("power iteration (300 steps), lambda_min by inverse iteration with the CHOLMOD factor (100 steps):")
+    print("both are estimates from inside the spectrum, so cond is a lower bound (`build/bench/bench_cond`).\n")
+    print(open(cond).read().rstrip())
+
 print("\n## Not run here\n")
-print("* Fig. 9 (condition numbers) needs extreme-eigenvalue estimates (Lanczos / CHOLMOD on the inverse): not implemented yet.")
+print("* Fig. 9 (right), condition number against the penalty parameter: not run.")
 print("* Table 5 is Tables 3 and 4 side by side; the 13,467- and 51,483-dof cases run only in `full` mode.")

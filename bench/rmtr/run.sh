@@ -47,4 +47,10 @@ for s in $SCENES; do
     run "rmtr-$s-l4-lsq" "$s" rmtr 32 4 $PAPER --set method.projection=lsq
   fi
 done
+# Fig. 9 (left): condition number against dofs, trampoline
+COND=$(dirname "$BIN")/bench/bench_cond
+[ -x "$COND" ] || COND=build/bench/bench_cond
+if [ -x "$COND" ]; then
+  "$COND" trampoline $([ "$MODE" = full ] && echo 128 || echo 32) > results/rmtr/cond.md.tmp && mv results/rmtr/cond.md.tmp results/rmtr/cond.md
+fi
 python3 bench/rmtr/report.py "$OUT" > results/rmtr_report.md && echo "report: results/rmtr_report.md"
