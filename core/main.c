@@ -2,7 +2,7 @@
  *   shellbench list [scenes|methods|solvers]
  *   shellbench check SCENE...
  *   shellbench run --scene NAME|PATH --method NAME --solver NAME [--res N] [--levels L]
- *                  [--set key=value]... [--out FILE.h5|none] [--summary json] [--quiet]
+ *                  [--set key=value]... [--out FILE.h5|none] [--summary json] [--samples N] [--quiet]
  *   shellbench sweep --scenes A,B --methods M,N --solvers S,T [--res 4,8] [--levels 1,2]
  *                  [--set key=value]... [--dir DIR]
  *   shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...
@@ -26,7 +26,7 @@ static void usage(FILE *f)
             "  shellbench list [scenes|methods|solvers]\n"
             "  shellbench check SCENE.json...\n"
             "  shellbench run --scene NAME|PATH --method NAME --solver NAME [--res N] [--levels L]\n"
-            "                 [--set key=value]... [--out FILE.h5|none] [--summary json] [--quiet]\n"
+            "                 [--set key=value]... [--out FILE.h5|none] [--summary json] [--samples N] [--quiet]\n"
             "  shellbench sweep --scenes A,B --methods M,.. --solvers S,.. [--res N,..] [--levels L,..]\n"
             "                 [--set key=value]... [--dir DIR]\n"
             "  shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...\n"
@@ -125,6 +125,12 @@ static int parse_run_args(int argc, char **argv, cli_run *c, int sweep)
         } else if (!sweep && !strcmp(a, "--levels")) {
             NEED_VALUE();
             if (parse_int(v, &c->req.levels) || c->req.levels < 1) { fprintf(stderr, "shellbench: --levels: \"%s\" is not a positive integer\n", v); return 2; }
+        } else if (!strcmp(a, "--samples")) {
+            NEED_VALUE();
+            if (parse_int(v, &c->req.sample_n) || c->req.sample_n < 2 || c->req.sample_n > 2001) {
+                fprintf(stderr, "shellbench: --samples: \"%s\" is not an integer in [2, 2001]\n", v);
+                return 2;
+            }
         } else if (!sweep && !strcmp(a, "--out")) { NEED_VALUE(); c->req.out = v; }
         else if (!sweep && !strcmp(a, "--summary")) {
             NEED_VALUE();

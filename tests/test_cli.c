@@ -130,6 +130,7 @@ SB_TEST(usage_and_input_errors_exit_2)
     CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr --res -3 2>/dev/null", root, bin), 2);
     CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr --set x 2>/dev/null", root, bin), 2);
     CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr --bogus 2>/dev/null", root, bin), 2);
+    CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr --samples 1 2>/dev/null", root, bin), 2);
     /* impossible combination: refused before any work, naming both sides */
     static char err[4096];
     CHECK_EQ_INT(sh(err, sizeof err, "cd %s && %s run --scene tests/scenes/fixture_static.json --method fixture_quadratic "
