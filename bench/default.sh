@@ -43,5 +43,11 @@ for m in $methods; do
 done
 echo
 "$BIN" report --plot "$OUT/convergence.png" "${files[@]}" | tee "$OUT/report.md"
+# one readable plot per scene as well
+for s in $scenes; do
+  sf=()
+  for f in "${files[@]}"; do case "$(basename "$f")" in "$s"-*) sf+=("$f") ;; esac; done
+  [ ${#sf[@]} -gt 0 ] && "$BIN" report --plot "$OUT/convergence-$s.png" "${sf[@]}" > /dev/null
+done
 echo
-echo "records: $OUT/*.h5   report: $OUT/report.md   plot: $OUT/convergence.png"
+echo "records: $OUT/*.h5   report: $OUT/report.md   plots: $OUT/convergence.png, $OUT/convergence-SCENE.png"
