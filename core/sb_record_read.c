@@ -17,6 +17,8 @@ typedef struct h5r {
     const char *path;
     char *err;
     size_t errlen;
+    H5E_auto2_t old_fn;      /* the caller's HDF5 error printer, restored by close_record */
+    void *old_data;
 } h5r;
 
 static int rfail(h5r *r, int status, const char *what, const char *name)
@@ -114,9 +116,17 @@ static int dset_read(h5r *r, hid_t loc, const char *name, int rank, hid_t mtype,
 }
 
 /* Open PATH and check it is a shellbench record of a layout we read. */
+/* Silences HDF5's error printing (restored by close_record, which must follow
+ * every open_record), checks the path and opens a shellbench record. */
 static int open_record(h5r *r, hid_t *file)
 {
     *file = -1;
+    H5Eget_auto2(H5E_DEFAULT, &r->old_fn, &r->old_data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    if (!r->path || !r->path[0]) {
+        snprintf(r->err, r->errlen, "no record file given");
+        return SB_ERR_INPUT;
+    }
     struct stat st;
     if (stat(r->path, &st) != 0) {
         snprintf(r->err, r->errlen, "cannot read record %s: %s", r->path, strerror(errno));
@@ -156,6 +166,12 @@ static int open_record(h5r *r, hid_t *file)
     }
     *file = f;
     return SB_OK;
+}
+
+static void close_record(h5r *r, hid_t f)
+{
+    if (f >= 0) H5Fclose(f);
+    H5Eset_auto2(H5E_DEFAULT, r->old_fn, r->old_data);
 }
 
 /* Per-event seconds summed over levels, matched by event name so a file
@@ -233,15 +249,7 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
 {
     if (!s) return SB_ERR_INPUT;
     memset(s, 0, sizeof *s);
-    if (!path || !path[0]) {
-        snprintf(err, errlen, "no record file given");
-        return SB_ERR_INPUT;
-    }
-    h5r r = { path, err, errlen };
-    H5E_auto2_t old_fn = NULL;
-    void *old_data = NULL;
-    H5Eget_auto2(H5E_DEFAULT, &old_fn, &old_data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    h5r r = { path, err, errlen, NULL, NULL };
     hid_t f;
     int rc = open_record(&r, &f);
     hid_t ge = -1, gs = -1;
@@ -277,8 +285,7 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
     if (!rc) rc = attr_dbl(&r, ge, "probe", &s->error_probe);
     if (ge >= 0) H5Gclose(ge);
     if (gs >= 0) H5Gclose(gs);
-    if (f >= 0) H5Fclose(f);
-    H5Eset_auto2(H5E_DEFAULT, old_fn, old_data);
+    close_record(&r, f);
     if (rc) sb_record_summary_free(s);
     return rc;
 }
@@ -303,15 +310,7 @@ int sb_record_read_samples(const char *path, int *n, double **st, double **pos,
     if (!n || !st || !pos) return SB_ERR_INPUT;
     *n = 0;
     *st = *pos = NULL;
-    if (!path || !path[0]) {
-        snprintf(err, errlen, "no record file given");
-        return SB_ERR_INPUT;
-    }
-    h5r r = { path, err, errlen };
-    H5E_auto2_t old_fn = NULL;
-    void *old_data = NULL;
-    H5Eget_auto2(H5E_DEFAULT, &old_fn, &old_data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    h5r r = { path, err, errlen, NULL, NULL };
     hid_t f;
     hsize_t ds[2], dp[2];
     int rc = open_record(&r, &f);
@@ -319,8 +318,7 @@ int sb_record_read_samples(const char *path, int *n, double **st, double **pos,
     if (!rc) rc = dset_read(&r, f, "/final/sample_pos", 2, H5T_NATIVE_DOUBLE, sizeof(double), dp, (void **)pos);
     if (!rc && (ds[1] != 2 || dp[1] != 3 || ds[0] != dp[0] || ds[0] > (hsize_t)INT32_MAX))
         rc = rfail(&r, SB_ERR_INPUT, "inconsistent shapes of", "/final/sample_st and /final/sample_pos");
-    if (f >= 0) H5Fclose(f);
-    H5Eset_auto2(H5E_DEFAULT, old_fn, old_data);
+    close_record(&r, f);
     if (rc) {
         free(*st);
         free(*pos);

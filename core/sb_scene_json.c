@@ -262,3 +262,24 @@ int sbj_valid_name(const char *s)
     }
     return 1;
 }
+
+int sbj_parse_list(sbj_ctx *c, const json_t *root, const char *key, const char *what, int max,
+                   sbj_item_fn item, sb_scene *sc, int *count)
+{
+    json_t *arr, *o;
+    size_t i;
+    int r = sbj_get_array(c, root, key, 0, 0, &arr);
+    if (r || !arr) return r;
+    if (json_array_size(arr) > (size_t)max)
+        return sbj_fail(c, key, 0, "too many %s: %zu (at most %d)", what, json_array_size(arr), max);
+    size_t mark = sbj_push(c, key);
+    json_array_foreach(arr, i, o) {
+        size_t m2 = sbj_push_index(c, i);
+        r = item(c, o, sc, i);
+        sbj_pop(c, m2);
+        if (r) break;
+        (*count)++;
+    }
+    sbj_pop(c, mark);
+    return r;
+}

@@ -77,6 +77,13 @@ int sbj_valid_name(const char *s);
 int sbj_parse_domain(sbj_ctx *c, const json_t *root, sb_domain *d);
 int sbj_parse_geometry(sbj_ctx *c, const json_t *root, const sb_domain *d, sb_chart *ch);
 int sbj_parse_material(sbj_ctx *c, const json_t *root, sb_material_spec *m);
+/* Optional array `key` of at most `max` objects: item(c, object, sc, index)
+ * parses each (errors located at /key/index/...); *count counts the parsed
+ * items.  `what` names the items in the "too many" message. */
+typedef int (*sbj_item_fn)(sbj_ctx *c, const json_t *o, sb_scene *sc, size_t i);
+int sbj_parse_list(sbj_ctx *c, const json_t *root, const char *key, const char *what, int max,
+                   sbj_item_fn item, sb_scene *sc, int *count);
+
 int sbj_parse_loads(sbj_ctx *c, const json_t *root, sb_scene *sc);
 int sbj_parse_boundary(sbj_ctx *c, const json_t *root, sb_scene *sc);
 int sbj_parse_time(sbj_ctx *c, const json_t *root, sb_time_spec *t);

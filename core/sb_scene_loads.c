@@ -59,25 +59,14 @@ static int parse_load(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_load *
     return SB_OK;
 }
 
+static int sbj_parse_loads_item(sbj_ctx *c, const json_t *o, sb_scene *sc, size_t i)
+{
+    return parse_load(c, o, &sc->domain, &sc->loads[i]);
+}
+
 int sbj_parse_loads(sbj_ctx *c, const json_t *root, sb_scene *sc)
 {
-    json_t *arr, *o;
-    size_t i;
-    int r = sbj_get_array(c, root, "loads", 0, 0, &arr);
-    if (r || !arr) return r;
-    if (json_array_size(arr) > SB_SCENE_MAX_LOADS)
-        return sbj_fail(c, "loads", 0, "too many loads: %zu (at most %d)", json_array_size(arr),
-                        SB_SCENE_MAX_LOADS);
-    size_t mark = sbj_push(c, "loads");
-    json_array_foreach(arr, i, o) {
-        size_t m2 = sbj_push_index(c, i);
-        r = parse_load(c, o, &sc->domain, &sc->loads[i]);
-        sbj_pop(c, m2);
-        if (r) break;
-        sc->n_loads++;
-    }
-    sbj_pop(c, mark);
-    return r;
+    return sbj_parse_list(c, root, "loads", "loads", SB_SCENE_MAX_LOADS, sbj_parse_loads_item, sc, &sc->n_loads);
 }
 
 /* "components": a non-empty subset of "xyz" -> bit mask (default all). */
@@ -162,23 +151,12 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_bc *bc)
     return SB_OK;
 }
 
+static int sbj_parse_boundary_item(sbj_ctx *c, const json_t *o, sb_scene *sc, size_t i)
+{
+    return parse_bc(c, o, &sc->domain, &sc->bcs[i]);
+}
+
 int sbj_parse_boundary(sbj_ctx *c, const json_t *root, sb_scene *sc)
 {
-    json_t *arr, *o;
-    size_t i;
-    int r = sbj_get_array(c, root, "boundary", 0, 0, &arr);
-    if (r || !arr) return r;
-    if (json_array_size(arr) > SB_SCENE_MAX_BCS)
-        return sbj_fail(c, "boundary", 0, "too many boundary conditions: %zu (at most %d)",
-                        json_array_size(arr), SB_SCENE_MAX_BCS);
-    size_t mark = sbj_push(c, "boundary");
-    json_array_foreach(arr, i, o) {
-        size_t m2 = sbj_push_index(c, i);
-        r = parse_bc(c, o, &sc->domain, &sc->bcs[i]);
-        sbj_pop(c, m2);
-        if (r) break;
-        sc->n_bcs++;
-    }
-    sbj_pop(c, mark);
-    return r;
+    return sbj_parse_list(c, root, "boundary", "boundary conditions", SB_SCENE_MAX_BCS, sbj_parse_boundary_item, sc, &sc->n_bcs);
 }

@@ -103,25 +103,14 @@ static int parse_probe(sbj_ctx *c, const json_t *o, const sb_scene *sc, sb_probe
     return parse_expected(c, o, p);
 }
 
+static int sbj_parse_probes_item(sbj_ctx *c, const json_t *o, sb_scene *sc, size_t i)
+{
+    return parse_probe(c, o, sc, &sc->probes[i]);
+}
+
 int sbj_parse_probes(sbj_ctx *c, const json_t *root, sb_scene *sc)
 {
-    json_t *arr, *o;
-    size_t i;
-    int r = sbj_get_array(c, root, "probes", 0, 0, &arr);
-    if (r || !arr) return r;
-    if (json_array_size(arr) > SB_SCENE_MAX_PROBES)
-        return sbj_fail(c, "probes", 0, "too many probes: %zu (at most %d)", json_array_size(arr),
-                        SB_SCENE_MAX_PROBES);
-    size_t mark = sbj_push(c, "probes");
-    json_array_foreach(arr, i, o) {
-        size_t m2 = sbj_push_index(c, i);
-        r = parse_probe(c, o, sc, &sc->probes[i]);
-        sbj_pop(c, m2);
-        if (r) break;
-        sc->n_probes++;
-    }
-    sbj_pop(c, mark);
-    return r;
+    return sbj_parse_list(c, root, "probes", "probes", SB_SCENE_MAX_PROBES, sbj_parse_probes_item, sc, &sc->n_probes);
 }
 
 int sbj_parse_reference(sbj_ctx *c, const json_t *root, sb_scene *sc)
