@@ -396,6 +396,31 @@ void sb_problem_hess_mult(sb_problem *p, int level, const double *x, double *y)
     sb_matrix_symv(&p->lv[level].H, x, y);
 }
 
+void sb_problem_hess_diag(const sb_problem *p, int level, double *d)
+{
+    const sb_matrix *H = &p->lv[level].H;
+    for (int i = 0; i < p->lv[level].n; i++) d[i] = H->val[H->pat->diag[i]];
+}
+
+int sb_problem_block_size(const sb_problem *p, int level) { return p->lv[level].pat->bs; }
+
+void sb_problem_hess_block_diag(const sb_problem *p, int level, double *B)
+{
+    const sb_matrix *H = &p->lv[level].H;
+    const sb_pattern *pat = H->pat;
+    const int bs = pat->bs, n = p->lv[level].n;
+    for (int j = 0; j < n; j++) {
+        const int b0 = j - j % bs;            /* first dof of the node */
+        double *blk = B + (size_t)b0 * bs;    /* bs x bs, row-major */
+        for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
+            const int i = pat->rowind[k];
+            if (i < b0) continue;
+            if (i > j) break;
+            blk[(i - b0) * bs + (j - b0)] = blk[(j - b0) * bs + (i - b0)] = H->val[k];
+        }
+    }
+}
+
 int sb_problem_prolong(sb_problem *p, int lc, const double *xc, double *xf)
 {
     double t0 = sb_now();

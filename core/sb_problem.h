@@ -53,6 +53,11 @@ int  sb_problem_factor(sb_problem *p, int level, double shift);
 int  sb_problem_solve(sb_problem *p, int level, const double *b, double *x);
 /* y = H x with the level's Hessian as last assembled. */
 void sb_problem_hess_mult(sb_problem *p, int level, const double *x, double *y);
+/* d = diag(H) of the last assembly on the level */
+void sb_problem_hess_diag(const sb_problem *p, int level, double *d);
+/* dofs per node, and the bs x bs diagonal node blocks of H (n * bs values, row-major per node) */
+int  sb_problem_block_size(const sb_problem *p, int level);
+void sb_problem_hess_block_diag(const sb_problem *p, int level, double *B);
 
 /* Zero the constrained entries of a correction / gradient-like vector. */
 void sb_problem_constrain(const sb_problem *p, int level, double *v);

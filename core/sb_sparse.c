@@ -305,6 +305,34 @@ void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke)
     }
 }
 
+void sb_matrix_get_element(const sb_matrix *A, int e, double *Ke)
+{
+    const sb_pattern *p = A->pat;
+    const int bs = p->bs;
+    const int *nd = p->elem_nodes + p->elem_node_off[e];
+    const int k = (int)(p->elem_node_off[e + 1] - p->elem_node_off[e]);
+    const int m = bs * k;
+    const long *map = p->map + p->elem_map_off[e];
+    const double *val = A->val;
+    memset(Ke, 0, (size_t)m * m * sizeof *Ke);
+    for (int a = 0; a < k; a++) {
+        if (nd[a] < 0) continue;
+        for (int b = 0; b < k; b++) {
+            if (nd[b] < 0 || nd[a] > nd[b]) continue;
+            for (int j = 0; j < bs; j++) {
+                const double *src = val + map[j];
+                for (int i = 0; i < bs; i++) {
+                    /* the diagonal block stores its upper triangle only */
+                    const double v = nd[a] < nd[b] || i <= j ? src[i] : val[map[i] + j];
+                    Ke[(size_t)(bs * a + i) * m + bs * b + j] = v;
+                    Ke[(size_t)(bs * b + j) * m + bs * a + i] = v;
+                }
+            }
+            map += bs;
+        }
+    }
+}
+
 int sb_matrix_add(sb_matrix *A, int i, int j, double v)
 {
     if (i > j) { int t = i; i = j; j = t; }

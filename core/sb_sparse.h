@@ -56,6 +56,9 @@ void sb_matrix_free(sb_matrix *A);
 void sb_matrix_zero(sb_matrix *A);
 /* Add the dense (bs k) x (bs k) row-major symmetric element matrix of element e. */
 void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke);
+/* The dense (bs k) x (bs k) row-major submatrix of A on the dofs of element e
+ * (the inverse of sb_matrix_add_element's scatter, read from the assembled A). */
+void sb_matrix_get_element(const sb_matrix *A, int e, double *Ke);
 /* Add a value at global (i,j) (any order); returns SB_ERR_INTERNAL if not in pattern. */
 int  sb_matrix_add(sb_matrix *A, int i, int j, double v);
 /* y = A x (A symmetric, upper stored). */

@@ -50,6 +50,8 @@ static const sb_param_def rmtr_params[] = {
       "coarsest-level dogleg on an indefinite Hessian: shift or cauchy (the paper's configuration)" },
     { "smoother_rtol", SB_PARAM_REAL, -1, -1, 1, NULL,
       "ST-CG smoother residual tolerance relative to ||g|| (-1: inexact-Newton forcing min(0.5, sqrt||g||); 0: always all iterations)" },
+    { "smoother_precond", SB_PARAM_CHOICE, 4, 0, 0, sb_trs_precond_names,
+      "ST-CG smoother preconditioner: schwarz (additive Schwarz on element patches), none (the paper's), jacobi, block (node-block Jacobi), sgs (symmetric block Gauss-Seidel)" },
     { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
@@ -180,6 +182,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
         if (rc) return rc;
         sb_trs_set_cg_rtol(&V->trs, sb_param(ps, "solver.smoother_rtol"));
+        sb_trs_set_cg_precond(&V->trs, sb_param_int(ps, "solver.smoother_precond"));
         sb_trs_set_shift_indefinite(&V->trs, sb_param_int(ps, "solver.indefinite"));
     }
     R->fa = malloc((size_t)R->lv[R->L].n * sizeof(double));

@@ -1,6 +1,7 @@
 /* sb_trs.c — the two trust-region subproblem solvers and the counted wrapper. */
 #include "sb_trs.h"
 #include "sb_context.h"
+#include "sb_schwarz.h"
 
 #include <float.h>
 #include <math.h>
@@ -9,6 +10,7 @@
 
 const char *const sb_trs_names[] = { "dogleg", "stcg", NULL };
 const char *const sb_trs_indefinite_names[] = { "cauchy", "shift", NULL };
+const char *const sb_trs_precond_names[] = { "none", "jacobi", "block", "sgs", "schwarz", NULL };
 
 const sb_trs_type *sb_trs_by_index(int i) { return i == 1 ? &sb_trs_stcg : &sb_trs_dogleg; }
 
@@ -185,8 +187,147 @@ const sb_trs_type sb_trs_dogleg = { "dogleg", sizeof(dogleg_state), dogleg_alloc
 typedef struct stcg_state {
     int n;
     double rtol;        /* < 0: forcing term min(0.5, sqrt||g||) */
-    double *r, *d, *Hd;
+    int precond;        /* 0 none, 1 Jacobi, 2 block Jacobi, 3 symmetric block Gauss–Seidel */
+    int bs;             /* block size of binv (0: not yet allocated) */
+    double *r, *d, *Hd, *z, *dinv, *binv, *w;
+    const sb_matrix *H; /* the level's Hessian (block Gauss–Seidel sweeps) */
+    sb_schwarz schwarz; /* precond 4: additive Schwarz on element patches */
 } stcg_state;
+
+/* Inverse of the symmetric bs x bs block A (row-major) in place through
+ * Cholesky; returns 0 when A is not positive definite (A is then clobbered). */
+static int spd_inverse(int bs, double *A)
+{
+    double L[144], Li[144];
+    for (int i = 0; i < bs; i++)
+        for (int j = 0; j <= i; j++) {
+            double v = A[i * bs + j];
+            for (int k = 0; k < j; k++) v -= L[i * bs + k] * L[j * bs + k];
+            if (i == j) {
+                if (!(v > 0.0)) return 0;
+                L[i * bs + i] = sqrt(v);
+            } else L[i * bs + j] = v / L[j * bs + j];
+        }
+    /* Li = L^{-1} (lower triangular), A^{-1} = Li^T Li */
+    for (int j = 0; j < bs; j++)
+        for (int i = 0; i < bs; i++) {
+            if (i < j) { Li[i * bs + j] = 0.0; continue; }
+            double v = i == j ? 1.0 : 0.0;
+            for (int k = j; k < i; k++) v -= L[i * bs + k] * Li[k * bs + j];
+            Li[i * bs + j] = v / L[i * bs + i];
+        }
+    for (int i = 0; i < bs; i++)
+        for (int j = 0; j < bs; j++) {
+            double v = 0.0;
+            for (int k = i > j ? i : j; k < bs; k++) v += Li[k * bs + i] * Li[k * bs + j];
+            A[i * bs + j] = v;
+        }
+    return 1;
+}
+
+/* y_b = Binv_b t for the node block starting at b0 */
+static inline void block_solve(int bs, const double *A, const double *t, double *y)
+{
+    for (int i = 0; i < bs; i++) {
+        double v = 0.0;
+        for (int j = 0; j < bs; j++) v += A[i * bs + j] * t[j];
+        y[i] = v;
+    }
+}
+
+/* Symmetric block Gauss–Seidel preconditioner z = M^{-1} r with
+ * M = (D + L) D^{-1} (D + U), D the node blocks of H, L = U^T the strictly
+ * block-lower part: a forward sweep (D + L) y = r, then a backward sweep
+ * z = y - D^{-1} U z.  H is stored upper CSC, so the forward sweep reads the
+ * column of each dof above its block and the backward sweep scatters each
+ * finished block's column into w.  M is SPD when D is, so preconditioned CG
+ * keeps its descent properties (Saad, Iterative Methods, §10.2). */
+static void sgs_apply(const stcg_state *c, const double *r, double *z)
+{
+    const int n = c->n, bs = c->bs;
+    const sb_pattern *pat = c->H->pat;
+    const double *val = c->H->val;
+    double t[12], *w = c->w;
+    for (int b0 = 0; b0 < n; b0 += bs) {           /* forward: (D + L) z = r */
+        for (int j = b0; j < b0 + bs; j++) {
+            double v = r[j];
+            for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
+                const int i = pat->rowind[k];
+                if (i >= b0) break;
+                v -= val[k] * z[i];
+            }
+            t[j - b0] = v;
+        }
+        block_solve(bs, c->binv + (size_t)b0 * bs, t, z + b0);
+    }
+    memset(w, 0, (size_t)n * sizeof *w);
+    for (int b0 = n - bs; b0 >= 0; b0 -= bs) {     /* backward: z = y - D^{-1} U z */
+        block_solve(bs, c->binv + (size_t)b0 * bs, w + b0, t);
+        for (int j = b0; j < b0 + bs; j++) {
+            z[j] -= t[j - b0];
+            const double zj = z[j];
+            for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
+                const int i = pat->rowind[k];
+                if (i >= b0) break;
+                w[i] += val[k] * zj;
+            }
+        }
+    }
+}
+
+/* z = M^{-1} r for the smoother's preconditioner */
+static void stcg_apply(const stcg_state *c, const double *r, double *z)
+{
+    const int n = c->n;
+    if (c->precond == 3) {
+        sgs_apply(c, r, z);
+        return;
+    }
+    if (c->precond == 4) {
+        sb_schwarz_apply(&c->schwarz, r, z);
+        return;
+    }
+    if (c->precond == 2) {
+        const int bs = c->bs;
+        for (int b0 = 0; b0 < n; b0 += bs) {
+            const double *A = c->binv + (size_t)b0 * bs;
+            for (int i = 0; i < bs; i++) {
+                double v = 0.0;
+                for (int j = 0; j < bs; j++) v += A[i * bs + j] * r[b0 + j];
+                z[b0 + i] = v;
+            }
+        }
+        return;
+    }
+    for (int i = 0; i < n; i++) z[i] = c->dinv[i] * r[i];
+}
+
+static int stcg_setup_precond(stcg_state *c, sb_problem *p, int level)
+{
+    const int n = c->n;
+    if (c->precond == 4) return sb_schwarz_setup(&c->schwarz, sb_problem_hessian(p, level));
+    sb_problem_hess_diag(p, level, c->dinv);
+    for (int i = 0; i < n; i++) c->dinv[i] = c->dinv[i] > 0 ? 1.0 / c->dinv[i] : c->dinv[i] < 0 ? -1.0 / c->dinv[i] : 1.0;
+    if (c->precond < 2) return SB_OK;
+    const int bs = sb_problem_block_size(p, level);
+    if (bs > 12 || n % bs) { c->precond = 1; return SB_OK; }
+    if (!c->binv) {
+        c->binv = malloc((size_t)n * bs * sizeof(double));
+        c->w = malloc((size_t)n * sizeof(double));
+        if (!c->binv || !c->w) return SB_ERR_NOMEM;
+        c->bs = bs;
+    }
+    c->H = sb_problem_hessian(p, level);
+    sb_problem_hess_block_diag(p, level, c->binv);
+    for (int b0 = 0; b0 < n; b0 += bs) {
+        double *A = c->binv + (size_t)b0 * bs;
+        if (spd_inverse(bs, A)) continue;
+        /* an indefinite node block: Jacobi on that node */
+        memset(A, 0, (size_t)bs * bs * sizeof(double));
+        for (int i = 0; i < bs; i++) A[i * bs + i] = c->dinv[b0 + i];
+    }
+    return SB_OK;
+}
 
 static int stcg_alloc(void *st, int n)
 {
@@ -196,7 +337,9 @@ static int stcg_alloc(void *st, int n)
     c->r = malloc((size_t)n * sizeof(double));
     c->d = malloc((size_t)n * sizeof(double));
     c->Hd = malloc((size_t)n * sizeof(double));
-    return c->r && c->d && c->Hd ? SB_OK : SB_ERR_NOMEM;
+    c->z = malloc((size_t)n * sizeof(double));
+    c->dinv = malloc((size_t)n * sizeof(double));
+    return c->r && c->d && c->Hd && c->z && c->dinv ? SB_OK : SB_ERR_NOMEM;
 }
 
 static void stcg_free(void *st)
@@ -205,6 +348,11 @@ static void stcg_free(void *st)
     free(c->r);
     free(c->d);
     free(c->Hd);
+    free(c->z);
+    free(c->dinv);
+    free(c->binv);
+    free(c->w);
+    sb_schwarz_free(&c->schwarz);
 }
 
 /* Steihaug (1983) / Toint (1981) truncated CG (Nocedal & Wright Alg. 7.2),
@@ -214,12 +362,20 @@ static void stcg_free(void *st)
 static int stcg_solve(void *st, sb_problem *p, int level, const double *g, double delta, int fresh,
                       int max_iter, double *s, sb_trs_result *res)
 {
-    (void)fresh;
     stcg_state *c = st;
     const int n = c->n;
-    double *r = c->r, *d = c->d, *Hd = c->Hd;
+    double *r = c->r, *d = c->d, *Hd = c->Hd, *z = c->z;
+    if (c->precond) {
+        if (fresh) {
+            int rc = stcg_setup_precond(c, p, level);
+            if (rc) return rc;
+        }
+    } else for (int i = 0; i < n; i++) c->dinv[i] = 1.0;
     memset(s, 0, (size_t)n * sizeof *s);
-    for (int i = 0; i < n; i++) { r[i] = g[i]; d[i] = -g[i]; }
+    sb_copy(n, g, r);
+    stcg_apply(c, r, z);
+    for (int i = 0; i < n; i++) d[i] = -z[i];
+    double rz = sb_dot(n, r, z);
     double rr = sb_dot(n, r, r), g0 = sqrt(rr);
     double tol = c->rtol < 0 ? g0 * fmin(0.5, sqrt(g0)) : g0 * c->rtol;
     int it = 0;
@@ -234,7 +390,7 @@ static int stcg_solve(void *st, sb_problem *p, int level, const double *g, doubl
             res->boundary = 1;
             break;
         }
-        double alpha = rr / dHd;
+        double alpha = rz / dHd;
         /* would leave the region: stop on the boundary */
         double ss = sb_dot(n, s, s), sd = sb_dot(n, s, d), dd = sb_dot(n, d, d);
         if (ss + 2 * alpha * sd + alpha * alpha * dd >= delta * delta) {
@@ -245,10 +401,12 @@ static int stcg_solve(void *st, sb_problem *p, int level, const double *g, doubl
         }
         sb_axpy(n, alpha, d, s);
         sb_axpy(n, alpha, Hd, r);
-        double rr1 = sb_dot(n, r, r);
-        double beta = rr1 / rr;
-        rr = rr1;
-        for (int i = 0; i < n; i++) d[i] = -r[i] + beta * d[i];
+        rr = sb_dot(n, r, r);
+        stcg_apply(c, r, z);
+        double rz1 = sb_dot(n, r, z);
+        double beta = rz1 / rz;
+        rz = rz1;
+        for (int i = 0; i < n; i++) d[i] = -z[i] + beta * d[i];
     }
     sb_problem_count_cg(p, level, it);
     res->iters = it;
@@ -263,6 +421,11 @@ const sb_trs_type sb_trs_stcg = { "stcg", sizeof(stcg_state), stcg_alloc, stcg_f
 void sb_trs_set_shift_indefinite(sb_trs *t, int on)
 {
     if (t->type == &sb_trs_dogleg && t->state) ((dogleg_state *)t->state)->shift_indefinite = on;
+}
+
+void sb_trs_set_cg_precond(sb_trs *t, int on)
+{
+    if (t->type == &sb_trs_stcg && t->state) ((stcg_state *)t->state)->precond = on;
 }
 
 void sb_trs_set_cg_rtol(sb_trs *t, double rtol)

@@ -30,6 +30,7 @@ extern const sb_trs_type sb_trs_stcg;     /* Steihaug–Toint truncated CG */
 
 extern const char *const sb_trs_names[];  /* "dogleg", "stcg", NULL */
 extern const char *const sb_trs_indefinite_names[];  /* "cauchy", "shift", NULL */
+extern const char *const sb_trs_precond_names[];  /* ST-CG preconditioners, indexed as sb_trs_set_cg_precond */
 const sb_trs_type *sb_trs_by_index(int i);
 
 /* A TRS instance: type + state. */
@@ -43,6 +44,10 @@ int  sb_trs_alloc(sb_trs *t, const sb_trs_type *type, int n);
  * forcing term min(0.5, sqrt||g||) of inexact Newton methods; rtol >= 0 stops
  * at ||r|| <= rtol ||g|| (0: run all max_iter iterations, as a smoother). */
 void sb_trs_set_cg_rtol(sb_trs *t, double rtol);
+/* Preconditioner of Steihaug–Toint CG (index into sb_trs_precond_names): 0
+ * none, 1 Jacobi, 2 node-block Jacobi, 3 symmetric block Gauss–Seidel, 4
+ * additive Schwarz on element patches.  The trust region stays Euclidean. */
+void sb_trs_set_cg_precond(sb_trs *t, int precond);
 /* Dogleg on an indefinite H: 0 (default, paper) Cauchy point; 1 Newton point
  * of a shifted, positive definite H + tau I. */
 void sb_trs_set_shift_indefinite(sb_trs *t, int on);

@@ -19,6 +19,7 @@ static const sb_param_def tr_params[] = {
     { "trs", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_names, "subproblem solver (RMTR paper §7.3: dogleg)" },
     { "indefinite", SB_PARAM_CHOICE, 1, 0, 0, sb_trs_indefinite_names,
       "dogleg on an indefinite Hessian: shift (Newton point of H + tau I) or cauchy (the paper's configuration)" },
+    { "cg_precond", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_precond_names, "Steihaug–Toint CG preconditioner (trs = stcg)" },
     { "cg_max_iter", SB_PARAM_INT, 0, 0, 1e9, NULL, "Steihaug–Toint CG iteration cap (0 = n)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
@@ -51,7 +52,10 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     t->xt = malloc((size_t)t->n * sizeof(double));
     if (!t->g || !t->gt || !t->s || !t->xt) return SB_ERR_NOMEM;
     int rc = sb_trs_alloc(&t->trs, sb_trs_by_index(sb_param_int(ps, "solver.trs")), t->n);
-    if (rc == SB_OK) sb_trs_set_shift_indefinite(&t->trs, sb_param_int(ps, "solver.indefinite"));
+    if (rc == SB_OK) {
+        sb_trs_set_shift_indefinite(&t->trs, sb_param_int(ps, "solver.indefinite"));
+        sb_trs_set_cg_precond(&t->trs, sb_param_int(ps, "solver.cg_precond"));
+    }
     return rc;
 }
 
