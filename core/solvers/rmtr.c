@@ -58,7 +58,7 @@ static const sb_param_def rmtr_params[] = {
 
 typedef struct rlevel {
     int n;
-    double *x0, *x, *g, *dg, *s, *xt, *tmp;
+    double *x0, *x, *g, *dg, *s, *xt, *tmp, *gt;
     double f;            /* h^l(x) */
     double delta;
     double cnorm;        /* c_l: norm scaling of the level to the finest space */
@@ -87,7 +87,7 @@ static void rmtr_free(void *st)
     free(R->fb);
     for (int l = 0; l < R->nl; l++) {
         rlevel *V = &R->lv[l];
-        free(V->x0); free(V->x); free(V->g); free(V->dg); free(V->s); free(V->xt); free(V->tmp);
+        free(V->x0); free(V->x); free(V->g); free(V->dg); free(V->s); free(V->xt); free(V->tmp); free(V->gt);
         sb_trs_free(&V->trs);
     }
 }
@@ -177,8 +177,8 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         V->n = sb_problem_n(p, l);
         size_t b = (size_t)V->n * sizeof(double);
         V->x0 = malloc(b); V->x = malloc(b); V->g = malloc(b); V->dg = calloc(1, b);
-        V->s = malloc(b); V->xt = malloc(b); V->tmp = malloc(b);
-        if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp) return SB_ERR_NOMEM;
+        V->s = malloc(b); V->xt = malloc(b); V->tmp = malloc(b); V->gt = malloc(b);
+        if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp || !V->gt) return SB_ERR_NOMEM;
         int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
         if (rc) return rc;
         sb_trs_set_cg_rtol(&V->trs, sb_param(ps, "solver.smoother_rtol"));
@@ -237,6 +237,20 @@ static int radius_update(rmtr_state *R, sb_problem *p, int l, double rho, double
     return SB_OK;
 }
 
+/* rho of the trial point V->xt = V->x + V->s with h^l(xt) = ft and predicted
+ * reduction pred (Eq. 4.2 / 4.11); from gradients when f - ft is round-off */
+static int trial_ratio(rmtr_state *R, sb_problem *p, int l, int trial_rc, double ft, double pred, double *rho)
+{
+    rlevel *V = &R->lv[l];
+    *rho = sb_tr_ratio(trial_rc, V->f, ft, pred);
+    if (trial_rc != SB_OK || !sb_tr_ared_unreliable(V->f, ft, pred)) return SB_OK;
+    double f2;
+    int rc = h_eval(R, p, l, V->xt, &f2, V->gt, 0);
+    if (rc < 0) return rc;
+    *rho = rc == SB_OK ? sb_tr_ratio_grad(V->n, V->g, V->gt, V->s, pred) : -INFINITY;
+    return SB_OK;
+}
+
 /* Local_TR (Alg. 4.1) with mu steps on level l; bound = Delta^{l+1} */
 static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, int *lin_iters)
 {
@@ -273,7 +287,8 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
         double ft;
         rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
         if (rc < 0) return rc;
-        double rho = sb_tr_ratio(rc, V->f, ft, tr.pred);
+        double rho;
+        if ((rc = trial_ratio(R, p, l, rc, ft, tr.pred, &rho))) return rc;
         if (rho > R->eta1) {
             sb_copy(V->n, V->xt, V->x);
             rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
@@ -345,7 +360,8 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
         if (rc < 0) return rc;
         /* line 6: multilevel ratio (Eq. 4.11) */
-        double rho = sb_tr_ratio(rc, V->f, ft, cred);
+        double rho;
+        if ((rc = trial_ratio(R, p, l, rc, ft, cred, &rho))) return rc;
         if (rho > R->eta1) {                    /* lines 7-8 */
             sb_copy(V->n, V->xt, V->x);
             rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);

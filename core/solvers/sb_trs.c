@@ -56,6 +56,18 @@ double sb_tr_ratio(int trial_status, double f, double f_trial, double pred)
     return ared / pred;
 }
 
+int sb_tr_ared_unreliable(double f, double f_trial, double pred)
+{
+    return isfinite(f_trial) && pred > 0.0 && pred <= 1e4 * DBL_EPSILON * fmax(fabs(f), fabs(f_trial));
+}
+
+double sb_tr_ratio_grad(int n, const double *g, const double *g_trial, const double *s, double pred)
+{
+    if (!(pred > 0.0) || !sb_all_finite(n, g_trial)) return -INFINITY;
+    double ared = -0.5 * (sb_dot(n, g, s) + sb_dot(n, g_trial, s));
+    return ared / pred;
+}
+
 /* Step to the boundary: largest tau >= 0 with ||z + tau d|| = delta. */
 static double to_boundary(int n, const double *z, const double *d, double delta)
 {

@@ -63,4 +63,14 @@ int  sb_trs_solve(sb_trs *t, sb_problem *p, int level, const double *g, double d
  * §17.4.2): otherwise the radius collapses at the limiting accuracy. */
 double sb_tr_ratio(int trial_status, double f, double f_trial, double pred);
 
+/* Near the limiting accuracy the difference f - f_trial is mostly round-off
+ * (an energy summed over thousands of elements carries far more than the
+ * 100 eps |f| above).  When the predicted reduction is below 1e4 eps |f|
+ * (sb_tr_ared_unreliable), the actual reduction is taken from gradients,
+ * ared = -(g + g_trial)^T s / 2 (trapezoid rule, exact for a quadratic, error
+ * O(||s||^3); Conn, Gould & Toint, Trust-Region Methods, §17.4.2), and
+ * sb_tr_ratio_grad returns ared / pred. */
+int sb_tr_ared_unreliable(double f, double f_trial, double pred);
+double sb_tr_ratio_grad(int n, const double *g, const double *g_trial, const double *s, double pred);
+
 #endif
