@@ -65,6 +65,9 @@ typedef struct sb_denim_params {
     int d[4];
     double mu[4][SB_DENIM_MAX_TERMS];
     double alpha[4][SB_DENIM_MAX_TERMS];
+    /* beyond the fitted range (README "Denim beyond the fit"): 0 extend each
+     * phi_j linearly past the maximum of phi_j' (default), 1 inadmissible (NaN) */
+    int beyond_fit;
 } sb_denim_params;
 
 typedef struct sb_material_spec {

@@ -113,7 +113,8 @@ static int parse_terms(sbj_ctx *c, const json_t *mat, const char *key, const int
 static int parse_denim(sbj_ctx *c, const json_t *mat, sb_material_spec *m)
 {
     static const char *const keys[] = { "model", "thickness", "density", "warp_angle", "k", "d",
-                                        "mu", "alpha", NULL };
+                                        "mu", "alpha", "beyond_fit", NULL };
+    static const char *const beyond[] = { "extend", "inadmissible", NULL };
     sb_denim_params *p = &m->denim;
     double k[4], dd[4];
     int kg[4], dg[4], mug[4][SB_DENIM_MAX_TERMS] = { { 0 } }, alg[4][SB_DENIM_MAX_TERMS] = { { 0 } };
@@ -133,6 +134,8 @@ static int parse_denim(sbj_ctx *c, const json_t *mat, sb_material_spec *m)
     }
     if ((r = parse_terms(c, mat, "mu", p->d, p->mu, mug))) return r;
     if ((r = parse_terms(c, mat, "alpha", p->d, p->alpha, alg))) return r;
+    if (json_object_get(mat, "beyond_fit") && (r = sbj_get_choice(c, mat, "beyond_fit", 0, beyond, &p->beyond_fit)))
+        return r;
     for (int j = 0; j < 4; j++) {
         /* ASSUMPTION (Table 1 omits mu_j1): mu_j1 = 1 - sum_{i>=2} mu_ji
          * (phi_j'(0) = 1, RMTR Eq. 3.4) unless the scene gives mu_j1. */

@@ -231,10 +231,12 @@ SB_TEST(denim_nonfinite_guards)
     /* phi_2 = u is defined everywhere: E11 E22 < -1 stays finite with Table 1 */
     const double neg[3] = { 2.0, -0.6, 0.0 };
     CHECK(isfinite(sb_denim_phi(&m.denim, 1, neg[0] * neg[1], NULL, NULL)));
-    /* a user law with alpha_21 != 1 is outside its domain for u <= -1: NaN */
+    /* a user law with alpha_21 != 1 is outside its domain for u <= -1: NaN
+     * when states beyond the fit are inadmissible ... */
     sb_material_spec sp;
     sb_material_spec_denim(&sp);
     sp.denim.alpha[1][0] = 2.0;
+    sp.denim.beyond_fit = 1;
     sb_material m2;
     CHECK_EQ_INT(sb_material_init(&m2, &sp, 0), SB_OK);
     CHECK(isnan(sb_material_psi(&m2, neg, d, H)));
@@ -242,13 +244,21 @@ SB_TEST(denim_nonfinite_guards)
     /* ... and fine inside it */
     const double ok[3] = { 0.1, -0.05, 0.0 };
     CHECK(isfinite(sb_material_psi(&m2, ok, d, H)));
+    /* the default continuation makes it finite there too */
+    sp.denim.beyond_fit = 0;
+    CHECK_EQ_INT(sb_material_init(&m2, &sp, 0), SB_OK);
+    CHECK(isfinite(sb_material_psi(&m2, neg, d, H)) && isfinite(d[0]) && isfinite(H[0]));
 }
 
 /* Table 1's weft law phi_3 loses monotonicity at u ~ 0.1025 and is unbounded
  * below beyond: such states are inadmissible (NaN energy), see sb_material.c */
 SB_TEST(denim_admissible_range)
 {
-    sb_material m = denim(0);
+    sb_material_spec sp;
+    sb_material_spec_denim(&sp);
+    sp.denim.beyond_fit = 1;     /* "inadmissible" */
+    sb_material m;
+    CHECK_EQ_INT(sb_material_init(&m, &sp, 0), SB_OK);
     CHECK(m.denim_u_max[2] > 0.09 && m.denim_u_max[2] < 0.11);
     double d1, d2;
     /* phi_3' > 0 just inside, <= 0 just outside */
@@ -263,6 +273,48 @@ SB_TEST(denim_admissible_range)
     CHECK(sb_denim_phi(&m.denim, 2, 0.36, NULL, NULL) < -1e3);
     /* the linear mixed law and the monotone warp / shear laws have no bound within reach */
     CHECK(!isfinite(m.denim_u_max[1]) && m.denim_u_max[0] > 1.0 && m.denim_u_max[3] > 1.0);
+}
+
+/* Default (beyond_fit = extend): past the peak of phi_3' (u_join < u_max)
+ * phi_3 continues linearly, so psi is finite, C^1, increasing and convex in
+ * E22 beyond the fit, with correct derivatives there, and unchanged inside. */
+SB_TEST(denim_continuation_beyond_fit)
+{
+    sb_material m = denim(0);
+    sb_material_spec sp;
+    sb_material_spec_denim(&sp);
+    sp.denim.beyond_fit = 1;
+    sb_material mi;
+    CHECK_EQ_INT(sb_material_init(&mi, &sp, 0), SB_OK);
+    const double uj = m.denim_join_hi[2], um = m.denim_u_max[2];
+    CHECK(uj > 0.5 * um && uj < um);
+    /* phi_3' peaks at the join: phi_3'' = 0 there (C^2 join) */
+    double d1, d2;
+    sb_denim_phi(&m.denim, 2, uj, &d1, &d2);
+    CHECK(d1 > 0 && fabs(d2) < 1e-6 * d1 / uj);
+    /* unchanged inside the fit below the join */
+    const double e_in[3] = { 0.01, 0.9 * sqrt(uj), 0.02 };
+    double da[3], db[3];
+    CHECK_NEAR(sb_material_psi(&m, e_in, da, NULL), sb_material_psi(&mi, e_in, db, NULL), 0.0);
+    /* finite, increasing and convex in E22 far beyond u_max */
+    double prev = -INFINITY, prev_slope = -INFINITY;
+    for (int k = 0; k < 40; k++) {
+        const double e22 = 0.9 * sqrt(uj) + 0.02 * k, e[3] = { 0.0, e22, 0.0 };
+        double d[3], H[9];
+        double f = sb_material_psi(&m, e, d, H);
+        CHECK(isfinite(f) && f > prev && d[1] > prev_slope && H[4] > 0);
+        prev = f;
+        prev_slope = d[1];
+    }
+    /* C^1 across the join, and the FD checks on both sides and beyond u_max */
+    const double ej = sqrt(uj), lo[3] = { 0.0, ej - 1e-7, 0.0 }, hi[3] = { 0.0, ej + 1e-7, 0.0 };
+    double fl = sb_material_psi(&m, lo, da, NULL), fh = sb_material_psi(&m, hi, db, NULL);
+    /* no jump: the difference across 2e-7 is the slope times 2e-7 */
+    CHECK(fabs((fh - fl) - 0.5 * (da[1] + db[1]) * 2e-7) < 1e-3 * fabs(da[1]) * 2e-7);
+    CHECK(fabs(db[1] - da[1]) < 1e-5 * fabs(da[1]));
+    const double e_beyond[3] = { 0.003, 1.3 * sqrt(um), 0.002 }, e_join[3] = { 0.001, 1.05 * ej, -0.002 };
+    check_fd_rates(T, &m, e_beyond, 1e-4, 1e-8, 1e-6);
+    check_fd_rates(T, &m, e_join, 1e-4, 1e-8, 1e-6);
 }
 
 SB_TEST(init_rejects_bad_input)
@@ -421,7 +473,7 @@ static const sb_test_case cases[] = {
     SB_CASE(denim_small_strain_is_linear_orthotropic),
     SB_CASE(denim_fd_derivatives),
     SB_CASE(denim_nonfinite_guards),
-    SB_CASE(denim_admissible_range), SB_CASE(init_rejects_bad_input),
+    SB_CASE(denim_admissible_range), SB_CASE(denim_continuation_beyond_fit), SB_CASE(init_rejects_bad_input),
     SB_CASE(gauss_rules),
     SB_CASE(denim_thickness_convergence),
     SB_END

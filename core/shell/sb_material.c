@@ -371,6 +371,28 @@ static double first_nonmonotone(const sb_material *m, int j, double dir, double 
     return dir * INFINITY;
 }
 
+/* Where phi_j' is largest on the admissible side [0, bound] (bound finite):
+ * scanned on a grid, an interior maximum refined by bisection on phi_j'' = 0. */
+static double argmax_slope(const sb_material *m, int j, double bound)
+{
+    const int n = 2000;
+    int kbest = 0;
+    double best = phi_prime(m, j, 0.0);
+    for (int k = 1; k < n; k++) {
+        double d = phi_prime(m, j, bound * k / n);
+        if (d > best) { best = d; kbest = k; }
+    }
+    if (kbest == 0) return 0.0;
+    double lo = bound * (kbest - 1) / n, hi = bound * (kbest + 1) / n;   /* phi' rises at lo, falls at hi */
+    for (int it = 0; it < 60; it++) {
+        double mid = 0.5 * (lo + hi), d1, d2;
+        phi_fast(m, j, mid, &d1, &d2);
+        if ((d2 > 0.0) == (bound > 0.0)) lo = mid;
+        else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 static void denim_admissible_range(sb_material *m, int j)
 {
     m->denim_u_max[j] = first_nonmonotone(m, j, 1.0, 100.0);
@@ -380,6 +402,36 @@ static void denim_admissible_range(sb_material *m, int j)
         m->denim_u_max[j] = INFINITY;
         m->denim_u_min[j] = -INFINITY;
     }
+    /* Continuation beyond the fit (ASSUMPTION, the paper is silent): past the
+     * point where phi_j' peaks inside the admissible range, phi_j continues
+     * linearly with that peak slope.  The join is C^2 at an interior peak
+     * (phi_j'' = 0 there), each term k_j/2 phi_j(E^2) stays convex in E, and the
+     * energy is bounded below, so every configuration has a finite energy —
+     * a coarse level of a multilevel hierarchy or a far trial point included —
+     * while states inside the fit up to the peak are unchanged. */
+    double d2;
+    m->denim_join_hi[j] = isfinite(m->denim_u_max[j]) ? argmax_slope(m, j, m->denim_u_max[j]) : INFINITY;
+    m->denim_join_lo[j] = j == 1 && isfinite(m->denim_u_min[j]) ? argmax_slope(m, j, m->denim_u_min[j]) : -INFINITY;
+    if (isfinite(m->denim_join_hi[j]))
+        m->denim_fj_hi[j] = phi_fast(m, j, m->denim_join_hi[j], &m->denim_gj_hi[j], &d2);
+    if (isfinite(m->denim_join_lo[j]))
+        m->denim_fj_lo[j] = phi_fast(m, j, m->denim_join_lo[j], &m->denim_gj_lo[j], &d2);
+}
+
+/* phi_j with the continuation beyond the fit (see denim_admissible_range) */
+static inline double phi_cont(const sb_material *m, int j, double u, double *d1, double *d2)
+{
+    if (u > m->denim_join_hi[j]) {
+        *d1 = m->denim_gj_hi[j];
+        *d2 = 0.0;
+        return m->denim_fj_hi[j] + m->denim_gj_hi[j] * (u - m->denim_join_hi[j]);
+    }
+    if (u < m->denim_join_lo[j]) {
+        *d1 = m->denim_gj_lo[j];
+        *d2 = 0.0;
+        return m->denim_fj_lo[j] + m->denim_gj_lo[j] * (u - m->denim_join_lo[j]);
+    }
+    return phi_fast(m, j, u, d1, d2);
 }
 
 /* RMTR paper Eq. (3.3):
@@ -392,17 +444,26 @@ static double denim_psi(const sb_material *m, const double e[3], double *dpsi, d
     double g1, g2, g3, g4, h1, h2, h3, h4;
     const double e0 = e[0], e1 = e[1], e2 = e[2];
     const double u1 = e0 * e0, u2 = e0 * e1, u3 = e1 * e1, u4 = e2 * e2;
-    if (u1 > m->denim_u_max[0] || u2 > m->denim_u_max[1] || u2 < m->denim_u_min[1] || u3 > m->denim_u_max[2] ||
-        u4 > m->denim_u_max[3]) {
+    if (m->denim.beyond_fit &&
+        (u1 > m->denim_u_max[0] || u2 > m->denim_u_max[1] || u2 < m->denim_u_min[1] || u3 > m->denim_u_max[2] ||
+         u4 > m->denim_u_max[3])) {
         /* outside the admissible range (see denim_admissible_range) */
         if (dpsi) dpsi[0] = dpsi[1] = dpsi[2] = NAN;
         if (d2psi) for (int i = 0; i < 9; i++) d2psi[i] = NAN;
         return NAN;
     }
-    const double f1 = phi_fast(m, 0, u1, &g1, &h1);
-    const double f2 = phi_fast(m, 1, u2, &g2, &h2);
-    const double f3 = phi_fast(m, 2, u3, &g3, &h3);
-    const double f4 = phi_fast(m, 3, u4, &g4, &h4);
+    double f1, f2, f3, f4;
+    if (m->denim.beyond_fit) {
+        f1 = phi_fast(m, 0, u1, &g1, &h1);
+        f2 = phi_fast(m, 1, u2, &g2, &h2);
+        f3 = phi_fast(m, 2, u3, &g3, &h3);
+        f4 = phi_fast(m, 3, u4, &g4, &h4);
+    } else {
+        f1 = phi_cont(m, 0, u1, &g1, &h1);
+        f2 = phi_cont(m, 1, u2, &g2, &h2);
+        f3 = phi_cont(m, 2, u3, &g3, &h3);
+        f4 = phi_cont(m, 3, u4, &g4, &h4);
+    }
     if (dpsi) {
         dpsi[0] = k[0] * g1 * e0 + k[1] * g2 * e1;
         dpsi[1] = k[1] * g2 * e0 + k[2] * g3 * e1;

@@ -26,6 +26,11 @@ typedef struct sb_material {
     /* admissible range of each phi_j argument: [u_min, u_max] up to the first
      * loss of monotonicity of phi_j (see sb_material.c, denim_admissible_range) */
     double denim_u_min[4], denim_u_max[4];
+    /* continuation beyond the fit (beyond_fit = extend): past u_join_hi (below
+     * u_join_lo) phi_j is continued linearly from its value f_join and slope
+     * g_join there (the maximum of phi_j' inside the admissible range) */
+    double denim_join_hi[4], denim_join_lo[4];
+    double denim_fj_hi[4], denim_gj_hi[4], denim_fj_lo[4], denim_gj_lo[4];
 } sb_material;
 
 /* RMTR paper Table 1 denim parameters (k converted from MPa to Pa), with the

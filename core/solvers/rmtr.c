@@ -60,6 +60,7 @@ typedef struct rlevel {
     int n;
     double *x0, *x, *g, *dg, *s, *xt, *tmp, *gt;
     double f;            /* h^l(x) */
+    double ared_sum;     /* h^l(x0) - h^l(x): sum of the accepted steps' actual reductions */
     double delta;
     double cnorm;        /* c_l: norm scaling of the level to the finest space */
     sb_trs trs;
@@ -290,6 +291,7 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
         double rho;
         if ((rc = trial_ratio(R, p, l, rc, ft, tr.pred, &rho))) return rc;
         if (rho > R->eta1) {
+            V->ared_sum += rho * tr.pred;      /* = f - ft when that difference is reliable */
             sb_copy(V->n, V->xt, V->x);
             rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
             if (rc < 0) return rc;
@@ -310,6 +312,7 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
     rlevel *V = &R->lv[l];
     int rc;
     sb_copy(V->n, V->x0, V->x);
+    V->ared_sum = 0.0;
     if (l < R->L) {
         /* line 1: dg = R g^{l+1} - grad f^l(x0) (Eq. 4.4) */
         memset(V->dg, 0, (size_t)V->n * sizeof(double));
@@ -344,14 +347,15 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         /* R grad h^l goes to C->xt: read only at the coarse level's entry */
         if ((rc = sb_problem_restrict(p, l - 1, V->g, C->xt))) return rc;
         C->delta = V->delta;
-        double hc0;
         rc = rmtr_level(R, p, l - 1, C->xt, V->delta, lin_iters, accepted_coarse);
         if (rc == COARSE_UNUSABLE) goto post_smoothing;
         if (rc) return rc;
-        /* coarse reduction h^{l-1}(x0) - h^{l-1}(x_end); h^{l-1}(x0) = f^{l-1}(x0) */
-        rc = h_eval(R, p, l - 1, C->x0, &hc0, NULL, 0);
-        if (rc < 0) return rc;
-        double cred = hc0 - C->f;
+        /* coarse reduction h^{l-1}(x0) - h^{l-1}(x_end) (denominator of Eq. 4.11),
+         * summed over the coarse level's accepted steps: the same telescoping
+         * sum as the difference of the end values, but each term is the step's
+         * own actual reduction — from gradients where f - f_trial is round-off
+         * (sb_tr_ared_unreliable) — so it stays meaningful near the solution */
+        double cred = C->ared_sum;
         /* line 5: prolongate the correction (Eq. 4.10) */
         for (int i = 0; i < C->n; i++) C->tmp[i] = C->x[i] - C->x0[i];
         if ((rc = sb_problem_prolong(p, l - 1, C->tmp, V->s))) return rc;
@@ -363,6 +367,7 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         double rho;
         if ((rc = trial_ratio(R, p, l, rc, ft, cred, &rho))) return rc;
         if (rho > R->eta1) {                    /* lines 7-8 */
+            V->ared_sum += rho * cred;
             sb_copy(V->n, V->xt, V->x);
             rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
             if (rc < 0) return rc;
