@@ -14,6 +14,7 @@ static const char *const reason_names[SB_REASON_COUNT] = {
     [SB_REASON_LINESEARCH] = "line_search_failed",
     [SB_REASON_RADIUS] = "radius_collapsed",
     [SB_REASON_LINEAR_SOLVER] = "linear_solver_failed",
+    [SB_REASON_STALLED] = "stalled",
 };
 
 const char *sb_reason_name(sb_reason r)

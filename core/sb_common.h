@@ -36,6 +36,9 @@ typedef enum {
     SB_REASON_LINESEARCH,    /* line search could not find sufficient decrease */
     SB_REASON_RADIUS,        /* trust-region radius collapsed below delta_min */
     SB_REASON_LINEAR_SOLVER, /* linear solver failed beyond recovery */
+    SB_REASON_STALLED,       /* run.stall_iter iterations in a row with accepted steps below
+                                xtol changing f by less than ftol (or rejections with a radius
+                                below xtol): the limiting accuracy; NOT counted as converged */
     SB_REASON_COUNT
 } sb_reason;
 

@@ -244,6 +244,26 @@ SB_TEST(preconditioned_stcg_reaches_newton_step)
     sb_context_free(&ctx);
 }
 
+/* A tolerance below the attainable accuracy: both solvers stop as "stalled"
+ * (not converged) within a few iterations of reaching round-off, instead of
+ * running to the cap while the radius collapses. */
+SB_TEST(stalled_at_limiting_accuracy)
+{
+    static const char *const sets[] = { "run.gtol=1e-30", "run.gtol_rel=0", "run.max_iter=3000" };
+    const char *solvers[] = { "tr", "rmtr" };
+    for (int k = 0; k < 2; k++) {
+        int ec;
+        json_t *r = run(solvers[k], k == 0 ? 1 : 3, 3, sets, &ec);
+        CHECK(r != NULL);
+        if (!r) continue;
+        CHECK_EQ_INT(ec, 1);
+        const char *why = json_string_value(json_object_get(r, "reason"));
+        CHECK_MSG(why && !strcmp(why, "stalled"), "%s stopped for %s", solvers[k], why ? why : "(none)");
+        CHECK_MSG(num(r, "iterations", NULL) < 1000, "%s: %g iterations", solvers[k], num(r, "iterations", NULL));
+        json_decref(r);
+    }
+}
+
 SB_TEST(rmtr_refused_without_hierarchy)
 {
     int ec;
@@ -257,7 +277,8 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = {
         SB_CASE(rmtr_converges_and_matches_tr), SB_CASE(first_order_consistency),
         SB_CASE(rmtr_refused_without_hierarchy), SB_CASE(rmtr_trampoline_subdivision),
-        SB_CASE(rmtr_smoother_preconditioners), SB_CASE(preconditioned_stcg_reaches_newton_step), SB_END,
+        SB_CASE(rmtr_smoother_preconditioners), SB_CASE(preconditioned_stcg_reaches_newton_step),
+        SB_CASE(stalled_at_limiting_accuracy), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }

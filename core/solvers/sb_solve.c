@@ -15,6 +15,9 @@ const sb_param_def sb_solve_params[] = {
     { "xtol", SB_PARAM_REAL, 1e-12, 0, 1e10, NULL, "||x_{i-1} - x_i|| < xtol once Delta > delta_big (Eq. 7.1)" },
     { "delta_big", SB_PARAM_REAL, 1e15, 0, 1e300, NULL,
       "radius above which the f/x tests of Eq. 7.1 apply (Newton solvers: after full unshifted steps)" },
+    { "stall_iter", SB_PARAM_INT, 10, 0, 1e9, NULL,
+      "stop (reason stalled, not converged) after this many iterations in a row that accepted a step below xtol "
+      "changing f by less than ftol, or rejected one with a radius below xtol (0 = never)" },
     { "max_iter", SB_PARAM_INT, 10000, 1, 1e9, NULL, "iteration cap per step" },
     { "diverge", SB_PARAM_REAL, 1e6, 1, 1e300, NULL,
       "diverged when max|x - x_0| exceeds diverge * (1 + max|x_0|)" },
@@ -41,7 +44,8 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
     const double gtol = sb_param(ps, "run.gtol"), gtol_rel = sb_param(ps, "run.gtol_rel");
     const double ftol = sb_param(ps, "run.ftol"), xtol = sb_param(ps, "run.xtol");
     const double delta_big = sb_param(ps, "run.delta_big"), diverge = sb_param(ps, "run.diverge");
-    const int max_iter = sb_param_int(ps, "run.max_iter");
+    const int max_iter = sb_param_int(ps, "run.max_iter"), stall_iter = sb_param_int(ps, "run.stall_iter");
+    int stalled = 0;
 
     double *x0 = malloc((size_t)n * sizeof *x0);
     if (!x0) return SB_REASON_LINEAR_SOLVER;
@@ -80,6 +84,13 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
             /* Newton solvers report delta = inf for a full unshifted Newton step */
             if (fabs(info.df) < ftol) reason = SB_REASON_F_TOL;
             else if (info.step_norm < xtol) reason = SB_REASON_X_TOL;
+        }
+        if (!reason) {
+            /* the limiting accuracy: steps and changes of f at round-off while the
+             * radius shrinks (Eq. 7.1's f/x tests need a big radius) */
+            const int tiny = info.accepted ? info.step_norm < xtol && fabs(info.df) < ftol : info.delta < xtol;
+            stalled = tiny ? stalled + 1 : 0;
+            if (stall_iter > 0 && stalled >= stall_iter) reason = SB_REASON_STALLED;
         }
         sb_iter_record r = { step, it, info.level, info.f, info.gnorm, info.delta, info.rho, info.step_norm,
                              info.shift, info.accepted, info.linear_iters, reason };
