@@ -178,6 +178,17 @@ SB_TEST(gradient_and_hessian_by_fd)
     fd_check(T, &sc, 8, 2, 0, 5e-3);
     make_scene(&sc, SC_LSHAPE, 1);
     fd_check(T, &sc, 8, 2, 1, 2e-3);
+    /* clamped (left, bottom) and symmetry (right, normal e_x) edges: the slope penalty */
+    make_scene(&sc, SC_TRAMPOLINE, 1);
+    sc.bcs[0].kind = SB_BC_CLAMPED;
+    sc.bcs[0].n_parts = 2;
+    sc.n_bcs = 2;
+    sc.bcs[1] = sc.bcs[0];
+    sc.bcs[1].kind = SB_BC_SYMMETRY;
+    sc.bcs[1].axis = 0;
+    sc.bcs[1].n_parts = 1;
+    sb_domain_edge_part(&sc.domain, "right", &sc.bcs[1].parts[0]);
+    fd_check(T, &sc, 8, 2, 1, 2e-3);
 }
 
 /* Rigid lift by dz of the reference: elastic energy 0, the edge penalty is
@@ -435,7 +446,8 @@ SB_TEST(bad_input)
     st = create(&sc, 4, 3, &rc);                   /* L-shape needs >= 2 coarse elements */
     CHECK(st == NULL && rc == SB_ERR_INPUT);
     make_scene(&sc, SC_TRAMPOLINE, 1);
-    sc.bcs[0].kind = SB_BC_CLAMPED;
+    sc.bcs[0].kind = SB_BC_MOVING;                 /* prescribed tangents: not by this method */
+    sc.bcs[0].clamp_tangent = 1;
     st = create(&sc, 4, 1, &rc);
     CHECK(st == NULL && rc == SB_ERR_UNSUPPORTED);
     make_scene(&sc, SC_TRAMPOLINE, 1);

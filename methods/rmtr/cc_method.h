@@ -31,7 +31,7 @@ void cc_quad_free(cc_quad *Q);
 sb_shell_basis cc_quad_basis(const cc_quad *Q, int e, int q);
 
 /* ---- boundary / load points (cc_penalty.c) ------------------------------ */
-enum { CC_PT_PENALTY = 0, CC_PT_LINE_LOAD = 1, CC_PT_POINT_LOAD = 2 };
+enum { CC_PT_PENALTY = 0, CC_PT_LINE_LOAD = 1, CC_PT_POINT_LOAD = 2, CC_PT_SLOPE = 3 };
 
 typedef struct cc_pt {
     int elem, kind, src;        /* element, CC_PT_*, scene bc / load index */
@@ -39,6 +39,7 @@ typedef struct cc_pt {
     double w;                   /* Gauss weight x reference arc length; 1 for a point */
     double X[3];                /* reference position x(xi) */
     double b[3];                /* penalty target b, or force density / force, at this step */
+    double n[3];                /* slope penalty: reference unit normal N */
     long off;                   /* basis values N_I (k of the element) at ptN[off] */
 } cc_pt;
 

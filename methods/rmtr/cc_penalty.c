@@ -15,8 +15,16 @@
  * Boundary data b (§6): recomputed on every level at every step from the
  * reference positions: fixed b = X, moving b = c + R(f angle)(X - c) + f t.
  * Line loads E = -int f . x ds, point loads E = -F . x(xi_p).
- * Clamped and symmetry conditions and end moments are not supported by this
- * method (error at creation). */
+ * Clamped and symmetry edges (ASSUMPTION, the paper penalizes positions
+ * only): besides the positions (all components for clamped, e_axis for
+ * symmetry) the rotation about the edge is penalized through the slope of the
+ * surface across the edge, theta = (dx/dc . N) / |dX/dc| with c the face
+ * parameter across the edge and N the reference unit normal (theta = 0 in the
+ * reference since dX/dc is tangent): E = beta_s/2 int theta^2 ds with
+ * beta_s = beta h^2, the position penalty scaled by the level's h^2 so that
+ * h theta and a displacement are penalized alike.  Linear in x, so the
+ * penalty's Hessian is constant.  Moving edges with prescribed tangents and
+ * end moments are not supported by this method (error at creation). */
 #include "cc_method.h"
 
 #include <math.h>
@@ -68,7 +76,8 @@ static void combine(const double *N, int k, const int *nd, const double *v, int 
         for (int c = 0; c < dim; c++) out[c] += N[a] * v[dim * nd[a] + c];
 }
 
-static int add_edge_part(const cc_state *S, const cc_level *L, const sb_part *part, cc_pt proto, ptbuf *B, cc_err *e)
+static int add_edge_part(const cc_state *S, const cc_level *L, const sb_part *part, cc_pt proto, int slope,
+                         ptbuf *B, cc_err *e)
 {
     const cc_mesh *m = L->mesh;
     const cc_quad *Q = &L->quad;
@@ -96,6 +105,21 @@ static int add_edge_part(const cc_state *S, const cc_level *L, const sb_part *pa
                 p.w = Q->gw[a] * sqrt(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]);
                 combine(W, kk, nd, L->X, 3, p.X);
                 if ((st = push(B, &p, kk, W))) return cc_fail(e, st, "out of memory (boundary points)");
+                if (!slope) continue;
+                /* the slope across the edge: derivative along the other face parameter */
+                const double *Wc = W + (k % 2 == 0 ? 2 : 1) * kk;
+                double C[3], Nr[3];
+                combine(Wc, kk, nd, L->X, 3, C);
+                Nr[0] = T[1] * C[2] - T[2] * C[1];
+                Nr[1] = T[2] * C[0] - T[0] * C[2];
+                Nr[2] = T[0] * C[1] - T[1] * C[0];
+                double nn = sqrt(Nr[0] * Nr[0] + Nr[1] * Nr[1] + Nr[2] * Nr[2]), cc = C[0] * C[0] + C[1] * C[1] + C[2] * C[2];
+                if (!(nn > 0 && cc > 0)) return cc_fail(e, SB_ERR_INPUT, "degenerate reference surface at a clamped edge");
+                cc_pt q = p;
+                q.kind = CC_PT_SLOPE;
+                q.w = p.w / cc;
+                for (int c = 0; c < 3; c++) q.n[c] = Nr[c] / nn;
+                if ((st = push(B, &q, kk, Wc))) return cc_fail(e, st, "out of memory (boundary points)");
             }
         }
     }
@@ -118,11 +142,12 @@ static int add_point_part(const cc_level *L, const sb_part *part, cc_pt proto, p
     return push(B, &p, k, W) ? cc_fail(e, SB_ERR_NOMEM, "out of memory (boundary points)") : SB_OK;
 }
 
-static int add_parts(const cc_state *S, const cc_level *L, int np, const sb_part *parts, cc_pt proto, ptbuf *B, cc_err *e)
+static int add_parts(const cc_state *S, const cc_level *L, int np, const sb_part *parts, cc_pt proto, int slope,
+                     ptbuf *B, cc_err *e)
 {
     for (int i = 0; i < np; i++) {
         int st = parts[i].kind == SB_PART_POINT ? add_point_part(L, &parts[i], proto, B, e)
-                                                : add_edge_part(S, L, &parts[i], proto, B, e);
+                                                : add_edge_part(S, L, &parts[i], proto, slope, B, e);
         if (st) return st;
     }
     return SB_OK;
@@ -141,10 +166,13 @@ int cc_points_build(cc_state *S, int l, cc_err *e)
         proto.src = b;
         proto.mask = bc->components ? bc->components : 7u;
         if (bc->kind == SB_BC_FREE) continue;
-        if (bc->kind == SB_BC_CLAMPED || bc->kind == SB_BC_SYMMETRY || (bc->kind == SB_BC_MOVING && bc->clamp_tangent))
-            st = cc_fail(e, SB_ERR_UNSUPPORTED, "boundary condition %d (clamped, symmetry or moving with tangents) is "
-                         "not supported by the rmtr penalty method (positions only, RMTR paper §7)", b);
-        else st = add_parts(S, L, bc->n_parts, bc->parts, proto, &B, e);
+        const int slope = bc->kind == SB_BC_CLAMPED || bc->kind == SB_BC_SYMMETRY;
+        if (bc->kind == SB_BC_CLAMPED) proto.mask = 7u;
+        if (bc->kind == SB_BC_SYMMETRY) proto.mask = 1u << bc->axis;
+        if (bc->kind == SB_BC_MOVING && bc->clamp_tangent)
+            st = cc_fail(e, SB_ERR_UNSUPPORTED, "boundary condition %d (moving with prescribed tangents) is "
+                         "not supported by the rmtr penalty method", b);
+        else st = add_parts(S, L, bc->n_parts, bc->parts, proto, slope, &B, e);
     }
     for (int i = 0; i < sc->n_loads && !st; i++) {
         const sb_load *ld = &sc->loads[i];
@@ -152,10 +180,10 @@ int cc_points_build(cc_state *S, int l, cc_err *e)
         proto.src = i;
         if (ld->kind == SB_LOAD_LINE) {
             proto.kind = CC_PT_LINE_LOAD;
-            st = add_parts(S, L, ld->n_parts, ld->parts, proto, &B, e);
+            st = add_parts(S, L, ld->n_parts, ld->parts, proto, 0, &B, e);
         } else if (ld->kind == SB_LOAD_POINT) {
             proto.kind = CC_PT_POINT_LOAD;
-            st = add_parts(S, L, ld->n_parts, ld->parts, proto, &B, e);
+            st = add_parts(S, L, ld->n_parts, ld->parts, proto, 0, &B, e);
         } else if (ld->kind == SB_LOAD_END_MOMENT) {
             st = cc_fail(e, SB_ERR_UNSUPPORTED, "load %d: end moments are not supported by the rmtr method", i);
         }
@@ -191,6 +219,7 @@ void cc_points_update(cc_state *S, int l)
     cc_level *L = &S->lv[l];
     for (int i = 0; i < L->npt; i++) {
         cc_pt *p = &L->pt[i];
+        if (p->kind == CC_PT_SLOPE) continue;   /* target slope 0, fixed */
         if (p->kind == CC_PT_PENALTY) {
             const sb_bc *bc = &sc->bcs[p->src];
             memcpy(p->b, p->X, sizeof p->b);
@@ -220,6 +249,21 @@ double cc_points_energy(const cc_state *S, const cc_level *L, int el, const doub
         double x[3] = { 0, 0, 0 };
         for (int a = 0; a < k; a++)
             for (int c = 0; c < 3; c++) x[c] += N[a] * qe[3 * a + c];
+        if (p->kind == CC_PT_SLOPE) {
+            /* x here is dx/dc; E = beta h^2 / 2 w (dx/dc . N)^2, w = weight / |dX/dc|^2 */
+            const double bw = L->beta * L->h * L->h * p->w;
+            const double th = x[0] * p->n[0] + x[1] * p->n[1] + x[2] * p->n[2];
+            E += 0.5 * bw * th * th;
+            if (ge)
+                for (int a = 0; a < k; a++)
+                    for (int c = 0; c < 3; c++) ge[3 * a + c] += bw * th * N[a] * p->n[c];
+            if (Ke)
+                for (int a = 0; a < k; a++)
+                    for (int b = 0; b < k; b++)
+                        for (int c = 0; c < 3; c++)
+                            for (int d = 0; d < 3; d++) Ke[(3 * a + c) * n + 3 * b + d] += bw * N[a] * N[b] * p->n[c] * p->n[d];
+            continue;
+        }
         if (p->kind == CC_PT_PENALTY) {
             double bw = L->beta * p->w;
             for (int c = 0; c < 3; c++) {
