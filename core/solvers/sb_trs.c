@@ -291,6 +291,10 @@ static void sgs_apply(const stcg_state *c, const double *r, double *z)
 static void stcg_apply(const stcg_state *c, const double *r, double *z)
 {
     const int n = c->n;
+    if (c->precond == 0) {
+        sb_copy(n, r, z);
+        return;
+    }
     if (c->precond == 3) {
         sgs_apply(c, r, z);
         return;
@@ -370,19 +374,21 @@ static void stcg_free(void *st)
 /* Steihaug (1983) / Toint (1981) truncated CG (Nocedal & Wright Alg. 7.2),
  * stopped at max_iter iterations (RMTR paper §7.3: 10 as a smoother), at
  * ||r|| <= min(0.5, sqrt||g||) ||g||, at negative curvature or at the
- * boundary.  Starts from s = 0, so the first iterate is the Cauchy point. */
+ * boundary.  Starts from s = 0, so without a preconditioner the first iterate
+ * is the Cauchy point.  With a preconditioner M (Steihaug's original form)
+ * the directions are M-conjugate; ASSUMPTION: the boundary test stays in the
+ * Euclidean norm the trust region and RMTR's level norms (Eq. 4.9) use, so
+ * ||s_k|| need not grow monotonically and the first crossing is taken. */
 static int stcg_solve(void *st, sb_problem *p, int level, const double *g, double delta, int fresh,
                       int max_iter, double *s, sb_trs_result *res)
 {
     stcg_state *c = st;
     const int n = c->n;
     double *r = c->r, *d = c->d, *Hd = c->Hd, *z = c->z;
-    if (c->precond) {
-        if (fresh) {
-            int rc = stcg_setup_precond(c, p, level);
-            if (rc) return rc;
-        }
-    } else for (int i = 0; i < n; i++) c->dinv[i] = 1.0;
+    if (c->precond && fresh) {
+        int rc = stcg_setup_precond(c, p, level);
+        if (rc) return rc;
+    }
     memset(s, 0, (size_t)n * sizeof *s);
     sb_copy(n, g, r);
     stcg_apply(c, r, z);
