@@ -143,45 +143,75 @@ SB_TEST(rmtr_smoother_preconditioners)
     json_decref(t);
 }
 
+/* One problem set up by hand (scene -> method -> problem), begun at step 1
+ * with load factor 1, so that a test can drive a solver or a subproblem
+ * directly; x0 is the step's start on the finest level. */
+typedef struct direct_problem {
+    sb_context ctx;
+    sb_scene sc;
+    const sb_method_type *mt;
+    void *ms;
+    sb_problem *p;
+    int n;
+    double *x, *v, *x0;
+} direct_problem;
+
+static int direct_open(sb_test_state *T, direct_problem *D, const char *scene_file, const sb_method_type *mt,
+                       int res, int levels, double dt)
+{
+    memset(D, 0, sizeof *D);
+    sb_context_init(&D->ctx);
+    char path[1024], err[1024];
+    snprintf(path, sizeof path, "%s/tests/scenes/%s", sb_test_root(), scene_file);
+    CHECK_EQ_INT(sb_scene_load(path, &D->sc, err, sizeof err), 0);
+    sb_paramset_add(&D->ctx.params, "run", sb_solve_params);
+    sb_paramset_add(&D->ctx.params, "solver", sb_solver_rmtr.params);
+    if (mt->params) sb_paramset_add(&D->ctx.params, "method", mt->params);
+    D->mt = mt;
+    D->ms = calloc(1, mt->state_size);
+    sb_method_config cfg = { res, levels, &D->ctx.params, &D->ctx };
+    CHECK_EQ_INT(mt->create(D->ms, &D->sc, &cfg), 0);
+    CHECK_EQ_INT(sb_problem_create(&D->ctx, mt, D->ms, &D->sc, &D->p), 0);
+    if (!D->p) return -1;
+    const int F = sb_problem_finest(D->p);
+    D->n = sb_problem_n(D->p, F);
+    D->x = malloc(D->n * sizeof(double));
+    D->v = calloc(D->n, sizeof(double));
+    D->x0 = malloc(D->n * sizeof(double));
+    mt->initial(D->ms, F, D->x);
+    sb_step_info si;
+    memset(&si, 0, sizeof si);
+    si.step = 1; si.n_steps = 1; si.dt = dt; si.t = dt; si.load_factor[0] = 1;
+    CHECK_EQ_INT(sb_problem_begin_step(D->p, &si, D->x, D->v, D->x0), 0);
+    return 0;
+}
+
+static void direct_close(direct_problem *D)
+{
+    sb_problem_free(D->p);
+    D->mt->destroy(D->ms);
+    free(D->ms); free(D->x); free(D->v); free(D->x0);
+    sb_scene_free(&D->sc);
+    sb_context_free(&D->ctx);
+}
+
 SB_TEST(first_order_consistency)
 {
     /* drive the solver directly to read its consistency record */
-    sb_context ctx;
-    sb_context_init(&ctx);
-    sb_scene sc;
-    char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/tests/scenes/membrane_dynamic.json", sb_test_root());
-    CHECK_EQ_INT(sb_scene_load(path, &sc, err, sizeof err), 0);
-    sb_paramset_add(&ctx.params, "run", sb_solve_params);
-    sb_paramset_add(&ctx.params, "solver", sb_solver_rmtr.params);
-    void *ms = calloc(1, sb_fixture_membrane.state_size);
-    sb_method_config cfg = { 8, 3, &ctx.params, &ctx };
-    CHECK_EQ_INT(sb_fixture_membrane.create(ms, &sc, &cfg), 0);
-    sb_problem *p;
-    CHECK_EQ_INT(sb_problem_create(&ctx, &sb_fixture_membrane, ms, &sc, &p), 0);
+    direct_problem D;
+    if (direct_open(T, &D, "membrane_dynamic.json", &sb_fixture_membrane, 8, 3, 0.1)) return;
     void *ss = calloc(1, sb_solver_rmtr.state_size);
-    CHECK_EQ_INT(sb_solver_rmtr.alloc(ss, p, &ctx.params), 0);
-    int n = sb_problem_n(p, 2);
-    double *x = malloc(n * sizeof(double)), *v = calloc(n, sizeof(double)), *x0 = malloc(n * sizeof(double));
-    sb_fixture_membrane.initial(ms, 2, x);
-    sb_step_info si;
-    memset(&si, 0, sizeof si);
-    si.step = 1; si.n_steps = 1; si.dt = 0.1; si.t = 0.1; si.load_factor[0] = 1;
-    CHECK_EQ_INT(sb_problem_begin_step(p, &si, x, v, x0), 0);
+    CHECK_EQ_INT(sb_solver_rmtr.alloc(ss, D.p, &D.ctx.params), 0);
     int it; double f, g;
-    sb_reason why = sb_solve_step(&sb_solver_rmtr, ss, p, &ctx.params, 1, x0, &it, &f, &g);
+    sb_reason why = sb_solve_step(&sb_solver_rmtr, ss, D.p, &D.ctx.params, 1, D.x0, &it, &f, &g);
     CHECK(sb_reason_converged(why));
     /* grad h^{l-1}(P x) = R grad h^l(x), measured on every level entry */
     CHECK_MSG(sb_rmtr_consistency_error(ss) < 1e-12, "consistency error %.3g", sb_rmtr_consistency_error(ss));
-    CHECK(ctx.stats.ev[0][SB_EV_QP].count > 0 && ctx.stats.ev[1][SB_EV_QP].count > 0);
-    CHECK(ctx.stats.ev[0][SB_EV_TRANSFER].count > 0);
+    CHECK(D.ctx.stats.ev[0][SB_EV_QP].count > 0 && D.ctx.stats.ev[1][SB_EV_QP].count > 0);
+    CHECK(D.ctx.stats.ev[0][SB_EV_TRANSFER].count > 0);
     sb_solver_rmtr.free(ss);
     free(ss);
-    sb_problem_free(p);
-    sb_fixture_membrane.destroy(ms);
-    free(ms); free(x); free(v); free(x0);
-    sb_scene_free(&sc);
-    sb_context_free(&ctx);
+    direct_close(&D);
 }
 
 /* Preconditioned Steihaug–Toint CG with an unbounded radius and a tight
@@ -190,31 +220,16 @@ SB_TEST(first_order_consistency)
  * Newton step -H^{-1} g of CHOLMOD, and the stronger ones in fewer iterations. */
 SB_TEST(preconditioned_stcg_reaches_newton_step)
 {
-    sb_context ctx;
-    sb_context_init(&ctx);
-    sb_scene sc;
-    char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/tests/scenes/trampoline_1step.json", sb_test_root());
-    CHECK_EQ_INT(sb_scene_load(path, &sc, err, sizeof err), 0);
     extern const sb_method_type sb_method_subdiv;
-    void *ms = calloc(1, sb_method_subdiv.state_size);
-    sb_paramset_add(&ctx.params, "method", sb_method_subdiv.params);
-    sb_method_config cfg = { 8, 1, &ctx.params, &ctx };
-    CHECK_EQ_INT(sb_method_subdiv.create(ms, &sc, &cfg), 0);
-    sb_problem *p;
-    CHECK_EQ_INT(sb_problem_create(&ctx, &sb_method_subdiv, ms, &sc, &p), 0);
-    const int n = sb_problem_n(p, 0);
-    double *x = malloc(n * sizeof(double)), *v = calloc(n, sizeof(double)), *x0 = malloc(n * sizeof(double));
+    direct_problem D;
+    if (direct_open(T, &D, "trampoline_1step.json", &sb_method_subdiv, 8, 1, 1.0)) return;
+    sb_problem *p = D.p;
+    const int n = D.n;
     double *g = malloc(n * sizeof(double)), *s = malloc(n * sizeof(double)), *sn = malloc(n * sizeof(double));
-    sb_method_subdiv.initial(ms, 0, x);
-    sb_step_info si;
-    memset(&si, 0, sizeof si);
-    si.step = 1; si.n_steps = 1; si.dt = 1.0; si.t = 1.0; si.load_factor[0] = 1;
-    CHECK_EQ_INT(sb_problem_begin_step(p, &si, x, v, x0), 0);
     /* a sagged point: a few millimetres down, so that H carries membrane stress */
-    for (int i = 2; i < n; i += 3) x0[i] -= 0.003;
+    for (int i = 2; i < n; i += 3) D.x0[i] -= 0.003;
     double f;
-    CHECK_EQ_INT(sb_problem_eval(p, 0, x0, &f, g, sb_problem_hessian(p, 0)), 0);
+    CHECK_EQ_INT(sb_problem_eval(p, 0, D.x0, &f, g, sb_problem_hessian(p, 0)), 0);
     CHECK_EQ_INT(sb_problem_factor(p, 0, 0.0), 0);
     for (int i = 0; i < n; i++) s[i] = -g[i];
     CHECK_EQ_INT(sb_problem_solve(p, 0, s, sn), 0);
@@ -237,11 +252,8 @@ SB_TEST(preconditioned_stcg_reaches_newton_step)
     }
     CHECK_MSG(iters[4] < iters[0] && iters[3] < iters[0], "CG iterations none %d, sgs %d, schwarz %d",
               iters[0], iters[3], iters[4]);
-    sb_problem_free(p);
-    sb_method_subdiv.destroy(ms);
-    free(ms); free(x); free(v); free(x0); free(g); free(s); free(sn);
-    sb_scene_free(&sc);
-    sb_context_free(&ctx);
+    free(g); free(s); free(sn);
+    direct_close(&D);
 }
 
 /* A tolerance below the attainable accuracy: both solvers stop as "stalled"

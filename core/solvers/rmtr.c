@@ -239,17 +239,38 @@ static int radius_update(rmtr_state *R, sb_problem *p, int l, double rho, double
 }
 
 /* rho of the trial point V->xt = V->x + V->s with h^l(xt) = ft and predicted
- * reduction pred (Eq. 4.2 / 4.11); from gradients when f - ft is round-off */
-static int trial_ratio(rmtr_state *R, sb_problem *p, int l, int trial_rc, double ft, double pred, double *rho)
+ * reduction pred (Eq. 4.2 / 4.11); from gradients when f - ft is round-off.
+ * *have_gt = 1 when V->gt then holds grad h^l(xt). */
+static int trial_ratio(rmtr_state *R, sb_problem *p, int l, int trial_rc, double ft, double pred, double *rho,
+                       int *have_gt)
 {
     rlevel *V = &R->lv[l];
+    *have_gt = 0;
     *rho = sb_tr_ratio(trial_rc, V->f, ft, pred);
     if (trial_rc != SB_OK || !sb_tr_ared_unreliable(V->f, ft, pred)) return SB_OK;
     double f2;
     int rc = h_eval(R, p, l, V->xt, &f2, V->gt, 0);
     if (rc < 0) return rc;
+    *have_gt = rc == SB_OK;
     *rho = rc == SB_OK ? sb_tr_ratio_grad(V->n, V->g, V->gt, V->s, pred) : -INFINITY;
     return SB_OK;
+}
+
+/* Move to the accepted trial point V->xt (h^l = ft there): f and g at the new
+ * x, from trial_ratio's gradient when it has one; the Hessian is stale. */
+static int accept_trial(rmtr_state *R, sb_problem *p, int l, double ft, int have_gt)
+{
+    rlevel *V = &R->lv[l];
+    sb_copy(V->n, V->xt, V->x);
+    V->hess_ok = 0;
+    V->fresh = 1;
+    if (have_gt) {
+        V->f = ft;
+        sb_copy(V->n, V->gt, V->g);
+        return SB_OK;
+    }
+    int rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
+    return rc < 0 ? rc : rc == SB_NONFINITE ? SB_NONFINITE : SB_OK;
 }
 
 /* Local_TR (Alg. 4.1) with mu steps on level l; bound = Delta^{l+1} */
@@ -289,15 +310,11 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
         rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
         if (rc < 0) return rc;
         double rho;
-        if ((rc = trial_ratio(R, p, l, rc, ft, tr.pred, &rho))) return rc;
+        int have_gt;
+        if ((rc = trial_ratio(R, p, l, rc, ft, tr.pred, &rho, &have_gt))) return rc;
         if (rho > R->eta1) {
             V->ared_sum += rho * tr.pred;      /* = f - ft when that difference is reliable */
-            sb_copy(V->n, V->xt, V->x);
-            rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
-            if (rc < 0) return rc;
-            if (rc == SB_NONFINITE) return SB_NONFINITE;
-            V->hess_ok = 0;
-            V->fresh = 1;
+            if ((rc = accept_trial(R, p, l, ft, have_gt))) return rc;
         }
         if ((rc = radius_update(R, p, l, rho, bound))) return rc;
     }
@@ -365,15 +382,11 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         if (rc < 0) return rc;
         /* line 6: multilevel ratio (Eq. 4.11) */
         double rho;
-        if ((rc = trial_ratio(R, p, l, rc, ft, cred, &rho))) return rc;
+        int have_gt;
+        if ((rc = trial_ratio(R, p, l, rc, ft, cred, &rho, &have_gt))) return rc;
         if (rho > R->eta1) {                    /* lines 7-8 */
             V->ared_sum += rho * cred;
-            sb_copy(V->n, V->xt, V->x);
-            rc = h_eval(R, p, l, V->x, &V->f, V->g, 0);
-            if (rc < 0) return rc;
-            if (rc == SB_NONFINITE) return SB_NONFINITE;
-            V->hess_ok = 0;
-            V->fresh = 1;
+            if ((rc = accept_trial(R, p, l, ft, have_gt))) return rc;
             if (l == R->L) (*accepted_coarse)++;
         }
         if ((rc = radius_update(R, p, l, rho, bound))) return rc;   /* line 12 */
