@@ -18,6 +18,7 @@
 #include "sb_sparse.h"
 
 struct sb_context;
+struct sb_csr;
 
 enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
@@ -86,6 +87,10 @@ typedef struct sb_method_type {
     int  (*prolong)(void *state, int lc, const double *xc, double *xf);      /* I */
     int  (*restrict_adj)(void *state, int lc, const double *gf, double *gc);  /* R = I^T */
     int  (*project)(void *state, int lc, const double *xf, double *xc);      /* P, P I = id */
+    /* optional: I as a dof-level row-compressed matrix (fine rows, coarse
+     * columns), filled with sb_csr_alloc (sb_galerkin.h); used once per run
+     * for Galerkin coarse models.  NULL: the core probes prolong() instead. */
+    int  (*prolong_matrix)(const void *state, int lc, struct sb_csr *S);
 
     /* optional: one line describing the discretization ("8x8 Hermite patches") */
     void (*describe)(const void *state, char *buf, size_t len);

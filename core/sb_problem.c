@@ -2,6 +2,7 @@
  * Dirichlet elimination and all event / work-unit counting (sb_problem.h). */
 #include "sb_problem.h"
 #include "sb_context.h"
+#include "sb_galerkin.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -20,6 +21,7 @@ typedef struct level_data {
     long *diag_pos, n_diag;   /* diagonal positions of constrained dofs */
     double *xhat, *xn;        /* inertia data */
     double *tmp;              /* n */
+    sb_galerkin *gal;         /* H = I^T H_{l+1} I (built on first use) */
 } level_data;
 
 struct sb_problem {
@@ -36,6 +38,7 @@ struct sb_problem {
 static void level_free(sb_problem *p, level_data *L)
 {
     (void)p;
+    sb_galerkin_free(L->gal);
     sb_linsolve_free(L->lin);
     sb_matrix_free(&L->H);
     sb_matrix_free(&L->M);
@@ -446,6 +449,93 @@ int sb_problem_project(sb_problem *p, int lc, const double *xf, double *xc)
     sb_problem_impose(p, lc, xc);
     sb_stats_event(&p->ctx->stats, lc, SB_EV_TRANSFER, t0);
     return rc;
+}
+
+/* I as a dof-level matrix by probing prolong() with unit vectors (set-up,
+ * once per run; for methods without prolong_matrix) */
+static int probe_prolongation(sb_problem *p, int lc, sb_csr *S)
+{
+    const int nc = p->lv[lc].n, nf = p->lv[lc + 1].n;
+    double *e = calloc((size_t)nc, sizeof *e), *y = malloc((size_t)nf * sizeof *y);
+    long cap = 16L * nc, nz = 0;
+    int *ti = malloc((size_t)cap * sizeof *ti), *tj = malloc((size_t)cap * sizeof *tj);
+    double *tv = malloc((size_t)cap * sizeof *tv);
+    int rc = !e || !y || !ti || !tj || !tv ? SB_ERR_NOMEM : SB_OK;
+    for (int j = 0; j < nc && !rc; j++) {
+        e[j] = 1.0;
+        rc = p->mt->prolong(p->ms, lc, e, y);
+        e[j] = 0.0;
+        for (int i = 0; i < nf && !rc; i++) {
+            if (y[i] == 0.0) continue;
+            if (nz == cap) {
+                cap *= 2;
+                int *a = realloc(ti, (size_t)cap * sizeof *ti);
+                if (a) ti = a;
+                int *b = realloc(tj, (size_t)cap * sizeof *tj);
+                if (b) tj = b;
+                double *c = realloc(tv, (size_t)cap * sizeof *tv);
+                if (c) tv = c;
+                if (!a || !b || !c) { rc = SB_ERR_NOMEM; break; }
+            }
+            ti[nz] = i; tj[nz] = j; tv[nz++] = y[i];
+        }
+    }
+    if (!rc) rc = sb_csr_alloc(S, nf, nc, nz);
+    if (!rc) {
+        /* counting sort by row; columns stay increasing within a row */
+        for (long k = 0; k < nz; k++) S->rp[ti[k] + 1]++;
+        for (int i = 0; i < nf; i++) S->rp[i + 1] += S->rp[i];
+        long *next = malloc((size_t)nf * sizeof *next);
+        if (!next) rc = SB_ERR_NOMEM;
+        else {
+            memcpy(next, S->rp, (size_t)nf * sizeof *next);
+            for (long k = 0; k < nz; k++) {
+                long d = next[ti[k]]++;
+                S->ci[d] = tj[k];
+                S->v[d] = tv[k];
+            }
+            free(next);
+        }
+    }
+    free(e); free(y); free(ti); free(tj); free(tv);
+    return rc;
+}
+
+int sb_problem_galerkin_prepare(sb_problem *p, int lc)
+{
+    if (lc < 0 || lc + 1 >= p->nl || !sb_problem_has_hierarchy(p))
+        return sb_error(p->ctx, SB_ERR_INTERNAL, "Galerkin Hessian requested on level %d of %d", lc, p->nl);
+    level_data *C = &p->lv[lc], *F = &p->lv[lc + 1];
+    if (C->gal) return SB_OK;
+    sb_csr S;
+    int rc = p->mt->prolong_matrix ? p->mt->prolong_matrix(p->ms, lc, &S) : probe_prolongation(p, lc, &S);
+    if (rc) return sb_error(p->ctx, rc, "method %s: prolongation matrix of level %d failed", p->mt->name, lc);
+    if (S.nr != F->n || S.nc != C->n) {
+        sb_csr_free(&S);
+        return sb_error(p->ctx, SB_ERR_INTERNAL, "method %s: prolongation matrix of level %d has the wrong size",
+                        p->mt->name, lc);
+    }
+    rc = sb_galerkin_create(&S, F->pat, C->pat, F->fixed, C->fixed, &C->gal);
+    sb_csr_free(&S);
+    if (rc == SB_ERR_UNSUPPORTED)
+        return sb_error(p->ctx, rc, "method %s: the Galerkin product I^T H I of level %d does not fit the level's "
+                        "sparsity pattern (Galerkin coarse models need nested patterns, e.g. the rmtr or bhem method)",
+                        p->mt->name, lc);
+    if (rc) return sb_error(p->ctx, rc, "out of memory (Galerkin product, level %d)", lc);
+    return SB_OK;
+}
+
+int sb_problem_galerkin_hessian(sb_problem *p, int lc)
+{
+    int rc = sb_problem_galerkin_prepare(p, lc);
+    if (rc) return rc;
+    level_data *C = &p->lv[lc], *F = &p->lv[lc + 1];
+    double t0 = sb_now();
+    rc = sb_galerkin_product(C->gal, &F->H, &C->H);
+    if (rc) return sb_error(p->ctx, SB_ERR_INTERNAL, "Galerkin product of level %d left the pattern", lc);
+    if (C->bc) eliminate_hessian(C, &C->H);
+    sb_stats_event(&p->ctx->stats, lc, SB_EV_GALERKIN, t0);
+    return SB_OK;
 }
 
 void sb_problem_count_qp(sb_problem *p, int level, double seconds)

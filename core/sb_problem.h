@@ -71,6 +71,16 @@ int  sb_problem_prolong(sb_problem *p, int lc, const double *xc, double *xf);
 int  sb_problem_restrict(sb_problem *p, int lc, const double *gf, double *gc);
 int  sb_problem_project(sb_problem *p, int lc, const double *xf, double *xc);
 
+/* H_lc := I^T H_{lc+1} I (Galerkin coarse Hessian, sb_galerkin.h) from the
+ * Hessian of level lc+1 as last assembled or set, on the free dofs; the
+ * constrained dofs of level lc get identity rows.  Counted as the event
+ * "galerkin" on level lc. */
+int  sb_problem_galerkin_hessian(sb_problem *p, int lc);
+/* Set-up of the above (prolongation matrix, symbolic product), done by the
+ * first call; SB_ERR_UNSUPPORTED (with a message) when I^T H I does not fit
+ * the coarse level's sparsity pattern. */
+int  sb_problem_galerkin_prepare(sb_problem *p, int lc);
+
 /* Account one trust-region subproblem (QP) solve on a level: QP work units. */
 void sb_problem_count_qp(sb_problem *p, int level, double seconds);
 /* Account CG iterations on a level. */

@@ -22,6 +22,7 @@ typedef enum {
     SB_EV_ADAPT,
     SB_EV_COLLIDE,
     SB_EV_RECORD,       /* recording (harness overhead)                */
+    SB_EV_GALERKIN,     /* Galerkin coarse Hessian I^T H I             */
     SB_EV_COUNT
 } sb_event;
 

@@ -214,6 +214,91 @@ SB_TEST(first_order_consistency)
     direct_close(&D);
 }
 
+/* Galerkin coarse Hessians (solver.coarse_model=galerkin): H^{l} v equals
+ * R H^{l+1} I v for random v on every level below the finest, on the BHEM
+ * hierarchy (prolongation matrix by probing prolong()) and on the
+ * subdivision hierarchy (the method's own prolong_matrix).  The fixture's
+ * spring net has coarse patterns that cannot hold I^T H I: refused. */
+static void check_galerkin_hessian(sb_test_state *T, const char *scene, const sb_method_type *mt, int res,
+                                   int levels, double dt, int fits)
+{
+    direct_problem D;
+    if (direct_open(T, &D, scene, mt, res, levels, dt)) return;
+    sb_problem *p = D.p;
+    const int F = sb_problem_finest(p);
+    double f;
+    double *g = malloc(D.n * sizeof(double));
+    for (int i = 0; i < D.n; i++) D.x0[i] += 1e-3 * sin(0.37 * i);   /* a generic (stressed) point */
+    CHECK(sb_problem_eval(p, F, D.x0, &f, g, sb_problem_hessian(p, F)) >= 0);
+    for (int l = F - 1; l >= 0; l--) {
+        int rc = sb_problem_galerkin_hessian(p, l);
+        if (!fits) {
+            CHECK_EQ_INT(rc, SB_ERR_UNSUPPORTED);
+            CHECK(strstr(D.ctx.err, "does not fit") != NULL);
+            break;
+        }
+        CHECK_EQ_INT(rc, 0);
+        const int nc = sb_problem_n(p, l), nf = sb_problem_n(p, l + 1);
+        double *v = malloc(nc * sizeof(double)), *hv = malloc(nc * sizeof(double)), *ref = malloc(nc * sizeof(double));
+        double *iv = malloc(nf * sizeof(double)), *hiv = malloc(nf * sizeof(double));
+        for (int i = 0; i < nc; i++) v[i] = cos(1.3 * i + l);
+        sb_problem_constrain(p, l, v);
+        sb_problem_hess_mult(p, l, v, hv);
+        CHECK_EQ_INT(sb_problem_prolong(p, l, v, iv), 0);
+        sb_problem_hess_mult(p, l + 1, iv, hiv);
+        sb_problem_constrain(p, l + 1, hiv);
+        CHECK_EQ_INT(sb_problem_restrict(p, l, hiv, ref), 0);
+        double e = 0, r = 0;
+        for (int i = 0; i < nc; i++) {
+            e += (hv[i] - ref[i]) * (hv[i] - ref[i]);
+            r += ref[i] * ref[i];
+        }
+        CHECK_MSG(r > 0 && sqrt(e / r) < 1e-12, "%s level %d: |H_c v - R H I v| / |R H I v| = %.3g", mt->name, l,
+                  sqrt(e / (r > 0 ? r : 1)));
+        free(v); free(hv); free(ref); free(iv); free(hiv);
+    }
+    CHECK(D.ctx.stats.ev[0][SB_EV_GALERKIN].count == (fits ? 1 : 0));
+    free(g);
+    direct_close(&D);
+}
+
+SB_TEST(galerkin_coarse_hessian)
+{
+    extern const sb_method_type sb_method_subdiv, sb_method_bhem;
+    check_galerkin_hessian(T, "membrane_dynamic.json", &sb_fixture_membrane, 8, 3, 0.1, 0);
+    check_galerkin_hessian(T, "trampoline_1step.json", &sb_method_bhem, 8, 3, 1.0, 1);
+    check_galerkin_hessian(T, "trampoline_1step.json", &sb_method_subdiv, 16, 3, 1.0, 1);
+}
+
+/* RMTR with Galerkin coarse models converges to TR's minimizer on the
+ * trampoline with BHEM (2 levels) and with subdivision at 1,083 dofs (3
+ * levels); the fixture is refused before the run starts (exit 2). */
+SB_TEST(rmtr_galerkin_converges)
+{
+    static const char *const gal[] = { "solver.coarse_model=galerkin" };
+    int ec;
+    json_t *r = run("rmtr", 2, 1, gal, &ec);
+    CHECK_EQ_INT(ec, 2);
+    json_decref(r);
+    json_t *b = run_on("trampoline_1step.json", "bhem", 8, "rmtr", 2, 1, gal, &ec);
+    CHECK_MSG(b && ec == 0, "bhem: exit %d", ec);
+    json_t *bt = run_on("trampoline_1step.json", "bhem", 8, "tr", 1, 0, NULL, &ec);
+    CHECK(bt != NULL);
+    if (b && bt) CHECK_NEAR(probe_z(b, "center"), probe_z(bt, "center"), 1e-6);
+    json_decref(b);
+    json_decref(bt);
+    r = run_on("trampoline_1step.json", "rmtr", 16, "rmtr", 3, 1, gal, &ec);
+    json_t *d = run_on("trampoline_1step.json", "rmtr", 16, "tr", 1, 0, NULL, &ec);
+    CHECK(r && d);
+    if (r && d) {
+        CHECK_MSG(num(r, "iterations", NULL) <= 20, "%g V-cycles", num(r, "iterations", NULL));
+        CHECK_NEAR(probe_z(r, "center"), probe_z(d, "center"), 1e-6);
+        CHECK(num(r, "counts", "galerkin") > 0);
+    }
+    json_decref(r);
+    json_decref(d);
+}
+
 /* Preconditioned Steihaug–Toint CG with an unbounded radius and a tight
  * tolerance is preconditioned CG: every preconditioner (none, Jacobi, node
  * blocks, symmetric block Gauss–Seidel, additive Schwarz) must reach the
@@ -290,7 +375,8 @@ int main(int argc, char **argv)
         SB_CASE(rmtr_converges_and_matches_tr), SB_CASE(first_order_consistency),
         SB_CASE(rmtr_refused_without_hierarchy), SB_CASE(rmtr_trampoline_subdivision),
         SB_CASE(rmtr_smoother_preconditioners), SB_CASE(preconditioned_stcg_reaches_newton_step),
-        SB_CASE(stalled_at_limiting_accuracy), SB_END,
+        SB_CASE(stalled_at_limiting_accuracy), SB_CASE(galerkin_coarse_hessian),
+        SB_CASE(rmtr_galerkin_converges), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }

@@ -4,6 +4,7 @@
 #include "sb_context.h"
 #include "sb_linsolve.h"
 #include "solvers/sb_schwarz.h"
+#include "sb_galerkin.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -256,11 +257,99 @@ SB_TEST(schwarz_preconditioner)
     sb_pattern_free(pat);
 }
 
+
+/* Galerkin product S^T H S on the coarse pattern against dense arithmetic:
+ * fine = a 1D chain of nf nodes (tridiagonal-block pattern), coarse = every
+ * other node with linear interpolation (bandwidth 1 after the product), with
+ * fixed fine and coarse dofs left out; then a coarse pattern too small for
+ * the product must be refused. */
+SB_TEST(galerkin_product)
+{
+    const int bs = 2, nn_c = 6, nn_f = 2 * nn_c - 1, nf = bs * nn_f, nc = bs * nn_c;
+    sb_pattern_builder *pb = sb_pattern_builder_new(nn_f, bs);
+    for (int a = 0; a + 1 < nn_f; a++) {
+        int e[2] = { a, a + 1 };
+        sb_pattern_builder_add(pb, 2, e);
+    }
+    sb_pattern *pf, *pc, *pdiag;
+    CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pf), 0);
+    pb = sb_pattern_builder_new(nn_c, bs);
+    for (int a = 0; a + 1 < nn_c; a++) {
+        int e[2] = { a, a + 1 };
+        sb_pattern_builder_add(pb, 2, e);
+    }
+    CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pc), 0);
+    pb = sb_pattern_builder_new(nn_c, bs);
+    for (int a = 0; a < nn_c; a++) sb_pattern_builder_add(pb, 1, &a);
+    CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pdiag), 0);
+    /* H: random symmetric on the fine pattern */
+    sb_matrix Hf, Hc;
+    sb_matrix_init(&Hf, pf);
+    sb_matrix_init(&Hc, pc);
+    for (long k = 0; k < pf->nnz; k++) Hf.val[k] = urand() - 0.5;
+    double *H = calloc((size_t)nf * nf, sizeof(double));
+    for (int c = 0; c < nf; c++)
+        for (long q = pf->colptr[c]; q < pf->colptr[c + 1]; q++)
+            H[pf->rowind[q] * nf + c] = H[c * nf + pf->rowind[q]] = Hf.val[q];
+    /* S: fine node 2a = coarse node a, 2a+1 = mean of a and a+1, per component */
+    sb_csr S;
+    CHECK_EQ_INT(sb_csr_alloc(&S, nf, nc, 2L * nf), 0);
+    double *Sd = calloc((size_t)nf * nc, sizeof(double));
+    long k = 0;
+    for (int i = 0; i < nn_f; i++)
+        for (int c = 0; c < bs; c++) {
+            if (i % 2 == 0) {
+                S.ci[k] = bs * (i / 2) + c; S.v[k++] = 1.0;
+            } else {
+                S.ci[k] = bs * (i / 2) + c; S.v[k++] = 0.5;
+                S.ci[k] = bs * (i / 2 + 1) + c; S.v[k++] = 0.5;
+            }
+            S.rp[bs * i + c + 1] = k;
+        }
+    for (int i = 0; i < nf; i++)
+        for (long q = S.rp[i]; q < S.rp[i + 1]; q++) Sd[i * nc + S.ci[q]] = S.v[q];
+    unsigned char *ff = calloc((size_t)nf, 1), *fc = calloc((size_t)nc, 1);
+    ff[3] = 1;      /* a fixed fine dof (an odd node's second component) */
+    fc[0] = 1;      /* a fixed coarse dof */
+    sb_galerkin *G;
+    CHECK_EQ_INT(sb_galerkin_create(&S, pf, pc, ff, fc, &G), 0);
+    CHECK_EQ_INT(sb_galerkin_product(G, &Hf, &Hc), 0);
+    double maxerr = 0, maxval = 0;
+    for (int J = 0; J < nc; J++)
+        for (int K = J; K < nc; K++) {
+            double ref = 0;
+            if (!fc[J] && !fc[K])
+                for (int i = 0; i < nf; i++)
+                    for (int j = 0; j < nf; j++)
+                        if (!ff[i] && !ff[j]) ref += Sd[i * nc + J] * H[i * nf + j] * Sd[j * nc + K];
+            double got = 0;
+            for (long q = pc->colptr[K]; q < pc->colptr[K + 1]; q++)
+                if (pc->rowind[q] == J) got = Hc.val[q];
+            if (fabs(got - ref) > maxerr) maxerr = fabs(got - ref);
+            if (fabs(ref) > maxval) maxval = fabs(ref);
+        }
+    CHECK(maxval > 0.1);
+    CHECK_MSG(maxerr < 1e-14, "max |S^T H S - dense| = %.3g", maxerr);
+    /* the fixed arrays are read at each product: release the dof, entries appear */
+    fc[0] = 0;
+    CHECK_EQ_INT(sb_galerkin_product(G, &Hf, &Hc), 0);
+    CHECK(Hc.val[pc->diag[0]] != 0.0);
+    sb_galerkin_free(G);
+    /* a diagonal-block coarse pattern cannot hold the product: refused at set-up */
+    G = NULL;
+    CHECK_EQ_INT(sb_galerkin_create(&S, pf, pdiag, NULL, NULL, &G), SB_ERR_UNSUPPORTED);
+    CHECK(G == NULL);
+    sb_csr_free(&S);
+    sb_matrix_free(&Hf); sb_matrix_free(&Hc);
+    sb_pattern_free(pf); sb_pattern_free(pc); sb_pattern_free(pdiag);
+    free(H); free(Sd); free(ff); free(fc);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(pattern_bs1), SB_CASE(pattern_bs3), SB_CASE(pattern_bs12), SB_CASE(cholmod_solve_and_not_posdef),
-        SB_CASE(params_validation), SB_CASE(schwarz_preconditioner), SB_END,
+        SB_CASE(params_validation), SB_CASE(schwarz_preconditioner), SB_CASE(galerkin_product), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }

@@ -35,6 +35,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+static const char *const coarse_model_names[] = { "nonlinear", "galerkin", NULL };
+
 static const sb_param_def rmtr_params[] = {
     { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
     { "eta2", SB_PARAM_REAL, 0.75, 0, 1, NULL, "enlarge when rho > eta2 (Table 2)" },
@@ -52,6 +54,9 @@ static const sb_param_def rmtr_params[] = {
       "ST-CG smoother residual tolerance relative to ||g|| (-1: inexact-Newton forcing min(0.5, sqrt||g||); 0: always all iterations)" },
     { "smoother_precond", SB_PARAM_CHOICE, 4, 0, 0, sb_trs_precond_names,
       "ST-CG smoother preconditioner: schwarz (additive Schwarz on element patches), none (the paper's), jacobi, block (node-block Jacobi), sgs (symmetric block Gauss-Seidel)" },
+    { "coarse_model", SB_PARAM_CHOICE, 0, 0, 0, coarse_model_names,
+      "coarse models: nonlinear (the coarse objective + first-order term, Eq. 4.3-4.4, the paper's) or galerkin "
+      "(the quadratic model with the Galerkin Hessian I^T H I: second-order consistent)" },
     { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
@@ -59,6 +64,7 @@ static const sb_param_def rmtr_params[] = {
 typedef struct rlevel {
     int n;
     double *x0, *x, *g, *dg, *s, *xt, *tmp, *gt;
+    double *d, *hd;      /* Galerkin models: x - x0 and H (x - x0) */
     double f;            /* h^l(x) */
     double ared_sum;     /* h^l(x0) - h^l(x): sum of the accepted steps' actual reductions */
     double delta;
@@ -73,6 +79,7 @@ typedef struct rmtr_state {
     double *fa, *fb;          /* finest-level scratch for the level-norm bound */
     double eta1, eta2, gamma1, gamma2, delta0, eps_delta, gtol;
     int mu1, mu2, cg_iter;
+    int galerkin;             /* coarse models are quadratic with H^l = R H^{l+1} I */
     rlevel lv[SB_MAX_LEVELS];
     double consistency_err;   /* max relative |grad h^l(x0) - R g^{l+1}| seen (Eq. 4.5) */
 } rmtr_state;
@@ -89,6 +96,7 @@ static void rmtr_free(void *st)
     for (int l = 0; l < R->nl; l++) {
         rlevel *V = &R->lv[l];
         free(V->x0); free(V->x); free(V->g); free(V->dg); free(V->s); free(V->xt); free(V->tmp); free(V->gt);
+        free(V->d); free(V->hd);
         sb_trs_free(&V->trs);
     }
 }
@@ -172,6 +180,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     R->mu2 = sb_param_int(ps, "solver.mu2");
     R->cg_iter = sb_param_int(ps, "solver.smoother_cg_iter");
     R->gtol = sb_param(ps, "solver.gtol_coarse");
+    R->galerkin = sb_param_int(ps, "solver.coarse_model") == 1;
     const sb_trs_type *coarse = sb_trs_by_index(sb_param_int(ps, "solver.coarse_trs"));
     for (int l = 0; l < R->nl; l++) {
         rlevel *V = &R->lv[l];
@@ -179,7 +188,9 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         size_t b = (size_t)V->n * sizeof(double);
         V->x0 = malloc(b); V->x = malloc(b); V->g = malloc(b); V->dg = calloc(1, b);
         V->s = malloc(b); V->xt = malloc(b); V->tmp = malloc(b); V->gt = malloc(b);
-        if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp || !V->gt) return SB_ERR_NOMEM;
+        V->d = malloc(b); V->hd = malloc(b);
+        if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp || !V->gt || !V->d || !V->hd)
+            return SB_ERR_NOMEM;
         int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
         if (rc) return rc;
         sb_trs_set_cg_rtol(&V->trs, sb_param(ps, "solver.smoother_rtol"));
@@ -193,13 +204,32 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         int rc = level_norm_scale(R, p, l, &R->lv[l].cnorm);
         if (rc) return rc;
     }
+    for (int l = 0; R->galerkin && l < R->L; l++) {
+        int rc = sb_problem_galerkin_prepare(p, l);
+        if (rc) return rc;
+    }
     return SB_OK;
 }
 
-/* h^l(x) (and its gradient / Hessian); Eq. (4.3) */
+/* h^l(x) (and its gradient / Hessian); Eq. (4.3), or with Galerkin models
+ * (l < L) the quadratic h^l(x) = <gc, d> + 1/2 d^T H^l d, d = x - x0, whose
+ * Hessian H^l = R H^{l+1} I was set on entering the level */
 static int h_eval(rmtr_state *R, sb_problem *p, int l, const double *x, double *f, double *g, int hess)
 {
     rlevel *V = &R->lv[l];
+    if (R->galerkin && l < R->L) {
+        for (int i = 0; i < V->n; i++) V->d[i] = x[i] - V->x0[i];
+        sb_problem_hess_mult(p, l, V->d, V->hd);
+        double lin = 0, quad = 0;
+        for (int i = 0; i < V->n; i++) {
+            lin += V->dg[i] * V->d[i];
+            quad += V->d[i] * V->hd[i];
+        }
+        *f = lin + 0.5 * quad;
+        if (g)
+            for (int i = 0; i < V->n; i++) g[i] = V->dg[i] + V->hd[i];
+        return isfinite(*f) ? SB_OK : SB_NONFINITE;
+    }
     int rc = sb_problem_eval(p, l, x, f, g, hess ? sb_problem_hessian(p, l) : NULL);
     if (rc < 0) return rc;
     if (l < R->L) {
@@ -262,7 +292,7 @@ static int accept_trial(rmtr_state *R, sb_problem *p, int l, double ft, int have
 {
     rlevel *V = &R->lv[l];
     sb_copy(V->n, V->xt, V->x);
-    V->hess_ok = 0;
+    V->hess_ok = R->galerkin && l < R->L;   /* a quadratic model's Hessian is constant */
     V->fresh = 1;
     if (have_gt) {
         V->f = ft;
@@ -330,7 +360,16 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
     int rc;
     sb_copy(V->n, V->x0, V->x);
     V->ared_sum = 0.0;
-    if (l < R->L) {
+    if (l < R->L && R->galerkin) {
+        /* Galerkin model: h^l(x0 + d) = <R g^{l+1}, d> + 1/2 d^T (R H^{l+1} I) d,
+         * first- and second-order consistent (Gratton, Sartenaer & Toint 2008) */
+        if ((rc = sb_problem_galerkin_hessian(p, l))) return rc;
+        sb_copy(V->n, gc, V->dg);
+        sb_copy(V->n, gc, V->g);
+        V->f = 0.0;
+        V->hess_ok = 1;
+        V->fresh = 1;
+    } else if (l < R->L) {
         /* line 1: dg = R g^{l+1} - grad f^l(x0) (Eq. 4.4) */
         memset(V->dg, 0, (size_t)V->n * sizeof(double));
         rc = sb_problem_eval(p, l, V->x, &V->f, V->g, NULL);
@@ -359,6 +398,13 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
     if ((rc = local_tr(R, p, l, R->mu1, bound, lin_iters))) return rc;
     if (l > 0) {
         rlevel *C = &R->lv[l - 1];
+        if (R->galerkin && !V->hess_ok) {
+            /* the Galerkin coarse Hessian needs this level's Hessian at x */
+            if ((rc = h_eval(R, p, l, V->x, &V->f, V->g, 1)) < 0) return rc;
+            if (rc == SB_NONFINITE) return rc;
+            V->hess_ok = 1;
+            V->fresh = 1;
+        }
         /* line 4: recursion from P x, with R grad h^l and the current radius */
         if ((rc = sb_problem_project(p, l - 1, V->x, C->x0))) return rc;
         /* R grad h^l goes to C->xt: read only at the coarse level's entry */

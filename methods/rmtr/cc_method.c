@@ -19,6 +19,7 @@
  * softer and RMTR rejected most coarse corrections in our trampoline runs. */
 #include "cc_method.h"
 #include "sb_context.h"
+#include "sb_galerkin.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -253,6 +254,25 @@ static int cc_restrict(void *state, int lc, const double *gf, double *gc)
     return SB_OK;
 }
 
+/* I at dof level: row 3i+c of S (x) I_3 holds S(i,j) at column 3j+c */
+static int cc_prolong_matrix(const void *state, int lc, sb_csr *A)
+{
+    const cc_state *S = state;
+    const cc_csr *T = &S->hier.S[lc];
+    int rc = sb_csr_alloc(A, 3 * T->nr, 3 * T->nc, 3L * T->rp[T->nr]);
+    if (rc) return rc;
+    long k = 0;
+    for (int i = 0; i < T->nr; i++)
+        for (int c = 0; c < 3; c++) {
+            for (int q = T->rp[i]; q < T->rp[i + 1]; q++) {
+                A->ci[k] = 3 * T->ci[q] + c;
+                A->v[k++] = T->v[q];
+            }
+            A->rp[3 * i + c + 1] = k;
+        }
+    return SB_OK;
+}
+
 static int cc_project(void *state, int lc, const double *xf, double *xc)
 {
     cc_state *S = state;
@@ -291,5 +311,6 @@ const sb_method_type sb_method_subdiv = {
     .prolong = cc_prolong,
     .restrict_adj = cc_restrict,
     .project = cc_project,
+    .prolong_matrix = cc_prolong_matrix,
     .describe = cc_describe,
 };

@@ -1,0 +1,241 @@
+/* sb_galerkin.c — Galerkin coarse Hessians H_c = S^T H_f S (sb_galerkin.h).
+ *
+ * Column by column of H_c: t = H_f S e_K (the fine Hessian applied to one
+ * prolongated coarse basis vector, a sparse accumulation over the rows of
+ * H_f that S e_K touches), then H_c(:,K) = S^T t restricted to rows J <= K.
+ * Cost per coarse dof: nnz(S e_K) x (row length of H_f) + nnz(t) x (row
+ * length of S), i.e. O(n_f) in total for local operators. */
+#include "sb_galerkin.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int sb_csr_alloc(sb_csr *A, int nr, int nc, long nnz)
+{
+    memset(A, 0, sizeof *A);
+    A->nr = nr;
+    A->nc = nc;
+    A->rp = calloc((size_t)nr + 1, sizeof *A->rp);
+    A->ci = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *A->ci);
+    A->v = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *A->v);
+    if (!A->rp || !A->ci || !A->v) {
+        sb_csr_free(A);
+        return SB_ERR_NOMEM;
+    }
+    return SB_OK;
+}
+
+void sb_csr_free(sb_csr *A)
+{
+    if (!A) return;
+    free(A->rp);
+    free(A->ci);
+    free(A->v);
+    memset(A, 0, sizeof *A);
+}
+
+struct sb_galerkin {
+    int nf, nc;
+    sb_csr S;          /* free fine rows x free coarse columns */
+    sb_csr St;         /* its transpose (coarse rows) */
+    long *frp;         /* full symmetric row index of the fine pattern: nf+1 */
+    int *fcol;         /*   column of each entry */
+    long *fpos;        /*   position in the upper-triangle value array */
+    const sb_pattern *coarse;
+    const unsigned char *fixed_f, *fixed_c;   /* the caller's arrays, read at every product */
+    double *t, *u;     /* dense accumulators: nf, nc */
+    int *tlist, *ulist;
+    unsigned char *tmark, *umark, *inpat;
+};
+
+void sb_galerkin_free(sb_galerkin *G)
+{
+    if (!G) return;
+    sb_csr_free(&G->S);
+    sb_csr_free(&G->St);
+    free(G->frp); free(G->fcol); free(G->fpos);
+    free(G->t); free(G->u); free(G->tlist); free(G->ulist);
+    free(G->tmark); free(G->umark); free(G->inpat);
+    free(G);
+}
+
+/* B = S without explicit zeros */
+static int copy_nonzeros(const sb_csr *S, sb_csr *B)
+{
+    int rc = sb_csr_alloc(B, S->nr, S->nc, S->rp[S->nr]);
+    if (rc) return rc;
+    long k = 0;
+    for (int i = 0; i < S->nr; i++) {
+        for (long q = S->rp[i]; q < S->rp[i + 1]; q++) {
+            if (S->v[q] == 0.0) continue;
+            B->ci[k] = S->ci[q];
+            B->v[k++] = S->v[q];
+        }
+        B->rp[i + 1] = k;
+    }
+    return SB_OK;
+}
+
+static int transpose(const sb_csr *A, sb_csr *T)
+{
+    int rc = sb_csr_alloc(T, A->nc, A->nr, A->rp[A->nr]);
+    if (rc) return rc;
+    for (long q = 0; q < A->rp[A->nr]; q++) T->rp[A->ci[q] + 1]++;
+    for (int j = 0; j < A->nc; j++) T->rp[j + 1] += T->rp[j];
+    long *next = malloc((size_t)(A->nc > 0 ? A->nc : 1) * sizeof *next);
+    if (!next) return SB_ERR_NOMEM;
+    memcpy(next, T->rp, (size_t)A->nc * sizeof *next);
+    for (int i = 0; i < A->nr; i++)
+        for (long q = A->rp[i]; q < A->rp[i + 1]; q++) {
+            long d = next[A->ci[q]]++;
+            T->ci[d] = i;
+            T->v[d] = A->v[q];
+        }
+    free(next);
+    return SB_OK;
+}
+
+/* full symmetric row access to an upper-triangle CSC pattern */
+static int full_rows(sb_galerkin *G, const sb_pattern *P)
+{
+    const int n = P->n;
+    G->frp = calloc((size_t)n + 1, sizeof *G->frp);
+    if (!G->frp) return SB_ERR_NOMEM;
+    for (int j = 0; j < n; j++)
+        for (long k = P->colptr[j]; k < P->colptr[j + 1]; k++) {
+            const int i = P->rowind[k];
+            G->frp[j + 1]++;
+            if (i != j) G->frp[i + 1]++;
+        }
+    for (int i = 0; i < n; i++) G->frp[i + 1] += G->frp[i];
+    G->fcol = malloc((size_t)G->frp[n] * sizeof *G->fcol);
+    G->fpos = malloc((size_t)G->frp[n] * sizeof *G->fpos);
+    long *next = malloc((size_t)(n > 0 ? n : 1) * sizeof *next);
+    if (!G->fcol || !G->fpos || !next) {
+        free(next);
+        return SB_ERR_NOMEM;
+    }
+    memcpy(next, G->frp, (size_t)n * sizeof *next);
+    for (int j = 0; j < n; j++)
+        for (long k = P->colptr[j]; k < P->colptr[j + 1]; k++) {
+            const int i = P->rowind[k];
+            long d = next[j]++;
+            G->fcol[d] = i;
+            G->fpos[d] = k;
+            if (i != j) {
+                d = next[i]++;
+                G->fcol[d] = j;
+                G->fpos[d] = k;
+            }
+        }
+    free(next);
+    return SB_OK;
+}
+
+static int product_column(sb_galerkin *G, int K, const double *hv, double *hc);
+
+int sb_galerkin_create(const sb_csr *S, const sb_pattern *fine, const sb_pattern *coarse,
+                       const unsigned char *fixed_f, const unsigned char *fixed_c, sb_galerkin **out)
+{
+    *out = NULL;
+    if (S->nr != fine->n || S->nc != coarse->n) return SB_ERR_INPUT;
+    sb_galerkin *G = calloc(1, sizeof *G);
+    if (!G) return SB_ERR_NOMEM;
+    G->nf = fine->n;
+    G->nc = coarse->n;
+    G->coarse = coarse;
+    G->fixed_f = fixed_f;
+    G->fixed_c = fixed_c;
+    int rc = copy_nonzeros(S, &G->S);
+    if (!rc) rc = transpose(&G->S, &G->St);
+    if (!rc) rc = full_rows(G, fine);
+    if (!rc) {
+        G->t = calloc((size_t)G->nf, sizeof *G->t);
+        G->u = calloc((size_t)G->nc, sizeof *G->u);
+        G->tlist = malloc((size_t)G->nf * sizeof *G->tlist);
+        G->ulist = malloc((size_t)G->nc * sizeof *G->ulist);
+        G->tmark = calloc((size_t)G->nf, 1);
+        G->umark = calloc((size_t)G->nc, 1);
+        G->inpat = calloc((size_t)G->nc, 1);
+        if (!G->t || !G->u || !G->tlist || !G->ulist || !G->tmark || !G->umark || !G->inpat) rc = SB_ERR_NOMEM;
+    }
+    /* the product's structure (all dofs free) must fit the coarse pattern */
+    for (int K = 0; K < G->nc && !rc; K++) {
+        const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
+        G->fixed_f = G->fixed_c = NULL;
+        if (product_column(G, K, NULL, NULL)) rc = SB_ERR_UNSUPPORTED;
+        G->fixed_f = ff;
+        G->fixed_c = fc;
+    }
+    if (rc) {
+        sb_galerkin_free(G);
+        return rc;
+    }
+    *out = G;
+    return SB_OK;
+}
+
+/* Column K of S^T Hf S (rows J <= K) into Hc's pattern column; hv == NULL:
+ * symbolic (every stored entry of Hf and S counts as nonzero).  Returns 1
+ * when the column has a nonzero outside the pattern. */
+static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
+{
+    const sb_pattern *C = G->coarse;
+    const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
+    int outside = 0;
+    /* t = Hf S e_K */
+    int nt = 0;
+    for (long q = G->St.rp[K]; q < G->St.rp[K + 1]; q++) {
+        const int j = G->St.ci[q];
+        const double s = G->St.v[q];
+        if (ff && ff[j]) continue;
+        for (long r = G->frp[j]; r < G->frp[j + 1]; r++) {
+            const int i = G->fcol[r];
+            if (!G->tmark[i]) {
+                G->tmark[i] = 1;
+                G->tlist[nt++] = i;
+            }
+            G->t[i] += hv ? hv[G->fpos[r]] * s : 1.0;
+        }
+    }
+    /* u = S^T t, rows J <= K (upper triangle) */
+    int nu = 0;
+    for (int a = 0; a < nt; a++) {
+        const int i = G->tlist[a];
+        const double ti = G->t[i];
+        G->t[i] = 0.0;
+        G->tmark[i] = 0;
+        if (ff && ff[i]) continue;
+        for (long q = G->S.rp[i]; q < G->S.rp[i + 1]; q++) {
+            const int J = G->S.ci[q];
+            if (J > K || (fc && fc[J])) continue;
+            if (!G->umark[J]) {
+                G->umark[J] = 1;
+                G->ulist[nu++] = J;
+            }
+            G->u[J] += hv ? G->S.v[q] * ti : 1.0;
+        }
+    }
+    for (long k = C->colptr[K]; k < C->colptr[K + 1]; k++) {
+        const int J = C->rowind[k];
+        if (hc) hc[k] = G->u[J];
+        G->inpat[J] = 1;
+    }
+    for (int a = 0; a < nu; a++) {
+        const int J = G->ulist[a];
+        if (!G->inpat[J] && G->u[J] != 0.0) outside = 1;
+        G->u[J] = 0.0;
+        G->umark[J] = 0;
+    }
+    for (long k = C->colptr[K]; k < C->colptr[K + 1]; k++) G->inpat[C->rowind[k]] = 0;
+    return outside;
+}
+
+int sb_galerkin_product(sb_galerkin *G, const sb_matrix *Hf, sb_matrix *Hc)
+{
+    int outside = 0;
+    sb_matrix_zero(Hc);
+    for (int K = 0; K < G->nc; K++)
+        if (!(G->fixed_c && G->fixed_c[K])) outside |= product_column(G, K, Hf->val, Hc->val);
+    return outside ? SB_ERR_UNSUPPORTED : SB_OK;
+}
