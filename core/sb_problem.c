@@ -519,7 +519,7 @@ int sb_problem_galerkin_prepare(sb_problem *p, int lc)
     sb_csr_free(&S);
     if (rc == SB_ERR_UNSUPPORTED)
         return sb_error(p->ctx, rc, "method %s: the Galerkin product I^T H I of level %d does not fit the level's "
-                        "sparsity pattern (Galerkin coarse models need nested patterns, e.g. the rmtr or bhem method)",
+                        "sparsity pattern (use solver.coarse_model=nonlinear or auto with this method)",
                         p->mt->name, lc);
     if (rc) return sb_error(p->ctx, rc, "out of memory (Galerkin product, level %d)", lc);
     return SB_OK;

@@ -16,6 +16,7 @@ typedef struct sb_run {
     char method[SB_NAME_LEN];
     char solver[SB_NAME_LEN];
     char method_info[256];     /* method describe() */
+    char solver_info[256];     /* solver describe() (empty when the solver has none) */
     int res, levels;
     long n_dofs;               /* finest level */
     const sb_paramset *params;

@@ -143,6 +143,7 @@ static char *summary_json(run_state *R, const char *out_path)
     json_object_set_new(o, "method", json_string(R->mt->name));
     json_object_set_new(o, "solver", json_string(R->stype->name));
     json_object_set_new(o, "method_info", json_string(R->rec.method_info));
+    if (R->rec.solver_info[0]) json_object_set_new(o, "solver_info", json_string(R->rec.solver_info));
     json_object_set_new(o, "dofs", json_integer(R->rec.n_dofs));
     json_object_set_new(o, "levels", json_integer(R->rec.levels));
     json_object_set_new(o, "res", json_integer(R->rec.res));
@@ -385,6 +386,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     snprintf(rec->method, sizeof rec->method, "%s", R->mt->name);
     snprintf(rec->solver, sizeof rec->solver, "%s", R->stype->name);
     if (R->mt->describe) R->mt->describe(R->ms, rec->method_info, sizeof rec->method_info);
+    if (R->stype->describe) R->stype->describe(R->ss, rec->solver_info, sizeof rec->solver_info);
     rec->res = req->res;
     rec->levels = sb_problem_levels(R->prob);
     rec->n_dofs = n;

@@ -41,6 +41,8 @@ typedef struct sb_solver_type {
     /* one outer iteration; updates x in place */
     int  (*iterate)(void *state, sb_problem *p, double *x, sb_iterate_info *info);
     void (*free)(void *state);
+    /* optional: one line on the configuration actually used (after alloc) */
+    void (*describe)(const void *state, char *buf, size_t len);
 } sb_solver_type;
 
 const sb_solver_type *sb_solver_find(const char *name);

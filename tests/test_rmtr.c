@@ -280,6 +280,12 @@ SB_TEST(rmtr_galerkin_converges)
     json_t *r = run("rmtr", 2, 1, gal, &ec);
     CHECK_EQ_INT(ec, 2);
     json_decref(r);
+    /* the default (auto) falls back to the nonlinear models there, and says so */
+    r = run("rmtr", 2, 0, NULL, &ec);
+    CHECK_EQ_INT(ec, 0);
+    const char *info = r ? json_string_value(json_object_get(r, "solver_info")) : NULL;
+    CHECK_MSG(info && strstr(info, "nonlinear") && strstr(info, "auto"), "solver_info %s", info ? info : "(none)");
+    json_decref(r);
     json_t *b = run_on("trampoline_1step.json", "bhem", 8, "rmtr", 2, 1, gal, &ec);
     CHECK_MSG(b && ec == 0, "bhem: exit %d", ec);
     json_t *bt = run_on("trampoline_1step.json", "bhem", 8, "tr", 1, 0, NULL, &ec);
@@ -294,6 +300,8 @@ SB_TEST(rmtr_galerkin_converges)
         CHECK_MSG(num(r, "iterations", NULL) <= 20, "%g V-cycles", num(r, "iterations", NULL));
         CHECK_NEAR(probe_z(r, "center"), probe_z(d, "center"), 1e-6);
         CHECK(num(r, "counts", "galerkin") > 0);
+        const char *info = json_string_value(json_object_get(r, "solver_info"));
+        CHECK_MSG(info && strstr(info, "galerkin"), "solver_info %s", info ? info : "(none)");
     }
     json_decref(r);
     json_decref(d);

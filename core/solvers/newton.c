@@ -191,15 +191,15 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
 
 const sb_solver_type sb_solver_lsnewton = {
     "lsnewton", "Newton with backtracking Armijo line search; shifted Hessian when indefinite",
-    sizeof(newton_state), lsnewton_params, 0, lsnewton_alloc, newton_set, newton_iterate, newton_free,
+    sizeof(newton_state), lsnewton_params, 0, lsnewton_alloc, newton_set, newton_iterate, newton_free, NULL,
 };
 
 const sb_solver_type sb_solver_damped = {
     "damped", "Newton with constant step 0.3 and no globalization (may diverge: recorded)",
-    sizeof(newton_state), damped_params, 0, damped_alloc, newton_set, newton_iterate, newton_free,
+    sizeof(newton_state), damped_params, 0, damped_alloc, newton_set, newton_iterate, newton_free, NULL,
 };
 
 const sb_solver_type sb_solver_linearized = {
     "linearized", "one Newton step per time step from x_n (Baraff–Witkin linearized implicit Euler)",
-    sizeof(newton_state), NULL, SB_SOLVER_SINGLE_STEP, linearized_alloc, newton_set, newton_iterate, newton_free,
+    sizeof(newton_state), NULL, SB_SOLVER_SINGLE_STEP, linearized_alloc, newton_set, newton_iterate, newton_free, NULL,
 };

@@ -32,10 +32,12 @@
 #include "sb_context.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const coarse_model_names[] = { "nonlinear", "galerkin", NULL };
+static const char *const coarse_model_names[] = { "auto", "nonlinear", "galerkin", NULL };
+enum { MODEL_AUTO = 0, MODEL_NONLINEAR = 1, MODEL_GALERKIN = 2 };
 
 static const sb_param_def rmtr_params[] = {
     { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
@@ -55,8 +57,9 @@ static const sb_param_def rmtr_params[] = {
     { "smoother_precond", SB_PARAM_CHOICE, 4, 0, 0, sb_trs_precond_names,
       "ST-CG smoother preconditioner: schwarz (additive Schwarz on element patches), none (the paper's), jacobi, block (node-block Jacobi), sgs (symmetric block Gauss-Seidel)" },
     { "coarse_model", SB_PARAM_CHOICE, 0, 0, 0, coarse_model_names,
-      "coarse models: nonlinear (the coarse objective + first-order term, Eq. 4.3-4.4, the paper's) or galerkin "
-      "(the quadratic model with the Galerkin Hessian I^T H I: second-order consistent)" },
+      "coarse models: nonlinear (the coarse objective + first-order term, Eq. 4.3-4.4, the paper's), galerkin "
+      "(quadratic with the Galerkin Hessian I^T H I: second-order consistent) or auto (galerkin where every "
+      "coarse pattern holds I^T H I, else nonlinear; the record's solver_info says which)" },
     { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
@@ -80,6 +83,8 @@ typedef struct rmtr_state {
     double eta1, eta2, gamma1, gamma2, delta0, eps_delta, gtol;
     int mu1, mu2, cg_iter;
     int galerkin;             /* coarse models are quadratic with H^l = R H^{l+1} I */
+    int model_param;          /* MODEL_* as requested */
+    int precond;              /* smoother preconditioner (index into sb_trs_precond_names) */
     rlevel lv[SB_MAX_LEVELS];
     double consistency_err;   /* max relative |grad h^l(x0) - R g^{l+1}| seen (Eq. 4.5) */
 } rmtr_state;
@@ -180,7 +185,9 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     R->mu2 = sb_param_int(ps, "solver.mu2");
     R->cg_iter = sb_param_int(ps, "solver.smoother_cg_iter");
     R->gtol = sb_param(ps, "solver.gtol_coarse");
-    R->galerkin = sb_param_int(ps, "solver.coarse_model") == 1;
+    R->model_param = sb_param_int(ps, "solver.coarse_model");
+    R->galerkin = R->model_param != MODEL_NONLINEAR;
+    R->precond = sb_param_int(ps, "solver.smoother_precond");
     const sb_trs_type *coarse = sb_trs_by_index(sb_param_int(ps, "solver.coarse_trs"));
     for (int l = 0; l < R->nl; l++) {
         rlevel *V = &R->lv[l];
@@ -206,7 +213,15 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     }
     for (int l = 0; R->galerkin && l < R->L; l++) {
         int rc = sb_problem_galerkin_prepare(p, l);
-        if (rc) return rc;
+        if (rc == SB_ERR_UNSUPPORTED && R->model_param == MODEL_AUTO) {
+            /* auto: this hierarchy's coarse patterns cannot hold I^T H I */
+            sb_context *ctx = sb_problem_context(p);
+            ctx->status = SB_OK;
+            ctx->err[0] = '\0';
+            R->galerkin = 0;
+        } else if (rc) {
+            return rc;
+        }
     }
     return SB_OK;
 }
@@ -483,8 +498,16 @@ static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *inf
     return SB_OK;
 }
 
+static void rmtr_describe(const void *st, char *buf, size_t len)
+{
+    const rmtr_state *R = st;
+    snprintf(buf, len, "%d levels; coarse models %s%s; smoother mu1=%d mu2=%d x %d ST-CG (%s); coarsest dogleg",
+             R->nl, R->galerkin ? "galerkin (I^T H I)" : "nonlinear (Eq. 4.3-4.4)",
+             R->model_param == MODEL_AUTO ? " (auto)" : "", R->mu1, R->mu2, R->cg_iter, sb_trs_precond_names[R->precond]);
+}
+
 const sb_solver_type sb_solver_rmtr = {
     "rmtr", "recursive multilevel trust region V-cycles, RMTR paper Alg. 4.2 + 4.3 (needs a hierarchy)",
     sizeof(rmtr_state), rmtr_params, SB_SOLVER_TRUST_REGION | SB_SOLVER_NEEDS_HIERARCHY,
-    rmtr_alloc, rmtr_set, rmtr_iterate, rmtr_free,
+    rmtr_alloc, rmtr_set, rmtr_iterate, rmtr_free, rmtr_describe,
 };

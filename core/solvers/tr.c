@@ -144,5 +144,5 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
 
 const sb_solver_type sb_solver_tr = {
     "tr", "single-level trust region, RMTR paper Alg. 4.1 + 4.3 (dogleg or Steihaug–Toint CG)",
-    sizeof(tr_state), tr_params, SB_SOLVER_TRUST_REGION, tr_alloc, tr_set, tr_iterate, tr_free,
+    sizeof(tr_state), tr_params, SB_SOLVER_TRUST_REGION, tr_alloc, tr_set, tr_iterate, tr_free, NULL,
 };
