@@ -64,44 +64,64 @@ for s in SCENES:
               r["status"], num(qi), q["status"] if q else "not run"))
 
 print("\n## Table 4 — RMTR V-cycles against the number of levels (coarsest 4×4 elements)\n")
-print("\"paper config\": the paper's smoother (10 unpreconditioned ST-CG iterations) and Cauchy dogleg, capped")
-print("at %s V-cycles per step; \"ours\": the default smoother, 10 ST-CG iterations preconditioned by additive" % CAP_PAPER)
-print("Schwarz on element patches (`solver.smoother_precond=schwarz`).  WU = assembly work units (Eq. 7.3).\n")
-print("| scene | levels | dofs | paper | paper config | status | ours | ours / paper | WU / V-cycle | status |")
-print("|---|--:|--:|--:|--:|---|--:|--:|--:|---|")
+print("Three configurations.  \"paper config\": the paper's nonlinear coarse models (Eq. 4.3-4.4), smoother")
+print("(10 unpreconditioned ST-CG iterations) and Cauchy dogleg, capped at %s V-cycles per step." % CAP_PAPER)
+print("\"ours, nonlinear\": the same coarse models with 10 ST-CG iterations preconditioned by additive Schwarz on")
+print("element patches (`solver.smoother_precond=schwarz`).  \"ours\": the defaults, Schwarz smoother and")
+print("Galerkin coarse models (`solver.coarse_model=auto`, which is Galerkin on this method): the quadratic")
+print("model with H^l = I^T H^{l+1} I, second-order consistent.  WU = assembly work units (Eq. 7.3); with Galerkin")
+print("models the coarse levels assemble nothing, their cost is the product I^T H I (event `galerkin`).\n")
+print("| scene | levels | dofs | paper | paper config | its status | ours, nonlinear | ours | ours / paper | WU / V-cycle | s | status |")
+print("|---|--:|--:|--:|--:|---|--:|--:|--:|--:|--:|---|")
+
+
+def it_or_none(r):
+    return int(r["iterations"]) if ok(r) else None
+
+
+def status(r):
+    return r["status"] if r else "not run"
+
+
 for s in SCENES:
     for l in range(2, 7):
-        r, q = rows.get("rmtr-%s-l%d" % (s, l)), rows.get("rmtrs-%s-l%d" % (s, l))
-        if r is None and q is None:
+        r, n, q = (rows.get("%s-%s-l%d" % (c, s, l)) for c in ("rmtr", "rmtrn", "rmtrs"))
+        if r is None and q is None and n is None:
             continue
-        ri = int(r["iterations"]) if ok(r) else None
-        qi = int(q["iterations"]) if ok(q) else None
+        ri, ni, qi = it_or_none(r), it_or_none(n), it_or_none(q)
         wu = float(q["work_assembly"]) / int(q["iterations"]) if q is not None and int(q["iterations"]) else None
-        dofs = (q or r)["dofs"]
-        print("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            NAMES[s], l, dofs, num(T4[s][l - 2]), num(ri), r["status"] if r else "not run", num(qi),
-            ratio(qi, T4[s][l - 2]), num(wu, "{:.2f}"), q["status"] if q else "not run"))
+        dofs = (q or n or r)["dofs"]
+        nst = "" if n is None or ok(n) else " (%s)" % n["reason"]
+        print("| %s | %d | %s | %s | %s | %s | %s%s | %s | %s | %s | %s | %s |" % (
+            NAMES[s], l, dofs, num(T4[s][l - 2]), num(ri) if r else "not run", status(r),
+            num(ni) if n else "not run", nst, num(qi), ratio(qi, T4[s][l - 2]), num(wu, "{:.2f}"),
+            num(float(q["seconds"]), "{:.3g}") if q else "—", status(q)))
 
 print("\n## Tables 6 and 7 — work units at 1,083 dofs: TR against RMTR with 3 levels (ours)\n")
 print("TR: the paper's dogleg (direct Newton point; one QP call = one QP work unit, Eq. 7.4, whatever the")
 print("factorization costs).  TR (ST-CG): single-level TR with Steihaug–Toint CG, the paper's §7.3 alternative.\n")
-print("| scene | assembly WU TR (paper / ours) | TR (ST-CG) | RMTR (paper / ours) | TR/RMTR (paper / ours) | TR(ST-CG)/RMTR | QP WU TR (paper / ours) | TR (ST-CG) | RMTR (paper / ours) |")
-print("|---|---|--:|---|---|--:|---|--:|---|")
+print("\"TR (shift)\": our default dogleg (Newton point of H + τI on an indefinite Hessian).  RMTR: ours (Galerkin")
+print("coarse models) and ours with the paper's nonlinear coarse models.\n")
+print("| scene | assembly WU TR (paper / ours) | TR (shift) | TR (ST-CG) | RMTR (paper / ours) | RMTR nonlinear | TR/RMTR (paper / ours) | TR (shift)/RMTR | TR(ST-CG)/RMTR | QP WU TR (paper / ours) | TR (ST-CG) | RMTR (paper / ours) |")
+print("|---|---|--:|--:|---|--:|---|--:|--:|---|--:|---|")
 for s in SCENES:
     t, m, c = rows.get("tr-%s-r16" % s), rows.get("rmtrs-%s-l3" % s), rows.get("trstcg-%s-r16" % s)
+    h, n = rows.get("trshift-%s-r16" % s), rows.get("rmtrn-%s-l3" % s)
     if t is None or m is None:
         continue
     f = lambda r, k: float(r[k]) if ok(r) else None
     ta, ma, ca = f(t, "work_assembly"), f(m, "work_assembly"), f(c, "work_assembly") if c else None
+    ha, na = f(h, "work_assembly") if h else None, f(n, "work_assembly") if n else None
     tq, mq, cq = f(t, "work_qp"), f(m, "work_qp"), f(c, "work_qp") if c else None
-    print("| %s | %s / %s | %s | %s / %s | %.2f / %s | %s | %s / %s | %s | %s / %s |" % (
-        NAMES[s], num(T6[s][0]), num(ta), num(ca), num(T6[s][1]), num(ma), T6[s][0] / T6[s][1], ratio(ta, ma),
-        ratio(ca, ma), num(T7[s][0]), num(tq), num(cq), num(T7[s][1]), num(mq)))
+    print("| %s | %s / %s | %s | %s | %s / %s | %s | %.2f / %s | %s | %s | %s / %s | %s | %s / %s |" % (
+        NAMES[s], num(T6[s][0]), num(ta), num(ha), num(ca), num(T6[s][1]), num(ma), num(na), T6[s][0] / T6[s][1],
+        ratio(ta, ma), ratio(ha, ma), ratio(ca, ma), num(T7[s][0]), num(tq), num(cq), num(T7[s][1]), num(mq)))
 
-t8 = [(s, rows.get("rmtrs-%s-l4-lsq" % s), rows.get("rmtrs-%s-l4" % s), rows.get("rmtrs-%s-l4-restrict" % s)) for s in SCENES]
+t8 = [(s, rows.get("rmtrn-%s-l4-lsq" % s), rows.get("rmtrn-%s-l4" % s), rows.get("rmtrn-%s-l4-restrict" % s)) for s in SCENES]
 if any(a is not None for _, a, _, _ in t8):
-    print("\n## Table 8 — V-cycles at 3,675 dofs, 4 levels, by projection (ours)\n")
-    print("Quick mode runs the trampoline only; `full` mode all four scenes.\n")
+    print("\n## Table 8 — V-cycles at 3,675 dofs, 4 levels, by projection (ours, nonlinear coarse models)\n")
+    print("The projection P x only enters the nonlinear coarse models (a Galerkin model depends on the")
+    print("correction alone), so Table 8 uses those.  Quick mode runs the trampoline only; `full` mode all four.\n")
     print("| scene | paper lsq | paper reverse | ours lsq | ours reverse | ours restriction |\n|---|--:|--:|--:|--:|--:|")
     for s, a, b, c in t8:
         it = lambda r: "not run" if r is None else num(int(r["iterations"]) if ok(r) else None)
@@ -117,34 +137,45 @@ def h5row(path, name):
     return vals
 
 
-HESSIAN_EVENT, N_EVENTS = 2, 12
+HESSIAN_EVENT = 2
+
+
+def n_events(path):
+    """events per level in a record (12 before the `galerkin` event existed)"""
+    out = subprocess.run(["h5dump", "-H", "-d", "/stats/events_count", path], capture_output=True, text=True).stdout
+    dims = out[out.find("SIMPLE { (") + 10:].split(")")[0].split(",")
+    return int(dims[1])
+
+
 perf = []
-for l in list(range(2, 7)) + ["6-gtol1e-6"]:
-    q = rows.get("rmtrs-trampoline-l%s" % l)
-    if q is None or not (ok(q) or q["reason"] == "stalled"):
-        continue
-    path = os.path.join(RUNS, "rmtrs-trampoline-l%s.h5" % l)
-    cnt, sec = h5row(path, "events_count"), h5row(path, "events_seconds")
-    L = len(cnt) // N_EVENTS - 1
-    nh, th = cnt[L * N_EVENTS + HESSIAN_EVENT], sec[L * N_EVENTS + HESSIAN_EVENT]
-    perf.append((l, int(q["dofs"]), int(q["iterations"]), float(q["seconds"]), float(q["work_assembly"]), th / nh if nh else None,
-                 q["reason"], "%s/%s" % (q["steps"], q["steps_planned"])))
+for cfg, label in (("rmtrs", "galerkin"), ("rmtrn", "nonlinear")):
+    for l in list(range(2, 7)) + ["6-gtol1e-6"]:
+        q = rows.get("%s-trampoline-l%s" % (cfg, l))
+        if q is None or not (ok(q) or q["reason"] == "stalled"):
+            continue
+        path = os.path.join(RUNS, "%s-trampoline-l%s.h5" % (cfg, l))
+        cnt, sec = h5row(path, "events_count"), h5row(path, "events_seconds")
+        ne = n_events(path)
+        L = len(cnt) // ne - 1
+        nh, th = cnt[L * ne + HESSIAN_EVENT], sec[L * ne + HESSIAN_EVENT]
+        perf.append((label, l, int(q["dofs"]), int(q["iterations"]), float(q["seconds"]), float(q["work_assembly"]),
+                     th / nh if nh else None, q["reason"], "%s/%s" % (q["steps"], q["steps_planned"])))
 if perf:
-    print("\n## Performance of RMTR (ours) on the trampoline, 5 steps\n")
+    print("\n## Performance of RMTR (ours, both coarse models) on the trampoline, 5 steps\n")
     print("Seconds per V-cycle against the seconds of one fine-level Hessian assembly (energy, gradient and")
     print("Hessian of the finest level, from the record's per-level event timers); total time relative to 3,675 dofs.\n")
     print("A `stalled` run stopped at the limiting accuracy (README, \"Stopping rule\"); its V-cycles include the")
     print("stall_iter cycles spent there; the run then stops (a step that did not converge ends a run), so")
     print("the 51,483-dof case is also run with run.gtol = 1e-6, above its limiting accuracy.\n")
-    print("| levels | dofs | steps | V-cycles | stop | assembly WU / V-cycle (paper ≈ 2.5) | s / V-cycle | s / fine assembly | ratio | total s | total / total(3,675) |")
-    print("|--:|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|")
-    base = next((p[3] for p in perf if p[1] == 3675), None)
-    for l, d, it, secs, wu, th, why, steps in perf:
+    print("| coarse models | levels | dofs | steps | V-cycles | stop | assembly WU / V-cycle (paper ≈ 2.5) | s / V-cycle | s / fine assembly | ratio | total s | total / total(3,675) |")
+    print("|---|--:|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|")
+    for label, l, d, it, secs, wu, th, why, steps in perf:
+        base = next((p[4] for p in perf if p[2] == 3675 and p[0] == label), None)
         spc = secs / it
         whole = steps.split("/")[0] == steps.split("/")[1]
-        print("| %s | %d | %s | %d | %s | %.2f | %.3g | %s | %s | %.3g | %s |" % (
-            str(l).replace("-gtol1e-6", " (run.gtol = 1e-6)"), d, steps, it, why, wu / it, spc, num(th, "{:.3g}"), ratio(spc, th), secs,
-            ratio(secs, base) if d >= 3675 and whole else "—"))
+        print("| %s | %s | %d | %s | %d | %s | %.2f | %.3g | %s | %s | %.3g | %s |" % (
+            label, str(l).replace("-gtol1e-6", " (run.gtol = 1e-6)"), d, steps, it, why, wu / it, spc, num(th, "{:.3g}"),
+            ratio(spc, th), secs, ratio(secs, base) if d >= 3675 and whole else "—"))
 
 cond = os.path.join(os.path.dirname(RUNS.rstrip("/")), "cond.md")
 if os.path.exists(cond):
