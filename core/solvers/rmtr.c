@@ -307,8 +307,15 @@ static int accept_trial(rmtr_state *R, sb_problem *p, int l, double ft, int have
 {
     rlevel *V = &R->lv[l];
     sb_copy(V->n, V->xt, V->x);
-    V->hess_ok = R->galerkin && l < R->L;   /* a quadratic model's Hessian is constant */
-    V->fresh = 1;
+    if (R->galerkin && l < R->L) {
+        /* a quadratic model's Hessian is constant: only g changed (unless a
+         * new H is still waiting for its first subproblem solve) */
+        V->hess_ok = 1;
+        V->fresh = V->fresh == 1 ? 1 : 1 | SB_TRS_SAME_H;
+    } else {
+        V->hess_ok = 0;
+        V->fresh = 1;
+    }
     if (have_gt) {
         V->f = ft;
         sb_copy(V->n, V->gt, V->g);

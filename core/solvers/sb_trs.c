@@ -88,6 +88,7 @@ typedef struct dogleg_state {
     double *hg;     /* H g */
     double gHg, gg;
     int have_newton;
+    int factor_rc;          /* status of the last factorization (-1: none yet) */
     int shift_indefinite;   /* 1: Newton point of H + tau I when H is indefinite */
     double shift;           /* tau of the last factorization */
 } dogleg_state;
@@ -96,6 +97,7 @@ static int dogleg_alloc(void *st, int n)
 {
     dogleg_state *d = st;
     d->n = n;
+    d->factor_rc = -1;
     d->sn = malloc((size_t)n * sizeof(double));
     d->sc = malloc((size_t)n * sizeof(double));
     d->hg = malloc((size_t)n * sizeof(double));
@@ -136,17 +138,22 @@ static int dogleg_solve(void *st, sb_problem *p, int level, const double *g, dou
         d->gg = sb_dot(n, g, g);
         d->gHg = sb_dot(n, g, d->hg);
         d->have_newton = 0;
-        d->shift = 0.0;
-        int rc = sb_problem_factor(p, level, 0.0);
-        if (rc < 0) return rc;
-        if (rc == SB_NOT_POSDEF && d->shift_indefinite) {
-            double scale = sb_matrix_norm_max(sb_problem_hessian(p, level));
-            double tau = 1e-8 * (scale > 0 ? scale : 1.0);
-            for (int k = 0; k < 40 && rc == SB_NOT_POSDEF; k++, tau *= 10) {
-                rc = sb_problem_factor(p, level, tau);
-                d->shift = tau;
-            }
+        int rc = d->factor_rc;
+        if (!(fresh & SB_TRS_SAME_H) || rc < 0) {
+            /* a new H: factor it (the factor is kept while only g changes) */
+            d->shift = 0.0;
+            rc = sb_problem_factor(p, level, 0.0);
             if (rc < 0) return rc;
+            if (rc == SB_NOT_POSDEF && d->shift_indefinite) {
+                double scale = sb_matrix_norm_max(sb_problem_hessian(p, level));
+                double tau = 1e-8 * (scale > 0 ? scale : 1.0);
+                for (int k = 0; k < 40 && rc == SB_NOT_POSDEF; k++, tau *= 10) {
+                    rc = sb_problem_factor(p, level, tau);
+                    d->shift = tau;
+                }
+                if (rc < 0) return rc;
+            }
+            d->factor_rc = rc;
         }
         if (rc == SB_OK) {
             for (int i = 0; i < n; i++) d->sc[i] = -g[i];
@@ -385,7 +392,7 @@ static int stcg_solve(void *st, sb_problem *p, int level, const double *g, doubl
     stcg_state *c = st;
     const int n = c->n;
     double *r = c->r, *d = c->d, *Hd = c->Hd, *z = c->z;
-    if (c->precond && fresh) {
+    if (c->precond && fresh && !(fresh & SB_TRS_SAME_H)) {
         int rc = stcg_setup_precond(c, p, level);
         if (rc) return rc;
     }

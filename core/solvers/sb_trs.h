@@ -14,13 +14,17 @@ typedef struct sb_trs_result {
     int posdef;         /* dogleg: 1 when H factored (Newton point available) */
 } sb_trs_result;
 
+enum { SB_TRS_SAME_H = 1 << 1 };
+
 typedef struct sb_trs_type {
     const char *name;
     size_t state_size;
     int  (*alloc)(void *state, int n);
     void (*free)(void *state);
     /* fresh = 1 when H or g changed since the last call on this state (a
-     * direct method then refactors; otherwise cached factors/points are reused). */
+     * direct method then refactors; otherwise cached factors/points are
+     * reused); fresh = 1 | SB_TRS_SAME_H when only g changed (the factor or
+     * preconditioner of H is kept). */
     int  (*solve)(void *state, sb_problem *p, int level, const double *g, double delta,
                   int fresh, int max_iter, double *s, sb_trs_result *r);
 } sb_trs_type;
