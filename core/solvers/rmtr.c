@@ -301,6 +301,26 @@ static int trial_ratio(rmtr_state *R, sb_problem *p, int l, int trial_rc, double
     return SB_OK;
 }
 
+/* h^l at the trial point V->xt = V->x + V->s and its ratio against the
+ * predicted reduction pred.  A Galerkin level l < L is a quadratic that is
+ * its own model, and the next coarser model is its exact restriction
+ * (h^{l-1}(x0 + d) = h^l(x + I d) - h^l(x)), so rho = 1 there by
+ * construction: it is set, not computed from a difference of nearly equal
+ * values; only the finest level's ratio carries information. */
+static int ratio_of_trial(rmtr_state *R, sb_problem *p, int l, double pred, double *ft, double *rho, int *have_gt)
+{
+    rlevel *V = &R->lv[l];
+    *have_gt = 0;
+    if (R->galerkin && l < R->L) {
+        *ft = V->f - pred;
+        *rho = pred > 0 && isfinite(pred) ? 1.0 : -INFINITY;
+        return SB_OK;
+    }
+    int rc = h_eval(R, p, l, V->xt, ft, NULL, 0);
+    if (rc < 0) return rc;
+    return trial_ratio(R, p, l, rc, *ft, pred, rho, have_gt);
+}
+
 /* Move to the accepted trial point V->xt (h^l = ft there): f and g at the new
  * x, from trial_ratio's gradient when it has one; the Hessian is stale. */
 static int accept_trial(rmtr_state *R, sb_problem *p, int l, double ft, int have_gt)
@@ -358,12 +378,9 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
             }
         }
         for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] + V->s[i];
-        double ft;
-        rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
-        if (rc < 0) return rc;
-        double rho;
-        int have_gt;
-        if ((rc = trial_ratio(R, p, l, rc, ft, tr.pred, &rho, &have_gt))) return rc;
+        double ft, rho;
+        int have_gt = 0;
+        if ((rc = ratio_of_trial(R, p, l, tr.pred, &ft, &rho, &have_gt))) return rc;
         if (rho > R->eta1) {
             V->ared_sum += rho * tr.pred;      /* = f - ft when that difference is reliable */
             if ((rc = accept_trial(R, p, l, ft, have_gt))) return rc;
@@ -445,13 +462,10 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         for (int i = 0; i < C->n; i++) C->tmp[i] = C->x[i] - C->x0[i];
         if ((rc = sb_problem_prolong(p, l - 1, C->tmp, V->s))) return rc;
         for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] + V->s[i];
-        double ft;
-        rc = h_eval(R, p, l, V->xt, &ft, NULL, 0);
-        if (rc < 0) return rc;
         /* line 6: multilevel ratio (Eq. 4.11) */
-        double rho;
-        int have_gt;
-        if ((rc = trial_ratio(R, p, l, rc, ft, cred, &rho, &have_gt))) return rc;
+        double ft, rho;
+        int have_gt = 0;
+        if ((rc = ratio_of_trial(R, p, l, cred, &ft, &rho, &have_gt))) return rc;
         if (rho > R->eta1) {                    /* lines 7-8 */
             V->ared_sum += rho * cred;
             if ((rc = accept_trial(R, p, l, ft, have_gt))) return rc;
