@@ -26,7 +26,14 @@
  *  - Each level's radius starts from the finer level's radius at the time of
  *    the recursive call (Alg. 4.2 line 4); the finest radius persists across
  *    V-cycles and is reset to Delta_0 at the start of every time step.
- *  - Coarse gradient tolerance eps_g^l = run.gtol on every level. */
+ *  - Coarse gradient tolerance eps_g^l = solver.gtol_coarse on every level.
+ *  - solver.coarse_model (not in the paper): "nonlinear" is Eq. 4.3-4.4;
+ *    "galerkin" replaces f^l by the quadratic model with the Galerkin Hessian
+ *        h^l(x0 + d) = <R g^{l+1}, d> + 1/2 d^T (R H^{l+1} I) d
+ *    (Gratton, Sartenaer & Toint 2008, cited by the paper as [24]), with
+ *    H^L the finest Hessian assembled at the iterate the recursion starts
+ *    from; "auto" (default) is galerkin when the product fits every coarse
+ *    sparsity pattern (sb_problem_galerkin_prepare), else nonlinear. */
 #include "sb_solver.h"
 #include "sb_trs.h"
 #include "sb_context.h"
