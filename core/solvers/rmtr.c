@@ -32,8 +32,11 @@
  *        h^l(x0 + d) = <R g^{l+1}, d> + 1/2 d^T (R H^{l+1} I) d
  *    (Gratton, Sartenaer & Toint 2008, cited by the paper as [24]), with
  *    H^L the finest Hessian assembled at the iterate the recursion starts
- *    from; "auto" (default) is galerkin when the product fits every coarse
- *    sparsity pattern (sb_problem_galerkin_prepare), else nonlinear. */
+ *    from; "corrected" keeps the coarse objective and adds the second-order
+ *    correction, h^l = f^l + <dg, d> + 1/2 d^T (R H^{l+1} I - H^l(x0)) d, so
+ *    that its Hessian at x0 is the Galerkin one; "auto" (default) is galerkin
+ *    when the product fits every coarse sparsity pattern
+ *    (sb_problem_galerkin_prepare), else nonlinear. */
 #include "sb_solver.h"
 #include "sb_trs.h"
 #include "sb_context.h"
@@ -43,8 +46,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const coarse_model_names[] = { "auto", "nonlinear", "galerkin", NULL };
-enum { MODEL_AUTO = 0, MODEL_NONLINEAR = 1, MODEL_GALERKIN = 2 };
+static const char *const coarse_model_names[] = { "auto", "nonlinear", "galerkin", "corrected", NULL };
+enum { MODEL_AUTO = 0, MODEL_NONLINEAR = 1, MODEL_GALERKIN = 2, MODEL_CORRECTED = 3 };
 
 static const sb_param_def rmtr_params[] = {
     { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
@@ -65,8 +68,9 @@ static const sb_param_def rmtr_params[] = {
       "ST-CG smoother preconditioner: schwarz (additive Schwarz on element patches), none (the paper's), jacobi, block (node-block Jacobi), sgs (symmetric block Gauss-Seidel)" },
     { "coarse_model", SB_PARAM_CHOICE, 0, 0, 0, coarse_model_names,
       "coarse models: nonlinear (the coarse objective + first-order term, Eq. 4.3-4.4, the paper's), galerkin "
-      "(quadratic with the Galerkin Hessian I^T H I: second-order consistent) or auto (galerkin where every "
-      "coarse pattern holds I^T H I, else nonlinear; the record's solver_info says which)" },
+      "(quadratic with the Galerkin Hessian I^T H I: second-order consistent), corrected (nonlinear + "
+      "1/2 d^T (I^T H I - H^l(x0)) d: second-order consistent, keeps the coarse nonlinearity) or auto (galerkin "
+      "where every coarse pattern holds I^T H I, else nonlinear; the record's solver_info says which)" },
     { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
@@ -75,6 +79,7 @@ typedef struct rlevel {
     int n;
     double *x0, *x, *g, *dg, *s, *xt, *tmp, *gt;
     double *d, *hd;      /* Galerkin models: x - x0 and H (x - x0) */
+    sb_matrix E;         /* corrected models: R H^{l+1} I - H^l(x0) (coarse pattern) */
     double f;            /* h^l(x) */
     double ared_sum;     /* h^l(x0) - h^l(x): sum of the accepted steps' actual reductions */
     double delta;
@@ -90,6 +95,7 @@ typedef struct rmtr_state {
     double eta1, eta2, gamma1, gamma2, delta0, eps_delta, gtol;
     int mu1, mu2, cg_iter;
     int galerkin;             /* coarse models are quadratic with H^l = R H^{l+1} I */
+    int corrected;            /* coarse objective + first- and second-order corrections */
     int model_param;          /* MODEL_* as requested */
     int precond;              /* smoother preconditioner (index into sb_trs_precond_names) */
     rlevel lv[SB_MAX_LEVELS];
@@ -109,6 +115,7 @@ static void rmtr_free(void *st)
         rlevel *V = &R->lv[l];
         free(V->x0); free(V->x); free(V->g); free(V->dg); free(V->s); free(V->xt); free(V->tmp); free(V->gt);
         free(V->d); free(V->hd);
+        sb_matrix_free(&V->E);
         sb_trs_free(&V->trs);
     }
 }
@@ -193,7 +200,8 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     R->cg_iter = sb_param_int(ps, "solver.smoother_cg_iter");
     R->gtol = sb_param(ps, "solver.gtol_coarse");
     R->model_param = sb_param_int(ps, "solver.coarse_model");
-    R->galerkin = R->model_param != MODEL_NONLINEAR;
+    R->galerkin = R->model_param == MODEL_GALERKIN || R->model_param == MODEL_AUTO;
+    R->corrected = R->model_param == MODEL_CORRECTED;
     R->precond = sb_param_int(ps, "solver.smoother_precond");
     const sb_trs_type *coarse = sb_trs_by_index(sb_param_int(ps, "solver.coarse_trs"));
     for (int l = 0; l < R->nl; l++) {
@@ -216,6 +224,11 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     if (!R->fa || !R->fb) return SB_ERR_NOMEM;
     for (int l = 0; l < R->nl; l++) {
         int rc = level_norm_scale(R, p, l, &R->lv[l].cnorm);
+        if (rc) return rc;
+    }
+    for (int l = 0; R->corrected && l < R->L; l++) {
+        int rc = sb_problem_galerkin_prepare(p, l);
+        if (!rc) rc = sb_matrix_init(&R->lv[l].E, sb_problem_hessian(p, l)->pat);
         if (rc) return rc;
     }
     for (int l = 0; R->galerkin && l < R->L; l++) {
@@ -259,6 +272,14 @@ static int h_eval(rmtr_state *R, sb_problem *p, int l, const double *x, double *
         for (int i = 0; i < V->n; i++) lin += V->dg[i] * (x[i] - V->x0[i]);
         *f += lin;
         if (g) sb_axpy(V->n, 1.0, V->dg, g);
+        if (R->corrected) {
+            /* + 1/2 d^T E d: the model's Hessian at x0 is the Galerkin one */
+            for (int i = 0; i < V->n; i++) V->d[i] = x[i] - V->x0[i];
+            sb_matrix_symv(&V->E, V->d, V->hd);
+            *f += 0.5 * sb_dot(V->n, V->d, V->hd);
+            if (g) sb_axpy(V->n, 1.0, V->hd, g);
+            if (hess) sb_matrix_axpy(sb_problem_hessian(p, l), 1.0, &V->E);
+        }
     }
     return rc;
 }
@@ -418,9 +439,21 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
     } else if (l < R->L) {
         /* line 1: dg = R g^{l+1} - grad f^l(x0) (Eq. 4.4) */
         memset(V->dg, 0, (size_t)V->n * sizeof(double));
-        rc = sb_problem_eval(p, l, V->x, &V->f, V->g, NULL);
+        sb_matrix *H = sb_problem_hessian(p, l);
+        if (R->corrected) {
+            /* E = R H^{l+1} I - H^l(x0): second-order consistency of the
+             * corrected model h^l = f^l + <dg, d> + 1/2 d^T E d */
+            if ((rc = sb_problem_galerkin_hessian(p, l))) return rc;
+            memcpy(V->E.val, H->val, (size_t)H->pat->nnz * sizeof(double));
+        }
+        rc = sb_problem_eval(p, l, V->x, &V->f, V->g, R->corrected ? H : NULL);
         V->hess_ok = 0;
         if (rc < 0) return rc;
+        if (R->corrected && rc == SB_OK) {
+            sb_matrix_axpy(&V->E, -1.0, H);
+            sb_matrix_axpy(H, 1.0, &V->E);     /* H holds the model Hessian at x0 */
+            V->hess_ok = 1;
+        }
         /* the projected iterate may be inadmissible on this level (a coarse
          * surface through projected control points can exceed the material's
          * admissible strain): no coarse model, the finer level goes on without
@@ -444,7 +477,7 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
     if ((rc = local_tr(R, p, l, R->mu1, bound, lin_iters))) return rc;
     if (l > 0) {
         rlevel *C = &R->lv[l - 1];
-        if (R->galerkin && !V->hess_ok) {
+        if ((R->galerkin || R->corrected) && !V->hess_ok) {
             /* the Galerkin coarse Hessian needs this level's Hessian at x */
             if ((rc = h_eval(R, p, l, V->x, &V->f, V->g, 1)) < 0) return rc;
             if (rc == SB_NONFINITE) return rc;
@@ -530,7 +563,8 @@ static void rmtr_describe(const void *st, char *buf, size_t len)
 {
     const rmtr_state *R = st;
     snprintf(buf, len, "%d levels; coarse models %s%s; smoother mu1=%d mu2=%d x %d ST-CG (%s); coarsest dogleg",
-             R->nl, R->galerkin ? "galerkin (I^T H I)" : "nonlinear (Eq. 4.3-4.4)",
+             R->nl, R->galerkin ? "galerkin (I^T H I)" : R->corrected ? "corrected (Eq. 4.3-4.4 + 1/2 d^T (I^T H I - H^l) d)"
+             : "nonlinear (Eq. 4.3-4.4)",
              R->model_param == MODEL_AUTO ? " (auto)" : "", R->mu1, R->mu2, R->cg_iter, sb_trs_precond_names[R->precond]);
 }
 
