@@ -226,12 +226,8 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         int rc = level_norm_scale(R, p, l, &R->lv[l].cnorm);
         if (rc) return rc;
     }
-    for (int l = 0; R->corrected && l < R->L; l++) {
-        int rc = sb_problem_galerkin_prepare(p, l);
-        if (!rc) rc = sb_matrix_init(&R->lv[l].E, sb_problem_hessian(p, l)->pat);
-        if (rc) return rc;
-    }
-    for (int l = 0; R->galerkin && l < R->L; l++) {
+    /* Galerkin products (I^T H I) for the galerkin and corrected models */
+    for (int l = 0; (R->galerkin || R->corrected) && l < R->L; l++) {
         int rc = sb_problem_galerkin_prepare(p, l);
         if (rc == SB_ERR_UNSUPPORTED && R->model_param == MODEL_AUTO) {
             /* auto: this hierarchy's coarse patterns cannot hold I^T H I */
@@ -239,9 +235,10 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
             ctx->status = SB_OK;
             ctx->err[0] = '\0';
             R->galerkin = 0;
-        } else if (rc) {
-            return rc;
+            break;
         }
+        if (!rc && R->corrected) rc = sb_matrix_init(&R->lv[l].E, sb_problem_hessian(p, l)->pat);
+        if (rc) return rc;
     }
     return SB_OK;
 }
