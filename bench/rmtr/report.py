@@ -103,7 +103,9 @@ if g6 is not None:
     print("\nAt 51,483 dofs the Galerkin model fails the trampoline's first step (%s after %s V-cycles, capped" % (
         g6["reason"], g6["iterations"]))
     print("at 60): the first corrections give poor ratios and the radius collapses.  The quadratic model is not the")
-    print("cause (single-level TR with exact Newton steps from the same start reaches ‖g‖ ≈ 2e-7 in 11 iterations);")
+    t6 = rows.get("trshift-trampoline-r128")
+    print("cause: single-level TR with exact Newton steps reaches the limiting accuracy (‖g‖ ≈ 2e-7) from the same")
+    print("start (%s after %s iterations, the first step);" % (t6["status"] if t6 else "not run", t6["iterations"] if t6 else "—"))
     print("one V-cycle's approximation of the Newton step is, on that mesh.  The nonlinear coarse objective converges;")
     print("`solver.coarse_model=corrected` (the nonlinear model plus the second-order term")
     print("1/2 d^T (I^T H I - H^l(x0)) d) gets through, like the nonlinear model: with run.gtol = 1e-6 (above the")

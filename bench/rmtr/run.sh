@@ -74,6 +74,8 @@ for s in $SCENES; do
     [ "$s:$l" = trampoline:6 ] && { run "rmtrs-$s-l$l" "$s" rmtr "$r" "$l" --set run.max_iter=60; continue; }
     run "rmtrs-$s-l$l" "$s" rmtr "$r" "$l"
   done
+  case " $lo " in *" 6 "*)   # TR (exact Newton steps) beside it at 51,483 dofs
+    run "trshift-$s-r128" "$s" tr 128 1 ;; esac
   case " $lo " in *" 6 "*)   # the corrected models (nonlinear + second-order term) at 51,483 dofs
     run "rmtrc-$s-l6" "$s" rmtr 128 6 --set solver.coarse_model=corrected
     run "rmtrc-$s-l6-gtol1e-6" "$s" rmtr 128 6 --set solver.coarse_model=corrected --set run.gtol=1e-6 ;; esac
