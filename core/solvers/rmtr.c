@@ -62,7 +62,7 @@ static const sb_param_def rmtr_params[] = {
     { "coarse_trs", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_names, "coarsest-level subproblem solver (§7.3: dogleg)" },
     { "indefinite", SB_PARAM_CHOICE, 1, 0, 0, sb_trs_indefinite_names,
       "coarsest-level dogleg on an indefinite Hessian: shift or cauchy (the paper's configuration)" },
-    { "smoother_rtol", SB_PARAM_REAL, -1, -1, 1, NULL,
+    { "smoother_rtol", SB_PARAM_REAL, 0, -1, 1, NULL,
       "ST-CG smoother residual tolerance relative to ||g|| (-1: inexact-Newton forcing min(0.5, sqrt||g||); 0: always all iterations)" },
     { "smoother_precond", SB_PARAM_CHOICE, 4, 0, 0, sb_trs_precond_names,
       "ST-CG smoother preconditioner: schwarz (additive Schwarz on element patches), none (the paper's), jacobi, block (node-block Jacobi), sgs (symmetric block Gauss-Seidel)" },
