@@ -213,7 +213,7 @@ print("  ours with nonlinear coarse models to 3 levels (6 on the trampoline); ou
 print("  (3,675 dofs) on drooping / re-entrant corner / drape and to 6 levels (51,483 dofs) on the trampoline.")
 print("  `full` mode adds TR at 3,675 dofs, 5 and 6 levels of ours on every scene and Table 8 on every scene;")
 print("  it was not run for this report.  The 51,483-dof runs of the three hard scenes are out of this")
-print("  machine's budget: at 3,675 dofs drooping already takes ~2,000 V-cycles (~10 min), and both the")
+print("  machine's budget: at 3,675 dofs drooping already takes ~1,800 V-cycles (~10 min), and both the")
 print("  V-cycle count and the cost per V-cycle grow with the level (see Table 4 and the performance table).")
 print("* Known failures, reported as measured: with the paper's nonlinear coarse models (even with the Schwarz")
 print("  smoother) 3 levels do not converge the re-entrant corner or the drape within 2,000 V-cycles per step,")
