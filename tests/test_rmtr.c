@@ -128,10 +128,11 @@ SB_TEST(rmtr_trampoline_subdivision)
  * sides fall under gravity; nonconvex), RMTR with the defaults (Galerkin
  * coarse models, 2 levels) against TR with our dogleg (shifted Newton point
  * on an indefinite Hessian) and with the paper's (Cauchy point), Eqs. 7.3-7.4.
- * Measured: RMTR 86 V-cycles, 161 assembly / 222 QP WU with one BLAS thread
- * (81, 165 / 213 with two: round-off in the factorization changes the
- * nonconvex path); TR (shift) 515 iterations, 280 / 515; TR (Cauchy) not
- * converged after 1,500 iterations, 1,278 / 1,500. */
+ * Measured with one BLAS thread (round-off in the factorization changes the
+ * nonconvex path): RMTR 78 V-cycles, 137 assembly / 203 QP WU (86, 161 / 222
+ * with the paper's fixed 10 smoother iterations); TR (shift) 515
+ * iterations, 280 / 515; TR (Cauchy) not converged after 1,500 iterations,
+ * 1,278 / 1,500. */
 SB_TEST(rmtr_fewer_work_units_than_tr_drooping)
 {
     static const char *const cauchy[] = { "solver.indefinite=cauchy", "run.max_iter=1500" };
