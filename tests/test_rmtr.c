@@ -413,6 +413,48 @@ SB_TEST(preconditioned_stcg_reaches_newton_step)
     direct_close(&D);
 }
 
+/* The smoother's stopping rules (README "RMTR smoother stopping rule"): with
+ * rtol = 0.1 Schwarz-preconditioned ST-CG stops at the first iterate with
+ * ||g + H s|| <= 0.1 ||g|| (and not one iteration later); with rtol = 0 it
+ * runs exactly max_iter iterations (the paper's 10). */
+SB_TEST(stcg_relative_stopping_rule)
+{
+    extern const sb_method_type sb_method_subdiv;
+    direct_problem D;
+    if (direct_open(T, &D, "trampoline_1step.json", &sb_method_subdiv, 8, 1, 1.0)) return;
+    sb_problem *p = D.p;
+    const int n = D.n;
+    double *g = malloc(n * sizeof(double)), *s = malloc(n * sizeof(double)), *r = malloc(n * sizeof(double));
+    for (int i = 2; i < n; i += 3) D.x0[i] -= 0.003;
+    double f;
+    CHECK_EQ_INT(sb_problem_eval(p, 0, D.x0, &f, g, sb_problem_hessian(p, 0)), 0);
+    const double g0 = sb_norm2(n, g);
+    int its[3] = { 0, 0, 0 };
+    const double rtol[3] = { 0.1, 0.1 * (1 + 1e-9), 0.0 };
+    for (int k = 0; k < 3; k++) {
+        sb_trs t;
+        CHECK_EQ_INT(sb_trs_alloc(&t, &sb_trs_stcg, n), 0);
+        sb_trs_set_cg_rtol(&t, rtol[k]);
+        sb_trs_set_cg_precond(&t, 4);
+        sb_trs_result res;
+        /* k = 1 stops one iteration short of k = 0 to check "the first iterate" */
+        int max_iter = k == 0 ? 200 : k == 1 ? (its[0] > 1 ? its[0] - 1 : 1) : 10;
+        CHECK_EQ_INT(sb_trs_solve(&t, p, 0, g, 1e30, 1, max_iter, s, &res), 0);
+        sb_problem_hess_mult(p, 0, s, r);
+        for (int i = 0; i < n; i++) r[i] += g[i];
+        double rn = sb_norm2(n, r);
+        its[k] = res.iters;
+        if (k == 0) CHECK_MSG(rn <= 0.1 * g0 * (1 + 1e-8) && res.iters > 1 && res.iters < 200,
+                              "rtol 0.1: ||r|| / ||g|| = %.3g after %d iterations", rn / g0, res.iters);
+        if (k == 1) CHECK_MSG(rn > 0.1 * g0, "one iteration fewer already gives ||r|| / ||g|| = %.3g", rn / g0);
+        if (k == 2) CHECK_EQ_INT(res.iters, 10);
+        CHECK(!res.boundary);
+        sb_trs_free(&t);
+    }
+    free(g); free(s); free(r);
+    direct_close(&D);
+}
+
 /* A tolerance below the attainable accuracy: both solvers stop as "stalled"
  * (not converged) within a few iterations of reaching round-off, instead of
  * running to the cap while the radius collapses. */
@@ -449,7 +491,7 @@ int main(int argc, char **argv)
         SB_CASE(rmtr_smoother_preconditioners), SB_CASE(preconditioned_stcg_reaches_newton_step),
         SB_CASE(stalled_at_limiting_accuracy), SB_CASE(galerkin_coarse_hessian),
         SB_CASE(rmtr_galerkin_converges), SB_CASE(rmtr_corrected_models),
-        SB_CASE(rmtr_fewer_work_units_than_tr_drooping), SB_END,
+        SB_CASE(rmtr_fewer_work_units_than_tr_drooping), SB_CASE(stcg_relative_stopping_rule), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }
