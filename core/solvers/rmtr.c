@@ -14,7 +14,7 @@
  * iterations, so the smoothing keeps pace with the conditioning of the level
  * (Fig. 9: cond(H) grows like h^-4); with a fixed 10 iterations the
  * V-cycle's contraction near a solution degrades from level to level
- * (README "RMTR smoother").
+ * (README "RMTR smoother stopping rule").
  *
  * Assumptions where the paper is silent or ambiguous (README "RMTR"):
  *  - Alg. 4.3 line 4 as printed ("if ||x_i - x_0||_l > (1-eps) Delta^{l+1}
