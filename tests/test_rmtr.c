@@ -375,18 +375,28 @@ SB_TEST(rmtr_corrected_models)
  * tolerance is preconditioned CG: every preconditioner (none, Jacobi, node
  * blocks, symmetric block Gauss–Seidel, additive Schwarz) must reach the
  * Newton step -H^{-1} g of CHOLMOD, and the stronger ones in fewer iterations. */
-SB_TEST(preconditioned_stcg_reaches_newton_step)
+/* The trampoline's first step at 363 dofs, one level, evaluated at a sagged
+ * point (a few millimetres down, so that H carries membrane stress): g and H
+ * there.  0 on success (g allocated by the caller, n = D->n). */
+static int open_sagged_trampoline(sb_test_state *T, direct_problem *D, double **g)
 {
     extern const sb_method_type sb_method_subdiv;
+    if (direct_open(T, D, "trampoline_1step.json", &sb_method_subdiv, 8, 1, 1.0)) return 1;
+    *g = malloc(D->n * sizeof(double));
+    for (int i = 2; i < D->n; i += 3) D->x0[i] -= 0.003;
+    double f;
+    CHECK_EQ_INT(sb_problem_eval(D->p, 0, D->x0, &f, *g, sb_problem_hessian(D->p, 0)), 0);
+    return 0;
+}
+
+SB_TEST(preconditioned_stcg_reaches_newton_step)
+{
     direct_problem D;
-    if (direct_open(T, &D, "trampoline_1step.json", &sb_method_subdiv, 8, 1, 1.0)) return;
+    double *g;
+    if (open_sagged_trampoline(T, &D, &g)) return;
     sb_problem *p = D.p;
     const int n = D.n;
-    double *g = malloc(n * sizeof(double)), *s = malloc(n * sizeof(double)), *sn = malloc(n * sizeof(double));
-    /* a sagged point: a few millimetres down, so that H carries membrane stress */
-    for (int i = 2; i < n; i += 3) D.x0[i] -= 0.003;
-    double f;
-    CHECK_EQ_INT(sb_problem_eval(p, 0, D.x0, &f, g, sb_problem_hessian(p, 0)), 0);
+    double *s = malloc(n * sizeof(double)), *sn = malloc(n * sizeof(double));
     CHECK_EQ_INT(sb_problem_factor(p, 0, 0.0), 0);
     for (int i = 0; i < n; i++) s[i] = -g[i];
     CHECK_EQ_INT(sb_problem_solve(p, 0, s, sn), 0);
@@ -419,15 +429,12 @@ SB_TEST(preconditioned_stcg_reaches_newton_step)
  * runs exactly max_iter iterations (the paper's 10). */
 SB_TEST(stcg_relative_stopping_rule)
 {
-    extern const sb_method_type sb_method_subdiv;
     direct_problem D;
-    if (direct_open(T, &D, "trampoline_1step.json", &sb_method_subdiv, 8, 1, 1.0)) return;
+    double *g;
+    if (open_sagged_trampoline(T, &D, &g)) return;
     sb_problem *p = D.p;
     const int n = D.n;
-    double *g = malloc(n * sizeof(double)), *s = malloc(n * sizeof(double)), *r = malloc(n * sizeof(double));
-    for (int i = 2; i < n; i += 3) D.x0[i] -= 0.003;
-    double f;
-    CHECK_EQ_INT(sb_problem_eval(p, 0, D.x0, &f, g, sb_problem_hessian(p, 0)), 0);
+    double *s = malloc(n * sizeof(double)), *r = malloc(n * sizeof(double));
     const double g0 = sb_norm2(n, g);
     int its[3] = { 0, 0, 0 };
     const double rtol[3] = { 0.1, 0.1 * (1 + 1e-9), 0.0 };
