@@ -79,6 +79,13 @@ static const sb_param_def rmtr_params[] = {
       "1/2 d^T (I^T H I - H^l(x0)) d: second-order consistent, keeps the coarse nonlinearity) or auto (galerkin "
       "where every coarse pattern holds I^T H I, else nonlinear; the record's solver_info says which)" },
     { "gtol_coarse", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "eps_g^l: stop smoothing on a level when ||grad h^l|| is below" },
+    { "nested", SB_PARAM_INT, 1, 0, 2, NULL,
+      "nested-iteration start (not in the paper): solve the step on levels 0..1, prolongate the correction, "
+      "solve on 0..2, ... and start the finest V-cycles from there; 0 off, 1 the first step of the run (the start "
+      "from rest), 2 every step; coarse V-cycles are recorded with their level" },
+    { "nested_gtol", SB_PARAM_REAL, 1e-4, 0, 1e10, NULL,
+      "nested start: a coarse top level is solved until ||grad f^l|| < nested_gtol" },
+    { "nested_max_iter", SB_PARAM_INT, 1000, 1, 1e9, NULL, "nested start: at most this many V-cycles per coarse top level" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -86,6 +93,7 @@ typedef struct rlevel {
     int n;
     double *x0, *x, *g, *dg, *s, *xt, *tmp, *gt;
     double *d, *hd;      /* Galerkin models: x - x0 and H (x - x0) */
+    double *xs;          /* nested start: the step's start projected to this level */
     sb_matrix E;         /* corrected models: R H^{l+1} I - H^l(x0) (coarse pattern) */
     double f;            /* h^l(x) */
     double ared_sum;     /* h^l(x0) - h^l(x): sum of the accepted steps' actual reductions */
@@ -106,6 +114,13 @@ typedef struct rmtr_state {
     int model_param;          /* MODEL_* as requested */
     int precond;              /* smoother preconditioner (index into sb_trs_precond_names) */
     rlevel lv[SB_MAX_LEVELS];
+    int nested;               /* nested-iteration start (solver.nested: 0 off, 1 first step, 2 every step) */
+    int n_solves;             /* rmtr_set calls so far (steps of the run) */
+    int L_fine;               /* the finest level; R->L is the current top, < L_fine while nesting */
+    int top_cycles;           /* V-cycles run on the current top level */
+    int nested_max;
+    double nested_gtol;
+    double cn[SB_MAX_LEVELS][SB_MAX_LEVELS];   /* cn[top][l]: c_l of level l when `top` is the finest */
     double consistency_err;   /* max relative |grad h^l(x0) - R g^{l+1}| seen (Eq. 4.5) */
 } rmtr_state;
 
@@ -121,7 +136,7 @@ static void rmtr_free(void *st)
     for (int l = 0; l < R->nl; l++) {
         rlevel *V = &R->lv[l];
         free(V->x0); free(V->x); free(V->g); free(V->dg); free(V->s); free(V->xt); free(V->tmp); free(V->gt);
-        free(V->d); free(V->hd);
+        free(V->d); free(V->hd); free(V->xs);
         sb_matrix_free(&V->E);
         sb_trs_free(&V->trs);
     }
@@ -217,8 +232,8 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         size_t b = (size_t)V->n * sizeof(double);
         V->x0 = malloc(b); V->x = malloc(b); V->g = malloc(b); V->dg = calloc(1, b);
         V->s = malloc(b); V->xt = malloc(b); V->tmp = malloc(b); V->gt = malloc(b);
-        V->d = malloc(b); V->hd = malloc(b);
-        if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp || !V->gt || !V->d || !V->hd)
+        V->d = malloc(b); V->hd = malloc(b); V->xs = malloc(b);
+        if (!V->x0 || !V->x || !V->g || !V->dg || !V->s || !V->xt || !V->tmp || !V->gt || !V->d || !V->hd || !V->xs)
             return SB_ERR_NOMEM;
         int rc = sb_trs_alloc(&V->trs, l == 0 ? coarse : &sb_trs_stcg, V->n);
         if (rc) return rc;
@@ -229,10 +244,19 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     R->fa = malloc((size_t)R->lv[R->L].n * sizeof(double));
     R->fb = malloc((size_t)R->lv[R->L].n * sizeof(double));
     if (!R->fa || !R->fb) return SB_ERR_NOMEM;
-    for (int l = 0; l < R->nl; l++) {
-        int rc = level_norm_scale(R, p, l, &R->lv[l].cnorm);
-        if (rc) return rc;
+    R->nested = R->L >= 2 ? sb_param_int(ps, "solver.nested") : 0;
+    R->nested_gtol = sb_param(ps, "solver.nested_gtol");
+    R->nested_max = sb_param_int(ps, "solver.nested_max_iter");
+    R->L_fine = R->L;
+    /* c_l for every top level a nested start can run on (R->L is the top) */
+    for (int top = R->nested ? 1 : R->L; top <= R->L_fine; top++) {
+        R->L = top;
+        for (int l = 0; l <= top; l++) {
+            int rc = level_norm_scale(R, p, l, &R->cn[top][l]);
+            if (rc) return rc;
+        }
     }
+    for (int l = 0; l < R->nl; l++) R->lv[l].cnorm = R->cn[R->L][l];
     /* Galerkin products (I^T H I) for the galerkin and corrected models */
     for (int l = 0; (R->galerkin || R->corrected) && l < R->L; l++) {
         int rc = sb_problem_galerkin_prepare(p, l);
@@ -523,43 +547,130 @@ post_smoothing:
     return local_tr(R, p, l, R->mu2, bound, lin_iters);
 }
 
+/* Make `top` the finest level of the V-cycles (a nested start runs them on
+ * the levels 0..top < L_fine first): the level norms (4.9) end at `top`. */
+static void set_top(rmtr_state *R, int top)
+{
+    R->L = top;
+    R->top_cycles = 0;
+    for (int l = 0; l <= top; l++) R->lv[l].cnorm = R->cn[top][l];
+}
+
+/* Start V-cycles on the top level from V->x: f, g (and H when hess) there,
+ * radius Delta_0 (Table 2). */
+static int start_top(rmtr_state *R, sb_problem *p, int hess)
+{
+    rlevel *V = &R->lv[R->L];
+    V->delta = R->delta0;
+    int rc = sb_problem_eval(p, R->L, V->x, &V->f, V->g, hess ? sb_problem_hessian(p, R->L) : NULL);
+    V->fresh = 1;
+    V->hess_ok = hess;
+    return rc;
+}
+
+/* Nested start (solver.nested; not in the paper, the classical nested
+ * iteration of multigrid): the step's start x_s is projected to every level
+ * (x_s^l = P x_s^{l+1}, prescribed values imposed); the step's own problem on
+ * level l (f^l with the step data distributed to the level, §6) is solved by
+ * V-cycles on the levels 0..l, and its correction is prolongated as the
+ * start of level l+1:  x^{l+1} = x_s^{l+1} + I (x^l - x_s^l).  A prolongated
+ * start that is not admissible or not lower than x_s^{l+1} is dropped
+ * (ASSUMPTION: the nested start must never make a level's start worse). */
+static int promote(rmtr_state *R, sb_problem *p, double *x)
+{
+    const int lc = R->L, lf = lc + 1;
+    rlevel *C = &R->lv[lc], *F = &R->lv[lf];
+    int rc;
+    double fs = F->f;           /* f^{L_fine}(x_s), from rmtr_set */
+    if (lf < R->L_fine) {
+        rc = sb_problem_eval(p, lf, F->xs, &fs, NULL, NULL);
+        if (rc < 0) return rc;
+        if (rc == SB_NONFINITE) fs = INFINITY;
+    }
+    for (int i = 0; i < C->n; i++) C->tmp[i] = C->x[i] - C->xs[i];
+    if ((rc = sb_problem_prolong(p, lc, C->tmp, F->s))) return rc;
+    for (int i = 0; i < F->n; i++) F->x[i] = F->xs[i] + F->s[i];
+    sb_problem_impose(p, lf, F->x);
+    set_top(R, lf);
+    rc = start_top(R, p, 1);
+    if (rc < 0) return rc;
+    if (rc == SB_NONFINITE || !(F->f < fs)) {
+        sb_copy(F->n, F->xs, F->x);
+        if ((rc = start_top(R, p, 1)) < 0) return rc;
+    }
+    if (lf == R->L_fine) sb_copy(F->n, F->x, x);
+    return rc;
+}
+
 static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *info)
 {
     rmtr_state *R = st;
+    set_top(R, R->L_fine);
     rlevel *V = &R->lv[R->L];
-    V->delta = R->delta0;
     sb_copy(V->n, x, V->x);
-    int rc = sb_problem_eval(p, R->L, V->x, &V->f, V->g, sb_problem_hessian(p, R->L));
-    V->fresh = 1;
-    V->hess_ok = 1;
+    const int nested = R->nested == 2 || (R->nested == 1 && R->n_solves == 0);
+    R->n_solves++;
+    /* with a nested start the finest Hessian is first needed at the prolongated start */
+    int rc = start_top(R, p, !nested);
     info->f = V->f;
     info->gnorm = sb_problem_norm(p, R->L, V->g);
     info->delta = V->delta;
+    if (rc != SB_OK || !nested) return rc;
+    sb_copy(V->n, x, V->xs);
+    for (int l = R->L_fine - 1; l >= 1; l--) {
+        if ((rc = sb_problem_project(p, l, R->lv[l + 1].xs, R->lv[l].xs))) return rc;
+        sb_problem_impose(p, l, R->lv[l].xs);
+    }
+    set_top(R, 1);
+    sb_copy(R->lv[1].n, R->lv[1].xs, R->lv[1].x);
+    rc = start_top(R, p, 1);
+    if (rc == SB_NONFINITE) {
+        /* the projected start is not admissible on level 1: no nested start */
+        set_top(R, R->L_fine);
+        V->hess_ok = 0;
+        V->fresh = 1;
+        V->delta = R->delta0;
+        return SB_OK;
+    }
     return rc;
 }
 
 static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
 {
     rmtr_state *R = st;
-    rlevel *V = &R->lv[R->L];
+    const int top = R->L;
+    rlevel *V = &R->lv[top];
     double f_old = V->f;
-    /* the finest level keeps f, g, H of x from the previous cycle (h^L = f^L) */
-    sb_copy(V->n, x, V->x0);
+    /* the top level keeps f, g, H of x from the previous cycle (h^L = f^L) */
+    sb_copy(V->n, V->x, V->x0);
     int lin = 0, acc = 0;
-    int rc = rmtr_level(R, p, R->L, NULL, INFINITY, &lin, &acc);
+    int rc = rmtr_level(R, p, top, NULL, INFINITY, &lin, &acc);
     if (rc < 0) return rc;
-    if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
     double sn = 0;
-    for (int i = 0; i < V->n; i++) sn += (V->x[i] - x[i]) * (V->x[i] - x[i]);
-    sb_copy(V->n, V->x, x);
+    for (int i = 0; i < V->n; i++) sn += (V->x[i] - V->x0[i]) * (V->x[i] - V->x0[i]);
+    info->level = top;
     info->step_norm = sqrt(sn);
     info->f = V->f;
     info->df = f_old - V->f;
     info->accepted = sn > 0;
-    info->rho = acc;                 /* number of accepted coarse corrections on the finest level */
-    info->gnorm = sb_problem_norm(p, R->L, V->g);
+    info->rho = acc;                 /* number of accepted coarse corrections on the top level */
+    info->gnorm = sb_problem_norm(p, top, V->g);
     info->delta = V->delta;
     info->linear_iters = lin;
+    if (top == R->L_fine) {
+        if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+        sb_copy(V->n, V->x, x);
+        return SB_OK;
+    }
+    /* a V-cycle of the nested start: move up when the level is solved, out of
+     * cycles, or failed (then with the last admissible iterate) */
+    R->top_cycles++;
+    if (rc == SB_NONFINITE || info->gnorm < R->nested_gtol || R->top_cycles >= R->nested_max ||
+        V->delta < 1e-300) {
+        rc = promote(R, p, x);
+        if (rc < 0) return rc;
+        if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+    }
     return SB_OK;
 }
 

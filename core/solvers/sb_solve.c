@@ -77,6 +77,10 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
         if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
         else if (info.fail) reason = info.fail;
         else if (rc == SB_NONFINITE || !isfinite(info.f) || !isfinite(info.gnorm)) reason = SB_REASON_NONFINITE;
+        else if (info.level != F) {
+            /* an iteration on a coarser level (RMTR's nested start): it does not
+             * move x, only a failure or the cap ends the step */
+        }
         else if (info.gnorm < gstop) reason = SB_REASON_GRAD_TOL;
         else if (type->flags & SB_SOLVER_SINGLE_STEP) reason = SB_REASON_SINGLE_STEP;
         else if (max_abs_diff(n, x, x0) > diverge * (1.0 + x0max)) reason = SB_REASON_DIVERGED;
@@ -85,7 +89,7 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
             if (fabs(info.df) < ftol) reason = SB_REASON_F_TOL;
             else if (info.step_norm < xtol) reason = SB_REASON_X_TOL;
         }
-        if (!reason) {
+        if (!reason && info.level == F) {
             /* the limiting accuracy: steps and changes of f at round-off while the
              * radius shrinks (Eq. 7.1's f/x tests need a big radius) */
             const int tiny = info.accepted ? info.step_norm < xtol && fabs(info.df) < ftol : info.delta < xtol;
