@@ -64,19 +64,23 @@ for s in SCENES:
               r["status"], num(qi), q["status"] if q else "not run"))
 
 print("\n## Table 4 — RMTR V-cycles against the number of levels (coarsest 4×4 elements)\n")
-print("Four configurations.  \"paper config\": the paper's nonlinear coarse models (Eq. 4.3-4.4), smoother")
+print("Five configurations.  \"paper config\": the paper's nonlinear coarse models (Eq. 4.3-4.4), smoother")
 print("(10 unpreconditioned ST-CG iterations) and Cauchy dogleg, capped at %s V-cycles per step." % CAP_PAPER)
 print("\"ours, nonlinear\": the same coarse models with up to 10 ST-CG iterations preconditioned by additive Schwarz on")
 print("element patches (`solver.smoother_precond=schwarz`), stopped by the inexact-Newton forcing min(0.5, sqrt||g||)")
 print("(`solver.smoother_rtol=-1`).  \"Galerkin, 10 its\": Galerkin coarse models (the quadratic model with")
 print("H^l = I^T H^{l+1} I, second-order consistent) and the Schwarz smoother with all of the paper's 10 iterations")
-print("(`solver.smoother_cg_iter=10 solver.smoother_rtol=0`).  \"ours\": the defaults, Galerkin coarse models")
+print("(`solver.smoother_cg_iter=10 solver.smoother_rtol=0`).  \"Galerkin, rtol 0.1\": Galerkin coarse models")
 print("(`solver.coarse_model=auto`, which is Galerkin on this method) and the Schwarz smoother stopped at a tenfold")
-print("residual reduction, at most 200 iterations (`solver.smoother_rtol=0.1`).  WU = assembly work units (Eq. 7.3);")
-print("with Galerkin models the coarse levels assemble nothing, their cost is the product I^T H I (event `galerkin`).")
-print("QP WU (Eq. 7.4) counts subproblem solves, not CG iterations: the CG iterations per V-cycle are in the")
-print("performance tables below.\n")
-print("| scene | levels | dofs | paper | paper config | its status | ours, nonlinear | Galerkin, 10 its | ours | ours / paper | WU / V-cycle | s (10 its) | s (ours) | status |")
+print("residual reduction, at most 200 iterations (`solver.smoother_rtol=0.1`).  \"ours\": the defaults, which add")
+print("the nested start of the first step (`solver.nested=1`, not in the paper): the step is first solved on the")
+print("levels 0..1, then 0..2, ..., each start prolongated from the coarser solution.  Its cell reads")
+print("\"finest + coarser\": V-cycles on the finest level, plus V-cycles whose top was a coarser level (each costs a")
+print("fraction of a finest one; the work units count both); \"ours / paper\" uses their sum.  All but \"ours\" run")
+print("with `solver.nested=0`.  WU = assembly work units (Eq. 7.3); with Galerkin models the coarse levels of a")
+print("V-cycle assemble nothing, their cost is the product I^T H I (event `galerkin`).  QP WU (Eq. 7.4) counts")
+print("subproblem solves, not CG iterations: the CG iterations per V-cycle are in the performance tables below.\n")
+print("| scene | levels | dofs | paper | paper config | its status | ours, nonlinear | Galerkin, 10 its | Galerkin, rtol 0.1 | ours | ours / paper | WU (rtol 0.1 / ours) | s (10 its / rtol 0.1 / ours) | status (ours) |")
 print("|---|--:|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|---|")
 
 
@@ -88,30 +92,93 @@ def status(r):
     return r["status"] if r else "not run"
 
 
+def h5col(name, dset):
+    """one dataset of a record as a list of numbers (via h5dump), None without the record"""
+    path = os.path.join(RUNS, name + ".h5")
+    if not os.path.exists(path):
+        return None
+    out = subprocess.run(["h5dump", "-d", dset, "-y", "-w", "0", path], capture_output=True, text=True).stdout
+    body = out[out.find("DATA {") + 6:]
+    body = body[:body.find("}")]
+    return [float(v) for v in body.split(",") if v.strip()]
+
+
+def level_split(name):
+    """(finest, coarser) V-cycle counts of a record: iterations whose top level was the finest or a coarser
+    one (the nested start); the step-start records (iter 0) are not iterations"""
+    lv, it = h5col(name, "/history/iterations/level"), h5col(name, "/history/iterations/iter")
+    if lv is None:
+        return None
+    top = max(lv)
+    fine = sum(1 for a, b in zip(lv, it) if b > 0 and a == top)
+    return fine, sum(1 for a, b in zip(lv, it) if b > 0 and a < top)
+
+
+def split_cell(name, r):
+    sp = level_split(name)
+    if r is None or sp is None:
+        return "not run"
+    if not ok(r):
+        return "— (%s)" % r["reason"]
+    return "%s + %s" % (num(sp[0]), num(sp[1])) if sp[1] else num(sp[0])
+
+
 for s in SCENES:
     for l in range(2, 7):
-        r, n, g, q = (rows.get("%s-%s-l%d" % (c, s, l)) for c in ("rmtr", "rmtrn", "rmtrg10", "rmtrs"))
-        if r is None and q is None and n is None and g is None:
+        r, n, g, q, d = (rows.get("%s-%s-l%d" % (c, s, l)) for c in ("rmtr", "rmtrn", "rmtrg10", "rmtrs", "rmtrd"))
+        if all(x is None for x in (r, n, g, q, d)) and rows.get("rmtrd-%s-l%d-gtol1e-6" % (s, l)) is None:
             continue
-        ri, ni, gi, qi = it_or_none(r), it_or_none(n), it_or_none(g), it_or_none(q)
-        wu = float(q["work_assembly"]) / int(q["iterations"]) if q is not None and int(q["iterations"]) else None
-        dofs = (q or g or n or r)["dofs"]
+        # 51,483 dofs: where ||g|| stalls near 2e-7 (or only that run exists), the run with run.gtol = 1e-6
+        dname, qnote, dnote = "rmtrd-%s-l%d" % (s, l), "", ""
+        qg, dg = rows.get("rmtrs-%s-l%d-gtol1e-6" % (s, l)), rows.get("rmtrd-%s-l%d-gtol1e-6" % (s, l))
+        if qg is not None and not ok(q):
+            q, qnote = qg, " (gtol 1e-6)"
+        if dg is not None and not ok(d):
+            d, dname, dnote = dg, dname + "-gtol1e-6", " (gtol 1e-6)"
+        ri, ni, gi, qi, di = (it_or_none(x) for x in (r, n, g, q, d))
+        qst = "" if q is None or ok(q) else " (%s)" % q["reason"]
+        dofs = (d or q or g or n or r)["dofs"]
         nst = "" if n is None or ok(n) else " (%s)" % n["reason"]
         secs = lambda x: num(float(x["seconds"]), "{:.3g}") if x else "—"
-        print("| %s | %d | %s | %s | %s | %s | %s%s | %s | %s | %s | %s | %s | %s | %s |" % (
+        wus = lambda x: num(float(x["work_assembly"]), "{:,.0f}") if ok(x) else "—"
+        print("| %s | %d | %s | %s | %s | %s | %s%s | %s | %s%s | %s | %s | %s / %s | %s / %s / %s | %s |" % (
             NAMES[s], l, dofs, num(T4[s][l - 2]), num(ri) if r else "not run", status(r),
-            num(ni) if n else "not run", nst, num(gi) if g else "not run", num(qi), ratio(qi, T4[s][l - 2]),
-            num(wu, "{:.2f}"), secs(g), secs(q), status(q)))
+            num(ni) if n else "not run", nst, num(gi) if g else "not run", (num(qi) if q else "not run") + qnote, qst,
+            split_cell(dname, d) + dnote, ratio(di, T4[s][l - 2]), wus(q), wus(d),
+            secs(g), secs(q), secs(d), status(d)))
+
+print("\n## Which minimum each configuration ends in\n")
+print("The scenes are nonconvex (the cloth buckles): solvers that converge to the tolerance can still end a step")
+print("in different local minima, so V-cycle counts compare runs that found different equilibria.  The energy")
+print("f (J) of the incremental potential at the end of step 1 and of step 5; lower is a better minimizer of the")
+print("same discrete problem.  TR (shift): single-level TR with exact shifted Newton steps.\n")
+print("| scene | levels | dofs | TR (shift): step 1 / 5 | Galerkin, 10 its | Galerkin, rtol 0.1 | ours (nested start) |")
+print("|---|--:|--:|---|---|---|---|")
+for s in SCENES[1:]:
+    for l in range(2, 7):
+        names = ["trshift-%s-r%d" % (s, 4 << (l - 1))] + ["%s-%s-l%d" % (c, s, l) for c in ("rmtrg10", "rmtrs", "rmtrd")]
+        if all(rows.get(x) is None for x in names[1:]):
+            continue
+        def fcell(name):
+            r, f = rows.get(name), h5col(name, "/history/steps/f")
+            if r is None or not f:
+                return "not run"
+            if not ok(r):
+                return "— (%s in step %d)" % (r["reason"], len(f))
+            return "%.3f / %.3f" % (f[0], f[-1])
+        d = next(rows[x]["dofs"] for x in names[1:] if rows.get(x))
+        print("| %s | %d | %s | %s |" % (NAMES[s], l, d, " | ".join(fcell(x) for x in names)))
 
 print("\n## Tables 6 and 7 — work units at 1,083 dofs: TR against RMTR with 3 levels (ours)\n")
 print("TR: the paper's dogleg (direct Newton point; one QP call = one QP work unit, Eq. 7.4, whatever the")
 print("factorization costs).  TR (ST-CG): single-level TR with Steihaug–Toint CG, the paper's §7.3 alternative.\n")
-print("\"TR (shift)\": our default dogleg (Newton point of H + τI on an indefinite Hessian).  RMTR: ours (Galerkin")
-print("coarse models) and ours with the paper's nonlinear coarse models.\n")
+print("\"TR (shift)\": our default dogleg (Newton point of H + τI on an indefinite Hessian).  RMTR: ours (the")
+print("defaults: Galerkin coarse models, nested start of the first step, whose coarse V-cycles are in the work")
+print("units) and ours with the paper's nonlinear coarse models.\n")
 print("| scene | assembly WU TR (paper / ours) | TR (shift) | TR (ST-CG) | RMTR (paper / ours) | RMTR nonlinear | TR/RMTR (paper / ours) | TR (shift)/RMTR | TR(ST-CG)/RMTR | QP WU TR (paper / ours) | TR (ST-CG) | RMTR (paper / ours) |")
 print("|---|---|--:|--:|---|--:|---|--:|--:|---|--:|---|")
 for s in SCENES:
-    t, m, c = rows.get("tr-%s-r16" % s), rows.get("rmtrs-%s-l3" % s), rows.get("trstcg-%s-r16" % s)
+    t, m, c = rows.get("tr-%s-r16" % s), rows.get("rmtrd-%s-l3" % s), rows.get("trstcg-%s-r16" % s)
     h, n = rows.get("trshift-%s-r16" % s), rows.get("rmtrn-%s-l3" % s)
     if t is None or m is None:
         continue
@@ -196,7 +263,7 @@ def print_perf(perf, first):
             ratio(spc, th), secs, ratio(secs, base) if d >= 3675 and whole else "—"))
 
 
-perf = perf_rows("trampoline", (("rmtrs", "galerkin"), ("rmtrg10", "galerkin, 10 its"), ("rmtrn", "nonlinear"),
+perf = perf_rows("trampoline", (("rmtrd", "ours (galerkin, nested start)"), ("rmtrs", "galerkin"), ("rmtrg10", "galerkin, 10 its"), ("rmtrn", "nonlinear"),
                                 ("rmtrc", "corrected")))
 if perf:
     print("\n## Performance of RMTR (ours, all coarse models) on the trampoline, 5 steps\n")
@@ -207,26 +274,47 @@ if perf:
     print("stall_iter cycles spent there; the run then stops (a step that did not converge ends a run), so")
     print("the 51,483-dof case is also run with run.gtol = 1e-6, above its limiting accuracy.\n")
     print_perf(perf, "coarse models")
-hard = [r for sc in SCENES[1:] for r in perf_rows(sc, (("rmtrs", NAMES[sc]), ("rmtrg10", NAMES[sc] + ", 10 its")))]
+hard = [r for sc in SCENES[1:] for r in perf_rows(sc, (("rmtrd", NAMES[sc] + ", ours"), ("rmtrs", NAMES[sc] + ", rtol 0.1"),
+                                                      ("rmtrg10", NAMES[sc] + ", 10 its")))]
 if hard:
     print("\n## Performance of RMTR (Galerkin models) on the hard scenes, 5 steps\n")
-    print("\"10 its\": the paper's fixed 10 smoother iterations; otherwise the defaults (tenfold residual reduction).\n")
+    print("\"10 its\": the paper's fixed 10 smoother iterations; \"rtol 0.1\": the smoother stopped at a tenfold")
+    print("residual reduction; \"ours\": the defaults, that smoother and the nested start of the first step (its")
+    print("V-cycles include those on coarser top levels, so its per-V-cycle figures are averages over levels).\n")
     print_perf(hard, "scene")
 
 print("\n## Where the V-cycles go: the first step against the other four\n")
 print("Per-step iterations on the hard scenes: the first step (the cloth leaves its flat start and buckles: a")
 print("nonconvex path, made in many radius-limited steps) against steps 2-5 (near-convex, the multigrid rate")
-print("decides).  TR (shift) at the same dofs for comparison: its Newton steps converge steps 2-5 of drooping and")
-print("the re-entrant corner in a few iterations each; the drape stays nonconvex after the first step.\n")
-print("| scene | dofs | levels | Galerkin, 10 its: step 1 / steps 2-5 | ours: step 1 / steps 2-5 | TR (shift): step 1 / steps 2-5 |")
-print("|---|--:|--:|---|---|---|")
+print("decides).  \"ours\" splits its first step into the V-cycles of the nested start on the coarser top levels")
+print("(levels 0..1, 0..2, ...: their counts in order) and those on the finest level.  TR (shift) at the same dofs")
+print("for comparison: its Newton steps converge steps 2-5 of drooping and the re-entrant corner in a few")
+print("iterations each; the drape stays nonconvex after the first step.\n")
+print("| scene | dofs | levels | Galerkin, 10 its: step 1 / steps 2-5 | rtol 0.1: step 1 / steps 2-5 | ours: step 1 (coarser tops; finest) / steps 2-5 | TR (shift): step 1 / steps 2-5 |")
+print("|---|--:|--:|---|---|---|---|")
+
+
+def nested_steps(name):
+    """per-step lists of V-cycles by top level (history/iterations level, step, iter)"""
+    lv, st, it = (h5col(name, "/history/iterations/" + d) for d in ("level", "step", "iter"))
+    if lv is None:
+        return None
+    out = {}
+    for a, b, c in zip(lv, st, it):
+        if c > 0:
+            out.setdefault(int(b), {}).setdefault(int(a), 0)
+            out[int(b)][int(a)] += 1
+    return out, int(max(lv))
+
+
 for s in SCENES[1:]:
     for l in range(2, 7):
         g, q = step_iterations("rmtrg10-%s-l%d" % (s, l)), step_iterations("rmtrs-%s-l%d" % (s, l))
+        dn = "rmtrd-%s-l%d" % (s, l)
         t = step_iterations("trshift-%s-r%d" % (s, 4 << (l - 1)))
-        if g is None and q is None:
+        if g is None and q is None and rows.get(dn) is None:
             continue
-        d = (rows.get("rmtrs-%s-l%d" % (s, l)) or rows.get("rmtrg10-%s-l%d" % (s, l)))["dofs"]
+        d = (rows.get(dn) or rows.get("rmtrs-%s-l%d" % (s, l)) or rows.get("rmtrg10-%s-l%d" % (s, l)))["dofs"]
         def cell(v, name):
             r = rows.get(name)
             if v is None:
@@ -234,8 +322,21 @@ for s in SCENES[1:]:
             if not ok(r):   # a step hit the cap: the run ended there
                 return "%s in step %d, not converged (%s)" % (num(sum(v)), len(v), r["reason"] if r else "?")
             return "%s / %s" % (num(v[0]), num(sum(v[1:])))
-        print("| %s | %s | %d | %s | %s | %s |" % (NAMES[s], d, l, cell(g, "rmtrg10-%s-l%d" % (s, l)),
-              cell(q, "rmtrs-%s-l%d" % (s, l)), cell(t, "trshift-%s-r%d" % (s, 4 << (l - 1)))))
+        def ncell():
+            ns = nested_steps(dn)
+            r = rows.get(dn)
+            if ns is None or r is None:
+                return "not run"
+            per, top = ns
+            s1 = per.get(1, {})
+            coarse = ", ".join(num(s1[k]) for k in sorted(s1) if k < top)
+            head = "(%s; %s)" % (coarse, num(s1.get(top, 0))) if coarse else num(s1.get(top, 0))
+            rest = sum(sum(v.values()) for k, v in per.items() if k > 1)
+            if not ok(r):
+                return "%s, then %s; not converged (%s) in step %d" % (head, num(rest), r["reason"], max(per))
+            return "%s / %s" % (head, num(rest))
+        print("| %s | %s | %d | %s | %s | %s | %s |" % (NAMES[s], d, l, cell(g, "rmtrg10-%s-l%d" % (s, l)),
+              cell(q, "rmtrs-%s-l%d" % (s, l)), ncell(), cell(t, "trshift-%s-r%d" % (s, 4 << (l - 1)))))
 
 cond = os.path.join(os.path.dirname(RUNS.rstrip("/")), "cond.md")
 if os.path.exists(cond):
