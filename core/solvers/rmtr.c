@@ -598,7 +598,15 @@ static int promote(rmtr_state *R, sb_problem *p, double *x)
         sb_copy(F->n, F->xs, F->x);
         if ((rc = start_top(R, p, 1)) < 0) return rc;
     }
-    if (lf == R->L_fine) sb_copy(F->n, F->x, x);
+    if (rc == SB_NONFINITE && lf < R->L_fine) {
+        /* the projected start is not admissible on this level either: the
+         * finest level starts from the step's own start, as without nesting */
+        F = &R->lv[R->L_fine];
+        set_top(R, R->L_fine);
+        sb_copy(F->n, F->xs, F->x);
+        if ((rc = start_top(R, p, 1)) < 0) return rc;
+    }
+    if (R->L == R->L_fine) sb_copy(F->n, F->x, x);
     return rc;
 }
 
