@@ -488,8 +488,8 @@ SB_TEST(stalled_at_limiting_accuracy)
  * (3 levels) the nested solve ends at the plain solve's minimizer, its
  * history records the coarse V-cycles with their level (nondecreasing, each
  * level below the finest visited), and it needs fewer V-cycles on the finest
- * level than the plain solve (measured: 4 on the finest after 4 on levels
- * 0..1, against 7). */
+ * level than the plain solve (measured: 3 on the finest after 4 on levels
+ * 0..1, against 6). */
 SB_TEST(rmtr_nested_start)
 {
     extern const sb_method_type sb_method_subdiv;
