@@ -42,7 +42,11 @@
  *    correction, h^l = f^l + <dg, d> + 1/2 d^T (R H^{l+1} I - H^l(x0)) d, so
  *    that its Hessian at x0 is the Galerkin one; "auto" (default) is galerkin
  *    when the product fits every coarse sparsity pattern
- *    (sb_problem_galerkin_prepare), else nonlinear. */
+ *    (sb_problem_galerkin_prepare), else nonlinear.
+ *  - solver.nested (not in the paper; default: the first step of a run):
+ *    nested iteration over the levels before the finest V-cycles, see
+ *    promote(); its V-cycles on coarser top levels are outer iterations
+ *    reported with their level (README "RMTR nested start"). */
 #include "sb_solver.h"
 #include "sb_trs.h"
 #include "sb_context.h"
@@ -685,10 +689,12 @@ static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *inf
 static void rmtr_describe(const void *st, char *buf, size_t len)
 {
     const rmtr_state *R = st;
-    snprintf(buf, len, "%d levels; coarse models %s%s; smoother mu1=%d mu2=%d x %d ST-CG (%s); coarsest dogleg",
+    snprintf(buf, len, "%d levels; coarse models %s%s; smoother mu1=%d mu2=%d x %d ST-CG (%s); coarsest dogleg; "
+             "nested start: %s",
              R->nl, R->galerkin ? "galerkin (I^T H I)" : R->corrected ? "corrected (Eq. 4.3-4.4 + 1/2 d^T (I^T H I - H^l) d)"
              : "nonlinear (Eq. 4.3-4.4)",
-             R->model_param == MODEL_AUTO ? " (auto)" : "", R->mu1, R->mu2, R->cg_iter, sb_trs_precond_names[R->precond]);
+             R->model_param == MODEL_AUTO ? " (auto)" : "", R->mu1, R->mu2, R->cg_iter, sb_trs_precond_names[R->precond],
+             R->nested == 2 ? "every step" : R->nested == 1 ? "first step" : "off");
 }
 
 const sb_solver_type sb_solver_rmtr = {
