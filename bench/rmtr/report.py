@@ -224,13 +224,8 @@ CG_EVENT = 6
 
 def step_iterations(name):
     """per-step iteration counts of a record (history/steps/iterations)"""
-    path = os.path.join(RUNS, name + ".h5")
-    if not os.path.exists(path):
-        return None
-    out = subprocess.run(["h5dump", "-d", "/history/steps/iterations", "-y", "-w", "0", path],
-                         capture_output=True, text=True).stdout
-    body = out[out.find("DATA {") + 6:out.rfind("}")]
-    return [int(v) for v in body.replace("}", " ").split(",") if v.strip()]
+    v = h5col(name, "/history/steps/iterations")
+    return None if v is None else [int(x) for x in v]
 
 
 def n_events(path):

@@ -637,11 +637,9 @@ static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *i
     sb_copy(R->lv[1].n, R->lv[1].xs, R->lv[1].x);
     rc = start_top(R, p, 1);
     if (rc == SB_NONFINITE) {
-        /* the projected start is not admissible on level 1: no nested start */
+        /* the projected start is not admissible on level 1: no nested start
+         * (the finest level's start above is untouched) */
         set_top(R, R->L_fine);
-        V->hess_ok = 0;
-        V->fresh = 1;
-        V->delta = R->delta0;
         return SB_OK;
     }
     return rc;
@@ -677,8 +675,7 @@ static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *inf
     /* a V-cycle of the nested start: move up when the level is solved, out of
      * cycles, or failed (then with the last admissible iterate) */
     R->top_cycles++;
-    if (rc == SB_NONFINITE || info->gnorm < R->nested_gtol || R->top_cycles >= R->nested_max ||
-        V->delta < 1e-300) {
+    if (rc == SB_NONFINITE || info->gnorm < R->nested_gtol || R->top_cycles >= R->nested_max) {
         rc = promote(R, p, x);
         if (rc < 0) return rc;
         if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;

@@ -78,8 +78,9 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
         else if (info.fail) reason = info.fail;
         else if (rc == SB_NONFINITE || !isfinite(info.f) || !isfinite(info.gnorm)) reason = SB_REASON_NONFINITE;
         else if (info.level != F) {
-            /* an iteration on a coarser level (RMTR's nested start): it does not
-             * move x, only a failure or the cap ends the step */
+            /* an iteration on a coarser level (RMTR's nested start): x moves only
+             * when the start reaches the finest level; only a failure or the cap
+             * ends the step, convergence is tested on the finest level */
         }
         else if (info.gnorm < gstop) reason = SB_REASON_GRAD_TOL;
         else if (type->flags & SB_SOLVER_SINGLE_STEP) reason = SB_REASON_SINGLE_STEP;
