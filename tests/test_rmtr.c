@@ -533,6 +533,35 @@ SB_TEST(rmtr_nested_start)
     direct_close(&D);
 }
 
+/* method.penalty_h (finest h or each level's own h in the coarse penalties)
+ * changes only the coarse energies f^l.  With Galerkin coarse models (the
+ * default) no f^l enters a V-cycle, so without the nested start the two
+ * choices run bit-identical solves; with it the coarse top levels solve
+ * different problems (README "RMTR nested start"). */
+SB_TEST(rmtr_penalty_h_only_reaches_the_nested_start)
+{
+    double f[2][2], wu[2][2], its[2][2];
+    for (int nested = 0; nested <= 1; nested++)
+        for (int own = 0; own <= 1; own++) {
+            const char *sets[] = { nested ? "solver.nested=1" : "solver.nested=0",
+                                   own ? "method.penalty_h=level" : "method.penalty_h=finest" };
+            int ec;
+            json_t *r = run_on("trampoline_1step.json", "rmtr", 16, "rmtr", 3, 2, sets, &ec);
+            CHECK_EQ_INT(ec, 0);
+            f[nested][own] = num(r, "f", NULL);
+            wu[nested][own] = num(r, "work_units", "assembly");
+            its[nested][own] = num(r, "iterations", NULL);
+            json_decref(r);
+        }
+    CHECK_MSG(f[0][0] == f[0][1] && wu[0][0] == wu[0][1] && its[0][0] == its[0][1],
+              "plain start: f %.17g / %.17g, WU %.17g / %.17g, %g / %g V-cycles",
+              f[0][0], f[0][1], wu[0][0], wu[0][1], its[0][0], its[0][1]);
+    CHECK_MSG(wu[1][0] != wu[1][1] || its[1][0] != its[1][1],
+              "nested start: the coarse penalty made no difference (%g V-cycles)", its[1][0]);
+    /* the coarse problems differ, the finest one does not: same minimum */
+    CHECK_MSG(fabs(f[1][0] - f[1][1]) < 1e-6 * fabs(f[1][0]), "f %.10g / %.10g", f[1][0], f[1][1]);
+}
+
 SB_TEST(rmtr_refused_without_hierarchy)
 {
     int ec;
@@ -550,7 +579,7 @@ int main(int argc, char **argv)
         SB_CASE(stalled_at_limiting_accuracy), SB_CASE(galerkin_coarse_hessian),
         SB_CASE(rmtr_galerkin_converges), SB_CASE(rmtr_corrected_models),
         SB_CASE(rmtr_fewer_work_units_than_tr_drooping), SB_CASE(stcg_relative_stopping_rule),
-        SB_CASE(rmtr_nested_start), SB_END,
+        SB_CASE(rmtr_nested_start), SB_CASE(rmtr_penalty_h_only_reaches_the_nested_start), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }

@@ -16,7 +16,11 @@
  * coarse level is the fine problem restricted to the nested subspace (its
  * Hessian at the reference equals S^T H_fine S, tests/test_cc_method.c); with
  * per-level h ("penalty_h=level") the coarse boundary is 2^(5(L-l)) times
- * softer and RMTR rejected most coarse corrections in our trampoline runs. */
+ * softer and RMTR rejected most coarse corrections in our trampoline runs.
+ * With Galerkin coarse models (the solver's default) no coarse energy enters
+ * a V-cycle: penalty_h then only decides which problem the nested start
+ * solves on a coarser top level, the fine problem restricted (finest) or the
+ * level's own discretization (level, the classical full-multigrid choice). */
 #include "cc_method.h"
 #include "sb_context.h"
 #include "sb_galerkin.h"
@@ -40,7 +44,8 @@ const sb_param_def cc_params[] = {
     { "beta_scale", SB_PARAM_REAL, 1.0, 0.0, 1e30, NULL, "penalty factor: beta = beta_scale h^-sigma (h in m)" },
     { "penalty_h", SB_PARAM_CHOICE, 0, 0, 0, penh_choices,
       "h in beta = h^-sigma: the finest level's on every level (finest: coarse models are Galerkin, "
-      "S^T H S = H_c) or each level's own mesh size (level)" },
+      "S^T H S = H_c) or each level's own mesh size (level); with Galerkin coarse models only the nested start's "
+      "coarse problems use it" },
     { "gauss", SB_PARAM_INT, 3, 2, 6, NULL, "Gauss points per direction on each face (and along boundary edges)" },
     { "hessian", SB_PARAM_CHOICE, 0, 0, 0, hess_choices,
       "Hessian of the elastic energy: exact, pseudo (strain second derivatives dropped) or psd (clamped per element)" },
