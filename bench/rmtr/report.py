@@ -255,8 +255,7 @@ if any(a is not None for _, a, _, _ in t8):
         return "— (%s in step %d: ‖g‖ %.2g, f %.3f)" % (r["reason"], len(g), g[-1], f[-1])
 
     for s, a, b, c in t8:
-        it = t8cell
-        print("| %s | %s | %s | %s | %s | %s |" % (NAMES[s], num(T8[s][0]), num(T8[s][1]), it(a), it(b), it(c)))
+        print("| %s | %s | %s | %s | %s | %s |" % (NAMES[s], num(T8[s][0]), num(T8[s][1]), t8cell(a), t8cell(b), t8cell(c)))
 
 
 def h5row(path, name):
