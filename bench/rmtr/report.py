@@ -16,6 +16,7 @@ T4 = {"trampoline": [633, 150, 81, 88, 52], "drooping": [4671, 645, 707, 1636, 3
 T6 = {"trampoline": (30981, 370), "drooping": (13858, 1612), "reentrant_corner": (16632, 3788), "drape": (120089, 19163)}
 T7 = {"trampoline": (34456, 370), "drooping": (15444, 1612), "reentrant_corner": (18873, 3788), "drape": (175132, 19163)}
 CAP_PAPER = os.environ.get("CAP_PAPER", "400")
+CAP = int(os.environ.get("CAP", "2000"))     # run.sh's per-step V-cycle cap (quick mode)
 T8 = {"trampoline": (84, 81), "drooping": (659, 707), "reentrant_corner": (277, 282), "drape": (5691, 5718)}
 
 
@@ -131,13 +132,21 @@ def by_level(name):
     return [counts[k] for k in sorted(counts)]
 
 
+def cap_note(name):
+    """" (cap N)" where a record was run with another per-step cap than run.sh's"""
+    out = subprocess.run(["h5dump", "-a", "/params/run.max_iter", os.path.join(RUNS, name + ".h5")],
+                         capture_output=True, text=True).stdout
+    cap = [int(w) for w in out.split("(0):")[1].split()[:1]] if "(0):" in out else []
+    return " (cap %s)" % num(cap[0]) if cap and cap[0] != CAP else ""
+
+
 def split_cell(name, r):
     sp = level_split(name)
     if r is None or sp is None:
         return "not run"
     if not ok(r):
-        return "— (%s)" % r["reason"]
-    return "%s + %s" % (num(sp[0]), num(sp[1])) if sp[1] else num(sp[0])
+        return "— (%s)" % r["reason"] + cap_note(name)
+    return ("%s + %s" % (num(sp[0]), num(sp[1])) if sp[1] else num(sp[0])) + cap_note(name)
 
 
 for s in SCENES:
@@ -208,8 +217,8 @@ if own:
             if r is None:
                 cells += ["not run", "—", "—", "—"]
                 continue
-            vc = split_cell(name, r) if ok(r) else "— (%s; by top level %s)" % (
-                r["reason"], ", ".join(num(c) for c in by_level(name)))
+            vc = split_cell(name, r) if ok(r) else "— (%s; by top level %s)%s" % (
+                r["reason"], ", ".join(num(c) for c in by_level(name)), cap_note(name))
             cells += [vc, num(float(r["work_assembly"])) if ok(r) else "—",
                       num(float(r["seconds"]), "{:.3g}"), "%.3f" % f[-1] if ok(r) and f else "—"]
         print("| %s | %s | %s | %s |" % (NAMES[s], "%d (gtol 1e-6)" % l if l == 6 else l, rec("rmtrdL-%s-l%d" % (s, l))[1]["dofs"],
