@@ -78,8 +78,9 @@ typedef struct setup {
 /* Three records in a fresh temp dir: field error, probe error, none. */
 static int setup_make(setup *S)
 {
-    snprintf(S->dir, sizeof S->dir, "/tmp/sb_test_report_XXXXXX");
-    if (!mkdtemp(S->dir)) return 0;
+    char dir[sizeof S->dir] = "/tmp/sb_test_report_XXXXXX";
+    if (!mkdtemp(dir)) return 0;
+    memcpy(S->dir, dir, sizeof dir);   /* paths below are built from the local copy (no overlap with S) */
     const char *scenes[3] = { "trampoline", "plate, clamped", "roll|up" };
     const char *kinds[3] = { "field", "probes", "none" };
     int ok = 1;
@@ -87,7 +88,7 @@ static int setup_make(setup *S)
         mini m;
         mini_make(&m, scenes[i], i ? "bhem" : "rmtr", i == 2 ? "lsnewton" : "rmtr", 4 + i, kinds[i],
                   i == 2 ? 1 : 0, i == 2 ? SB_REASON_MAX_ITER : SB_REASON_GRAD_TOL);
-        snprintf(S->paths[i], sizeof S->paths[i], "%s/run%d.h5", S->dir, i);
+        snprintf(S->paths[i], sizeof S->paths[i], "%s/run%d.h5", dir, i);
         char err[512];
         ok &= sb_record_write(&m.run, S->paths[i], err, sizeof err) == SB_OK;
         sb_stats_free(&m.stats);
