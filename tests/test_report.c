@@ -78,7 +78,7 @@ typedef struct setup {
 /* Three records in a fresh temp dir: field error, probe error, none. */
 static int setup_make(setup *S)
 {
-    char dir[sizeof S->dir] = "/tmp/sb_test_report_XXXXXX";
+    char dir[sizeof S->dir] = "/tmp/sb_test_report_XXXXXX";   /* mkdtemp(3) template: it replaces the X characters */
     if (!mkdtemp(dir)) return 0;
     memcpy(S->dir, dir, sizeof dir);   /* paths below are built from the local copy (no overlap with S) */
     const char *scenes[3] = { "trampoline", "plate, clamped", "roll|up" };
