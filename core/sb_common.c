@@ -15,6 +15,7 @@ static const char *const reason_names[SB_REASON_COUNT] = {
     [SB_REASON_RADIUS] = "radius_collapsed",
     [SB_REASON_LINEAR_SOLVER] = "linear_solver_failed",
     [SB_REASON_STALLED] = "stalled",
+    [SB_REASON_CHECKPOINT] = "checkpoint",
 };
 
 const char *sb_reason_name(sb_reason r)

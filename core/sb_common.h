@@ -39,6 +39,8 @@ typedef enum {
     SB_REASON_STALLED,       /* run.stall_iter iterations in a row with accepted steps below
                                 xtol changing f by less than ftol (or rejections with a radius
                                 below xtol): the limiting accuracy; NOT counted as converged */
+    SB_REASON_CHECKPOINT,    /* not an outcome: the run was still going when this checkpoint record
+                                was written (record status SB_STATUS_UNFINISHED) */
     SB_REASON_COUNT
 } sb_reason;
 

@@ -14,6 +14,11 @@ typedef struct sb_context {
     sb_stats stats;
     void *cholmod;            /* cholmod_common*, owned (opaque here) */
     int verbose;
+    /* Called by the shared outer loop (sb_solve_step) after every recorded
+     * iteration, PETSc SNESMonitor-style; the run uses it for checkpoints.
+     * NULL: nothing is called. */
+    void (*monitor)(void *data, const sb_iter_record *r);
+    void *monitor_data;
     int status;               /* last error status */
     char err[1024];           /* last error, a full sentence */
 } sb_context;

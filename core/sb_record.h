@@ -25,7 +25,8 @@ typedef struct sb_run {
     int n_cores;
     char started[32];          /* ISO 8601 UTC */
     /* outcome */
-    int status;                /* 0 converged, 1 not converged, see exit codes */
+    int status;                /* 0 converged, 1 not converged, see exit codes;
+                                  SB_STATUS_UNFINISHED in a checkpoint */
     int reason;                /* sb_reason of the last step, or the failing step */
     int steps_planned, steps_done;
     const sb_stats *stats;
@@ -62,6 +63,8 @@ void sb_run_init(sb_run *run);
  * docs/recorded_figures.md. */
 #define SB_RECORD_FORMAT_VERSION 1
 #define SB_RECORD_FORMAT_NAME "shellbench-run"
+/* Record status of a checkpoint (run.checkpoint): the run was still going. */
+#define SB_STATUS_UNFINISHED 2
 
 /* The XDMF sidecar path of an HDF5 record: PATH with a trailing ".h5"
  * replaced by ".xdmf" (".xdmf" appended when PATH does not end in ".h5").

@@ -39,6 +39,10 @@ static void csv_field(FILE *out, const char *s, int first)
 
 static void status_text(const sb_record_summary *s, char *buf, size_t len)
 {
+    if (s->status == SB_STATUS_UNFINISHED) {   /* a checkpoint of a run still going (or killed) */
+        snprintf(buf, len, "unfinished (%s)", s->reason_name);
+        return;
+    }
     const char *word = s->status == 0 ? "converged" : s->status == 1 ? "not converged"
                      : s->status < 0 ? "failed" : "outcome";
     if (s->status > 1) snprintf(buf, len, "%s %d (%s)", word, s->status, s->reason_name);

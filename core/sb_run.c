@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 typedef struct run_state {
     sb_context ctx;
@@ -27,6 +28,12 @@ typedef struct run_state {
     sb_run rec;
     char (*probe_names)[SB_NAME_LEN];
     int n_grid;                        /* sample grid per side */
+    /* checkpoints (run.checkpoint): the record so far, written to
+     * partial_path every checkpoint_every seconds by the loop's monitor */
+    FILE *err;
+    double t_start, checkpoint_every, checkpoint_last;
+    int checkpoint_failed;
+    char partial_path[1100];
 } run_state;
 
 static void run_cleanup(run_state *R)
@@ -258,6 +265,59 @@ static void compute_error(run_state *R, FILE *err)
     if (!rec->has_error) snprintf(rec->error_kind, sizeof rec->error_kind, "none");
 }
 
+/* The path of a run's checkpoint: OUT.partial (its XDMF sidecar
+ * OUT.partial.xdmf), so that globs for *.h5 and a sweep's resume never take
+ * it for a finished record. */
+static int partial_path(const char *out_path, char *buf, size_t len)
+{
+    return snprintf(buf, len, "%s.partial", out_path) >= (int)len ? -1 : 0;
+}
+
+/* Once the record is written, its checkpoint (this run's, or a stale one of
+ * an earlier interrupted run to the same path) has served. */
+static void remove_partial(run_state *R)
+{
+    char x[1200];
+    if (!R->partial_path[0]) return;
+    unlink(R->partial_path);
+    if (sb_record_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
+}
+
+/* Write the record so far (steps done, the iteration history including the
+ * current step's, x and the sample positions now) as a checkpoint with
+ * status SB_STATUS_UNFINISHED.  A failed write is a warning, once, and ends
+ * the checkpoints; it never stops the run. */
+static void write_checkpoint(run_state *R)
+{
+    sb_run *rec = &R->rec;
+    sb_stats *stats = &R->ctx.stats;
+    const int F = sb_problem_finest(R->prob);
+    double t0 = sb_now();
+    const int status = rec->status, reason = rec->reason;
+    rec->status = SB_STATUS_UNFINISHED;
+    rec->reason = SB_REASON_CHECKPOINT;
+    if (R->mt->eval_points)
+        R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
+    stats->seconds_total = t0 - R->t_start;
+    char msg[2048];
+    if (sb_record_write(rec, R->partial_path, msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: warning: no more checkpoints: %s\n", msg);
+        R->checkpoint_failed = 1;
+    }
+    rec->status = status;
+    rec->reason = reason;
+    sb_stats_event(stats, F, SB_EV_RECORD, t0);
+    R->checkpoint_last = sb_now();
+}
+
+/* sb_context.monitor: after every iteration of the outer loop */
+static void checkpoint_monitor(void *data, const sb_iter_record *r)
+{
+    (void)r;
+    run_state *R = data;
+    if (!R->checkpoint_failed && sb_now() - R->checkpoint_last >= R->checkpoint_every) write_checkpoint(R);
+}
+
 int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summary)
 {
     run_state *R = calloc(1, sizeof *R);
@@ -267,6 +327,8 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     double t_start = sb_now();
     if (summary) *summary = NULL;
     if (sb_context_init(&R->ctx)) { free(R); fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
+    R->err = err;
+    R->t_start = t_start;
     R->n_grid = req->sample_n > 1 ? req->sample_n : 21;
 
     /* scene */
@@ -420,6 +482,30 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         rec->n_tris = 0;
     }
 
+    /* where the record goes: its directory is made now, so that a run that
+     * cannot be recorded fails before it computes anything */
+    const char *out_path = NULL;
+    char auto_path[1024];
+    if (!req->out) {
+        snprintf(auto_path, sizeof auto_path, "results/runs/%s-%s-%s-r%d-l%d.h5", sc->name, R->mt->name, R->stype->name,
+                 req->res, rec->levels);
+        out_path = auto_path;
+    } else if (strcmp(req->out, "none") != 0) {
+        out_path = req->out;
+    }
+    if (out_path && mkdir_p(out_path)) {
+        fprintf(err, "shellbench: cannot create the directory of %s: %s\n", out_path, strerror(errno));
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
+    R->checkpoint_every = sb_param(ps, "run.checkpoint");
+    if (out_path && partial_path(out_path, R->partial_path, sizeof R->partial_path)) R->partial_path[0] = 0;
+    if (R->partial_path[0] && R->checkpoint_every > 0) {
+        R->checkpoint_last = sb_now();
+        R->ctx.monitor = checkpoint_monitor;
+        R->ctx.monitor_data = R;
+    }
+
     /* time / load stepping */
     sb_stats *stats = &R->ctx.stats;
     sb_reason reason = SB_REASON_NONE;
@@ -479,21 +565,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         }
     }
     compute_error(R, err);
-    const char *out_path = NULL;
-    char auto_path[1024];
-    if (!req->out) {
-        snprintf(auto_path, sizeof auto_path, "results/runs/%s-%s-%s-r%d-l%d.h5", sc->name, R->mt->name, R->stype->name,
-                 req->res, rec->levels);
-        out_path = auto_path;
-    } else if (strcmp(req->out, "none") != 0) {
-        out_path = req->out;
-    }
     if (out_path) {
-        if (mkdir_p(out_path)) {
-            fprintf(err, "shellbench: cannot create the directory of %s: %s\n", out_path, strerror(errno));
-            exit_code = SB_EXIT_INPUT;
-            goto done;
-        }
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
         stats->seconds_total = sb_now() - t_start;
         double tw0 = sb_now();
@@ -502,6 +574,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
             exit_code = SB_EXIT_INPUT;
             goto done;
         }
+        remove_partial(R);   /* the record is in place: the checkpoint has served */
         /* the file cannot hold its own write time: the summary does */
         sb_stats_event(stats, F, SB_EV_RECORD, tw0);
         stats->seconds_total = sb_now() - t_start;

@@ -7,7 +7,9 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -143,6 +145,50 @@ SB_TEST(usage_and_input_errors_exit_2)
                     "--solver tr --out /proc/nope/x.h5 --quiet 2>/dev/null", root, bin), 2);
 }
 
+/* run.checkpoint: a run killed mid-way leaves OUT.partial, a readable record
+ * with status 2 "unfinished (checkpoint)" and the iterations so far; a run
+ * that finishes to the same path removes the stale checkpoint. */
+SB_TEST(killed_run_leaves_a_readable_checkpoint)
+{
+    static char out[1 << 14];
+    char rec[512], partial[600];
+    snprintf(rec, sizeof rec, "%s/ck.h5", tmpdir);
+    snprintf(partial, sizeof partial, "%s.partial", rec);
+    pid_t pid = fork();
+    if (pid == 0) {   /* drooping, 1,083 dofs, single-level TR: hundreds of iterations */
+        if (chdir(sb_test_root()) == 0)
+            execl(sb_test_bin(), sb_test_bin(), "run", "--scene", "drooping", "--method", "rmtr", "--solver", "tr",
+                  "--res", "16", "--out", rec, "--set", "run.checkpoint=0.01", "--quiet", (char *)NULL);
+        _exit(127);
+    }
+    CHECK(pid > 0);
+    if (pid <= 0) return;
+    int seen = 0, status = 0;
+    for (int i = 0; i < 6000 && !seen; i++) {     /* up to 2 minutes on a loaded machine */
+        seen = access(partial, R_OK) == 0;
+        if (!seen) {
+            if (waitpid(pid, &status, WNOHANG) == pid) { pid = 0; break; }   /* ended without a checkpoint */
+            usleep(20000);
+        }
+    }
+    if (pid > 0) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &status, 0);
+    }
+    CHECK_MSG(seen, "no checkpoint %s appeared while the run went on", partial);
+    CHECK_MSG(access(rec, F_OK) != 0, "the killed run wrote its final record %s", rec);
+    CHECK_EQ_INT(sh(out, sizeof out, "%s report --format csv %s", sb_test_bin(), partial), 0);
+    CHECK_MSG(strstr(out, "unfinished (checkpoint),2,checkpoint") != NULL, "checkpoint row: %s", out);
+    static char md[1 << 14];
+    CHECK_EQ_INT(sh(md, sizeof md, "%s report %s", sb_test_bin(), partial), 0);
+    CHECK(strstr(md, "| drooping | rmtr | tr | 1083 |") != NULL);
+    /* a finished run to the same path replaces it */
+    CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method rmtr --solver tr --res 4 --out %s "
+                    "--set run.checkpoint=0 --quiet 2>/dev/null", sb_test_root(), sb_test_bin(), rec), 0);
+    CHECK(access(rec, R_OK) == 0);
+    CHECK_MSG(access(partial, F_OK) != 0, "stale checkpoint %s left beside the record", partial);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_cli_XXXXXX");
@@ -150,7 +196,7 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = {
         SB_CASE(list_names_methods_and_solvers), SB_CASE(check_bundled_scenes_ok), SB_CASE(check_bad_scene_exit_2),
         SB_CASE(run_summary_json_contract), SB_CASE(every_solver_writes_a_record_and_report_works),
-        SB_CASE(usage_and_input_errors_exit_2), SB_END,
+        SB_CASE(usage_and_input_errors_exit_2), SB_CASE(killed_run_leaves_a_readable_checkpoint), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];

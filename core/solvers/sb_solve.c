@@ -21,6 +21,9 @@ const sb_param_def sb_solve_params[] = {
     { "max_iter", SB_PARAM_INT, 10000, 1, 1e9, NULL, "iteration cap per step" },
     { "diverge", SB_PARAM_REAL, 1e6, 1, 1e300, NULL,
       "diverged when max|x - x_0| exceeds diverge * (1 + max|x_0|)" },
+    { "checkpoint", SB_PARAM_REAL, 300, 0, 1e9, NULL,
+      "seconds between checkpoints: the record so far (status unfinished) is written to OUT.partial while the "
+      "run goes on, and removed once OUT is written; a killed run leaves it (0 = never)" },
     { "lifting", SB_PARAM_INT, 1, 0, 1, NULL,
       "start a step with moving boundaries from the linear lifting of the boundary increment (0 = off)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
@@ -100,6 +103,7 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
         sb_iter_record r = { step, it, info.level, info.f, info.gnorm, info.delta, info.rho, info.step_norm,
                              info.shift, info.accepted, info.linear_iters, reason };
         sb_stats_push_iter(&ctx->stats, &r);
+        if (ctx->monitor) ctx->monitor(ctx->monitor_data, &r);
     }
     free(x0);
     *iterations = it;
