@@ -204,10 +204,23 @@ if own:
     print("boundary penalty β = h^-5 taken with the finest h: 32^(L-l) times stiffer than the same cage has as the")
     print("finest level of a shallower hierarchy.  `penalty_h=level` gives each level its own h, so the nested start")
     print("solves each level's own discretization (the full-multigrid choice).  Same cell format as Table 4; a run")
-    print("that hit the cap lists its V-cycles by top level, coarsest first.  With own h, levels 1 and 2 solve the")
-    print("same problems from the same flat start at 5 and 6 levels (‖g‖ agrees to 5 digits in the first V-cycles),")
-    print("yet the re-entrant corner took 172 and 212 V-cycles on them at 5 levels against 209 and 835 at 6: round-off")
-    print("alone moves these nonconvex paths.\n")
+    print("that hit the cap lists its V-cycles by top level, coarsest first.")
+    a5, a6 = "rmtrdL-reentrant_corner-l5", rec("rmtrdL-reentrant_corner-l6")[0]
+    if rows.get(a5) is not None and rows.get(a6) is not None:
+        b5, b6 = by_level(a5), by_level(a6)
+        def first_g(name, k=5):   # ||g|| of the first k V-cycles with top level 1 (the nested start's first)
+            lv, it, g = (h5col(name, "/history/iterations/" + d) for d in ("level", "iter", "gnorm"))
+            return [c for a, b, c in zip(lv, it, g) if b > 0 and a == 1][:k]
+        g5, g6 = first_g(a5), first_g(a6)
+        dev = max((abs(x - y) / abs(x) for x, y in zip(g5, g6) if x), default=None)
+        if len(b5) > 2 and len(b6) > 2 and dev is not None:
+            print("With own h, levels 1 and 2 solve the same problems from the same flat start at 5 and 6 levels")
+            print("(‖g‖ of the first %d V-cycles on level 1 agrees to a relative %.1e), yet the re-entrant corner took" %
+                  (min(len(g5), len(g6)), dev))
+            print("%s and %s V-cycles on them at 5 levels against %s and %s at 6: round-off alone moves these nonconvex" %
+                  (num(b5[0]), num(b5[1]), num(b6[0]), num(b6[1])))
+            print("paths.")
+    print()
     print("| scene | levels | dofs | finest h: V-cycles | WU | s | f after step 5 | own h: V-cycles | WU | s | f after step 5 |")
     print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
     for s, l in own:
@@ -348,9 +361,8 @@ print("\n## Where the V-cycles go: the first step against the other four\n")
 print("Per-step iterations on the hard scenes: the first step (the cloth leaves its flat start and buckles: a")
 print("nonconvex path, made in many radius-limited steps) against steps 2-5 (near-convex, the multigrid rate")
 print("decides).  \"ours\" splits its first step into the V-cycles of the nested start on the coarser top levels")
-print("(levels 0..1, 0..2, ...: their counts in order) and those on the finest level.  TR (shift) at the same dofs")
-print("for comparison: its Newton steps converge steps 2-5 of drooping and the re-entrant corner in a few")
-print("iterations each; the drape stays nonconvex after the first step.\n")
+print("(levels 0..1, 0..2, ...: their counts in order) and those on the finest level.  TR (shift), single-level")
+print("TR with exact shifted Newton steps, at the same dofs for comparison.\n")
 print("| scene | dofs | levels | Galerkin, 10 its: step 1 / steps 2-5 | rtol 0.1: step 1 / steps 2-5 | ours: step 1 (coarser tops; finest) / steps 2-5 | TR (shift): step 1 / steps 2-5 |")
 print("|---|--:|--:|---|---|---|---|")
 
@@ -416,32 +428,81 @@ if os.path.exists(csig):
 
 print("\n## Not run here, and known failures\n")
 print("* Table 5 is Tables 3 and 4 side by side.")
-print("* Quick mode: single-level TR to 1,083 dofs (and 3,675 where recorded); RMTR in the paper's configuration")
-print("  to 3 levels (capped); ours with nonlinear coarse models to 3 levels (6 on the trampoline); Galerkin models")
-print("  (all three Galerkin configurations) to 4 levels (3,675 dofs) on drooping / re-entrant corner / drape and to")
-print("  6 levels (51,483 dofs) on the trampoline.  `LEVELS_OURS=\"2 3 4 5\"` adds 5 levels (13,467 dofs) of the")
-print("  Galerkin configurations on the hard scenes; the rows at 5 and 6 levels above are \"rtol 0.1\" and \"ours\"")
-print("  only, run that way for this report (the 10-iteration rule takes 1.4-3.9x as long at 4 levels).  `full` mode")
-print("  adds TR at 3,675 dofs, 5 and 6 levels on every scene and Table 8 on the re-entrant corner and the drape (with")
-print("  the nonlinear models they already hit the cap at 3 levels); it was not run.")
-print("* 5 levels (13,467 dofs), each run beside one other run on the 2 cores.  Plain start (\"rtol 0.1\"): drooping")
-print("  converges; the re-entrant corner and the drape hit the 2,000-V-cycle cap in their first step (after 27 and")
-print("  28 min).  Nested start (\"ours\"): drooping (377 s) and the drape (1,742 s) converge; the re-entrant corner")
-print("  still hits the cap in its first step, after 7 min: the nested solve of level 2 (1,035 dofs) used all of its")
-print("  1,000 V-cycles (`solver.nested_max_iter`) on a wandering nonconvex path; with each level's own penalty")
-print("  (`method.penalty_h=level`, table above) it converges, after 38 min beside another run.")
-print("* 6 levels (51,483 dofs; 48,411 on the re-entrant corner's notched cage) with the nested start and")
-print("  run.gtol = 1e-6 (the trampoline's ||g|| stalls near 2e-7 there): drooping converges (655 finest + 980")
-print("  coarser-top V-cycles, 3,602 s beside another run); the re-entrant corner hit the 2,000-V-cycle cap in its")
-print("  first step while the nested start was still on level 4 (2,390 s); the drape converges (686 finest + 644")
-print("  coarser-top V-cycles, 2,382 s beside another run; its steps 2-5 took 652 V-cycles against 1,631 at")
-print("  13,467 dofs).")
-print("* Known failures, reported as measured: with the paper's nonlinear coarse models (even with the Schwarz")
-print("  smoother) 3 levels do not converge the re-entrant corner or the drape within 2,000 V-cycles per step,")
-print("  drooping needs more V-cycles at 3 levels than at 2 and at 4 levels hits the cap in its first step with")
-print("  every projection (Table 8); the Galerkin models converge all of them to 4")
-print("  levels, but on the hard scenes their V-cycle count still grows with the number of levels (the paper's")
-print("  falls); the nested start cuts the work (drooping at 13,467 dofs: 546 against 2,725 assembly WU) but the")
-print("  first step's nonconvex path still costs hundreds of V-cycles on every level it visits.")
-print("  The paper configuration (unpreconditioned smoother) reaches no scene's tolerance within its cap.")
+print("* Quick mode (`bash bench/rmtr/run.sh`): single-level TR to 1,083 dofs (and 3,675 where recorded); RMTR in")
+print("  the paper's configuration to 3 levels (capped); ours with nonlinear coarse models to 3 levels (6 on the")
+print("  trampoline); Galerkin models (all three Galerkin configurations) to 4 levels (3,675 dofs) on drooping /")
+print("  re-entrant corner / drape and to 6 levels (51,483 dofs) on the trampoline.  `large` mode adds, on the hard")
+print("  scenes, \"rtol 0.1\" and \"ours\" at 5 levels (13,467 dofs) and \"ours\" at 6 (run.gtol = 1e-6: the")
+print("  trampoline's ||g|| stalls near 2e-7 at 51,483 dofs), with `method.penalty_h=level` beside them (at 6 levels")
+print("  on the re-entrant corner only); the 10-iteration rule is left out there (see below).  `full` mode adds TR")
+print("  at 3,675 dofs, all configurations at 5 and 6 levels on every scene and Table 8 on the re-entrant corner and")
+print("  the drape; it was not run.  Rows without a record read \"not run\".")
+
+
+def outcome(name):
+    """how one record ended, in words, from the record"""
+    r = rows.get(name)
+    if r is None:
+        return "not run"
+    secs = "%s s" % num(float(r["seconds"]))
+    sp = level_split(name)
+    if ok(r):
+        v = ("%s finest + %s coarser-top V-cycles" % (num(sp[0]), num(sp[1])) if sp[1]
+             else "%s V-cycles" % num(sp[0]))
+        return "converges (%s, %s)" % (v, secs)
+    bl = by_level(name)
+    where = "; V-cycles by top level, coarsest first: %s" % ", ".join(num(c) for c in bl) if len(bl) > 1 else ""
+    return "stops in step %s: %s%s (%s%s)" % (r["steps"], r["reason"], cap_note(name), secs, where)
+
+
+for l, suffix, dofs in ((5, "", "13,467"), (6, "-gtol1e-6", "51,483")):
+    names = [(c, "%s-%s-l%d%s" % (c, sc, l, suffix)) for sc in SCENES if sc != "trampoline"
+             for c in ("rmtrs", "rmtrd", "rmtrdL")]
+    if not any(n in rows for _, n in names):
+        continue
+    print("* %d levels (%s dofs%s), the hard scenes; seconds as recorded (these runs shared the 2 cores with one" %
+          (l, dofs, "; 48,411 on the re-entrant corner's notched cage" if l == 6 else ""))
+    print("  other run):")
+    label = {"rmtrs": "plain start (\"rtol 0.1\")", "rmtrd": "nested start (\"ours\")",
+             "rmtrdL": "nested start, own-h penalties"}
+    for sc in SCENES:
+        if sc == "trampoline":
+            continue
+        parts = ["%s %s" % (label[c], outcome(n)) for c, n in names if n.split("-")[1] == sc and n in rows]
+        if parts:
+            print("  %s: %s." % (NAMES[sc], "; ".join(parts)))
+nl3 = [NAMES[sc] for sc in SCENES if rows.get("rmtrn-%s-l3" % sc) is not None and not ok(rows["rmtrn-%s-l3" % sc])]
+print("* Known failures, reported as measured:")
+if nl3:
+    print("  with the paper's nonlinear coarse models (even with the Schwarz smoother) 3 levels do not converge")
+    print("  %s within %s V-cycles per step (Table 4; Table 8 shows where drooping got at 4 levels)." %
+          (" or ".join(nl3), num(CAP)))
+g4 = [float(rows["rmtrg10-%s-l4" % sc]["seconds"]) / float(rows["rmtrs-%s-l4" % sc]["seconds"]) for sc in SCENES
+      if sc != "trampoline" and ok(rows.get("rmtrg10-%s-l4" % sc)) and ok(rows.get("rmtrs-%s-l4" % sc))]
+if g4:
+    print("  The paper's fixed 10 smoother iterations take %.2g-%.2gx the time of the tenfold-reduction rule at 4" %
+          (min(g4), max(g4)))
+    print("  levels on the hard scenes (so `large` mode leaves them out).")
+grow = []
+for sc in SCENES:
+    if sc == "trampoline":
+        continue
+    c = [(l, it_or_none(rows.get("rmtrs-%s-l%d" % (sc, l)))) for l in range(2, 7)]
+    c = [(l, v) for l, v in c if v is not None]
+    if len(c) > 1:
+        grow.append("%s %s (paper %s)" % (NAMES[sc], " → ".join(num(v) for _, v in c),
+                                          " → ".join(num(T4[sc][l - 2]) for l, _ in c)))
+if grow:
+    print("  V-cycles of the Galerkin models (\"rtol 0.1\", plain start) from 2 levels up, where converged: %s." %
+          "; ".join(grow))
+ws, wd = rows.get("rmtrs-drooping-l5"), rows.get("rmtrd-drooping-l5")
+if ok(ws) and ok(wd):
+    print("  The nested start cuts the work (drooping at 13,467 dofs: %s against %s assembly WU), but the first" %
+          (num(float(wd["work_assembly"])), num(float(ws["work_assembly"]))))
+    print("  step's nonconvex path still costs hundreds of V-cycles on every level it visits.")
+pc = [r for k, r in rows.items() if k.startswith("rmtr-")]
+if pc:
+    npc = sum(1 for r in pc if ok(r))
+    print("  The paper configuration (unpreconditioned smoother, cap %s V-cycles per step) converged %d of its %d runs." %
+          (CAP_PAPER, npc, len(pc)))
 print("  The scenes are nonconvex: TR and RMTR can end a step in different local minima (compare f in the records).")

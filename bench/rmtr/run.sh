@@ -4,7 +4,13 @@
 # 1,083 dofs (Tables 6, 7), projections (Table 8: trampoline and drooping;
 # full mode all four scenes).
 #
-#   bash bench/rmtr/run.sh [SHELLBENCH] [quick|full]
+#   bash bench/rmtr/run.sh [SHELLBENCH] [quick|large|full]
+#
+# "large" is quick plus the report's 13,467- and 51,483-dof runs on the hard
+# scenes (drooping, re-entrant corner, drape): "rtol 0.1" and "ours" at 5
+# levels, "ours" at 6 (run.gtol 1e-6); with method.penalty_h=level at 5 levels
+# and, on the re-entrant corner, at 6; about 6 h of one core beyond quick (a
+# 6-level run takes 40-90 min).
 #
 # One HDF5 record per run under results/rmtr/runs/ (an interrupted sweep keeps
 # every finished run); bench/rmtr/report.py writes results/rmtr_report.md from
@@ -108,6 +114,20 @@ for s in $SCENES; do
     run "rmtrn-$s-l4-restrict" "$s" rmtr 32 4 $NONLIN --set method.projection=restrict
   fi
 done
+if [ "$MODE" = large ]; then   # the hard scenes at 13,467 and 51,483 dofs, cheapest first
+  for s in $SCENES; do
+    [ "$s" = trampoline ] && continue
+    run "rmtrd-$s-l5" "$s" rmtr 64 5
+    run "rmtrdL-$s-l5" "$s" rmtr 64 5 --set method.penalty_h=level
+    run "rmtrs-$s-l5" "$s" rmtr 64 5 $NN
+  done
+  for s in $SCENES; do
+    [ "$s" = trampoline ] && continue
+    run "rmtrd-$s-l6-gtol1e-6" "$s" rmtr 128 6 --set run.gtol=1e-6
+    [ "$s" = reentrant_corner ] &&   # own h only where it helped at 5 levels
+      run "rmtrdL-$s-l6-gtol1e-6" "$s" rmtr 128 6 --set method.penalty_h=level --set run.gtol=1e-6
+  done
+fi
 # Fig. 9 (left): condition number against dofs, trampoline
 COND=$(dirname "$BIN")/bench/bench_cond
 [ -x "$COND" ] || COND=build/bench/bench_cond
