@@ -265,6 +265,25 @@ static void compute_error(run_state *R, FILE *err)
     if (!rec->has_error) snprintf(rec->error_kind, sizeof rec->error_kind, "none");
 }
 
+/* run.perturb: each dof of the start gets an offset uniform in [-a, a], from
+ * a SplitMix64 stream seeded by run.seed (Steele, Lea & Flood 2014; local
+ * state, so runs with the same seed are bit-identical).  Round-off-sized
+ * offsets sample how much a count on a nonconvex scene owes to round-off. */
+static void perturb_start(int n, double *x, double a, unsigned long long seed)
+{
+    if (!(a > 0)) return;
+    unsigned long long z = seed;
+    for (int i = 0; i < n; i++) {
+        z += 0x9E3779B97F4A7C15ull;
+        unsigned long long w = z;
+        w = (w ^ (w >> 30)) * 0xBF58476D1CE4E5B9ull;
+        w = (w ^ (w >> 27)) * 0x94D049BB133111EBull;
+        w ^= w >> 31;
+        double u = (double)(w >> 11) * 0x1.0p-53;        /* uniform in [0, 1) */
+        x[i] += a * (2.0 * u - 1.0);
+    }
+}
+
 /* The path of a run's checkpoint: OUT.partial (its XDMF sidecar
  * OUT.partial.xdmf), so that globs for *.h5 and a sweep's resume never take
  * it for a finished record. */
@@ -481,6 +500,10 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         rec->n_samples = 0;
         rec->n_tris = 0;
     }
+
+    /* run.perturb: the start, perturbed (the reference state, probes and
+     * sample grid above are the unperturbed ones) */
+    perturb_start(n, R->x, sb_param(ps, "run.perturb"), (unsigned long long)sb_param_int(ps, "run.seed"));
 
     /* where the record goes: its directory is made now, so that a run that
      * cannot be recorded fails before it computes anything */

@@ -562,6 +562,43 @@ SB_TEST(rmtr_penalty_h_only_reaches_the_nested_start)
     CHECK_MSG(fabs(f[1][0] - f[1][1]) < 1e-6 * fabs(f[1][0]), "f %.10g / %.10g", f[1][0], f[1][1]);
 }
 
+/* run.perturb / run.seed: the same seed gives the same run, another seed
+ * another path, perturb = 0 the unperturbed run; on the trampoline (one
+ * minimum) every seed ends at the same f. */
+SB_TEST(perturbed_start_is_seeded)
+{
+    double f1[5];
+    const char *cases[5][3] = {
+        { "run.perturb=1e-3", "run.seed=1", "run.max_iter=1" },
+        { "run.perturb=1e-3", "run.seed=1", "run.max_iter=1" },
+        { "run.perturb=1e-3", "run.seed=2", "run.max_iter=1" },
+        { "run.perturb=0", "run.seed=2", "run.max_iter=1" },
+        { "run.max_iter=1", "run.seed=1", "run.max_iter=1" },
+    };
+    for (int k = 0; k < 5; k++) {
+        int ec;
+        json_t *r = run_on("trampoline_1step.json", "rmtr", 16, "rmtr", 3, 3, cases[k], &ec);
+        CHECK(r != NULL);
+        f1[k] = r ? num(r, "f", NULL) : NAN;
+        json_decref(r);
+    }
+    CHECK_MSG(f1[0] == f1[1], "same seed, f after one V-cycle %.17g / %.17g", f1[0], f1[1]);
+    CHECK_MSG(f1[0] != f1[2], "seeds 1 and 2 gave the same f %.17g after one V-cycle", f1[0]);
+    CHECK_MSG(f1[0] != f1[4], "perturbed and unperturbed gave the same f %.17g", f1[0]);
+    CHECK_MSG(f1[3] == f1[4], "perturb = 0 changed the run: %.17g / %.17g", f1[3], f1[4]);
+    double fc[2];
+    for (int k = 0; k < 2; k++) {
+        const char *sets[] = { "run.perturb=1e-6", k ? "run.seed=7" : "run.seed=3" };
+        int ec;
+        json_t *r = run_on("trampoline_1step.json", "rmtr", 16, "rmtr", 3, 2, sets, &ec);
+        CHECK_EQ_INT(ec, 0);
+        fc[k] = r ? num(r, "f", NULL) : NAN;
+        json_decref(r);
+    }
+    /* a start 1e-6 m off ends within 1e-7 of f (gtol_rel scales the stop with the larger first gradient) */
+    CHECK_MSG(fabs(fc[0] - fc[1]) < 1e-7 * fabs(fc[0]), "converged f %.12g / %.12g", fc[0], fc[1]);
+}
+
 SB_TEST(rmtr_refused_without_hierarchy)
 {
     int ec;
@@ -574,7 +611,7 @@ int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(rmtr_converges_and_matches_tr), SB_CASE(first_order_consistency),
-        SB_CASE(rmtr_refused_without_hierarchy), SB_CASE(rmtr_trampoline_subdivision),
+        SB_CASE(rmtr_refused_without_hierarchy), SB_CASE(rmtr_trampoline_subdivision), SB_CASE(perturbed_start_is_seeded),
         SB_CASE(rmtr_smoother_preconditioners), SB_CASE(preconditioned_stcg_reaches_newton_step),
         SB_CASE(stalled_at_limiting_accuracy), SB_CASE(galerkin_coarse_hessian),
         SB_CASE(rmtr_galerkin_converges), SB_CASE(rmtr_corrected_models),

@@ -24,6 +24,10 @@ const sb_param_def sb_solve_params[] = {
     { "checkpoint", SB_PARAM_REAL, 300, 0, 1e9, NULL,
       "seconds between checkpoints: the record so far (status unfinished) is written to OUT.partial while the "
       "run goes on, and removed once OUT is written; a killed run leaves it (0 = never)" },
+    { "perturb", SB_PARAM_REAL, 0, 0, 1e10, NULL,
+      "add to every dof of the start an offset uniform in [-perturb, perturb] (the dofs' units: m for control "
+      "points), to sample how counts on a nonconvex scene spread under round-off-sized changes (0 = none)" },
+    { "seed", SB_PARAM_INT, 1, 0, 2147483647, NULL, "seed of run.perturb's random offsets" },
     { "lifting", SB_PARAM_INT, 1, 0, 1, NULL,
       "start a step with moving boundaries from the linear lifting of the boundary increment (0 = off)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
