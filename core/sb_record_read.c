@@ -229,11 +229,17 @@ static int read_history(h5r *r, hid_t f, sb_record_summary *s)
         return rc;
     }
     s->n_hist = (int)dg;
-    /* Iterations: the per-step counts when steps were recorded, else the
+    /* Iterations: the per-step counts when steps were recorded (in a
+     * checkpoint also those of the step under way), else the
      * history records of the finest level present (coarse-level records of
      * a multilevel solver are not outer iterations). */
     long it = 0;
-    if (dn > 0) {
+    if (s->status == SB_STATUS_UNFINISHED) {
+        /* a checkpoint: the finished steps plus the iterations so far of the
+         * step under way (history records past the last step record) */
+        for (hsize_t i = 0; i < dn; i++) it += steps_iters[i];
+        for (int i = 0; i < s->n_hist; i++) it += s->hist_step[i] > (int)dn && s->hist_iter[i] > 0;
+    } else if (dn > 0) {
         for (hsize_t i = 0; i < dn; i++) it += steps_iters[i];
     } else {
         int finest = 0;

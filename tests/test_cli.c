@@ -179,6 +179,11 @@ SB_TEST(killed_run_leaves_a_readable_checkpoint)
     CHECK_MSG(access(rec, F_OK) != 0, "the killed run wrote its final record %s", rec);
     CHECK_EQ_INT(sh(out, sizeof out, "%s report --format csv %s", sb_test_bin(), partial), 0);
     CHECK_MSG(strstr(out, "unfinished (checkpoint),2,checkpoint") != NULL, "checkpoint row: %s", out);
+    /* its iterations: those of the step under way (TR's history so far) */
+    const char *row = strchr(out, '\n');
+    int steps = -1, its = -1;
+    CHECK(row && sscanf(row + 1, "drooping,rmtr,tr,1083,1,%d,%d,", &steps, &its) == 2);
+    CHECK_MSG(steps >= 0 && its >= 1, "checkpoint: %d steps, %d iterations", steps, its);
     static char md[1 << 14];
     CHECK_EQ_INT(sh(md, sizeof md, "%s report %s", sb_test_bin(), partial), 0);
     CHECK(strstr(md, "| drooping | rmtr | tr | 1083 |") != NULL);
