@@ -21,14 +21,28 @@ T8 = {"trampoline": (84, 81), "drooping": (659, 707), "reentrant_corner": (277, 
 
 
 def load():
+    """every record of RUNS by name; a checkpoint NAME.h5.partial (a run still going, or killed: status
+    unfinished) stands in for a record that is not there"""
     files = sorted(glob.glob(os.path.join(RUNS, "*.h5")))
+    files += [p for p in sorted(glob.glob(os.path.join(RUNS, "*.h5.partial"))) if p[:-8] not in files]
     if not files:
         return {}
     out = subprocess.run([BIN, "report", "--format", "csv"] + files, capture_output=True, text=True).stdout
     rows = {}
     for r in csv.DictReader(io.StringIO(out)):
-        rows[os.path.basename(r["file"])[:-3]] = r
+        base = os.path.basename(r["file"])
+        rows[base[:-len(".h5.partial")] if base.endswith(".h5.partial") else base[:-3]] = r
     return rows
+
+
+def path_of(name):
+    """the file behind a record name (the record, or its checkpoint)"""
+    r = rows.get(name)
+    return r["file"] if r is not None else os.path.join(RUNS, name + ".h5")
+
+
+def unfinished(r):
+    return r is not None and r["status_code"] == "2"
 
 
 def ok(r):
@@ -102,7 +116,7 @@ def rec(name):
 
 def h5col(name, dset):
     """one dataset of a record as a list of numbers (via h5dump), None without the record"""
-    path = os.path.join(RUNS, name + ".h5")
+    path = path_of(name)
     if not os.path.exists(path):
         return None
     out = subprocess.run(["h5dump", "-d", dset, "-y", "-w", "0", path], capture_output=True, text=True).stdout
@@ -139,7 +153,7 @@ def by_level(name):
 
 def cap_note(name):
     """" (cap N)" where a record was run with another per-step cap than run.sh's"""
-    out = subprocess.run(["h5dump", "-a", "/params/run.max_iter", os.path.join(RUNS, name + ".h5")],
+    out = subprocess.run(["h5dump", "-a", "/params/run.max_iter", path_of(name)],
                          capture_output=True, text=True).stdout
     cap = [int(w) for w in out.split("(0):")[1].split()[:1]] if "(0):" in out else []
     return " (cap %s)" % num(cap[0]) if cap and cap[0] != CAP else ""
@@ -149,6 +163,9 @@ def split_cell(name, r):
     sp = level_split(name)
     if r is None or sp is None:
         return "not run"
+    if unfinished(r):
+        return "— (unfinished at its last checkpoint, %s s: %s V-cycles, by top level %s)" % (
+            num(float(r["seconds"])), num(int(r["iterations"])), ", ".join(num(c) for c in by_level(name)))
     if not ok(r):
         return "— (%s)" % r["reason"] + cap_note(name)
     return ("%s + %s" % (num(sp[0]), num(sp[1])) if sp[1] else num(sp[0])) + cap_note(name)
@@ -235,7 +252,7 @@ if own:
             if r is None:
                 cells += ["not run", "—", "—", "—"]
                 continue
-            vc = split_cell(name, r) if ok(r) else "— (%s; by top level %s)%s" % (
+            vc = split_cell(name, r) if ok(r) or unfinished(r) else "— (%s; by top level %s)%s" % (
                 r["reason"], ", ".join(num(c) for c in by_level(name)), cap_note(name))
             cells += [vc, num(float(r["work_assembly"])) if ok(r) else "—",
                       num(float(r["seconds"]), "{:.3g}"), "%.3f" % f[-1] if ok(r) and f else "—"]
@@ -486,6 +503,9 @@ def outcome(name):
              else "%s V-cycles" % num(sp[0]))
         return "converges (%s, %s)" % (v, secs)
     bl = by_level(name)
+    if unfinished(r):
+        return "had not finished at its last checkpoint (step %d, %s V-cycles by top level, coarsest first: %s; %s)" % (
+            int(r["steps"]) + 1, num(int(r["iterations"])), ", ".join(num(c) for c in bl), secs)
     where = "; V-cycles by top level, coarsest first: %s" % ", ".join(num(c) for c in bl) if len(bl) > 1 else ""
     return "stops in step %s: %s%s (%s%s)" % (r["steps"], r["reason"], cap_note(name), secs, where)
 
