@@ -187,6 +187,14 @@ SB_TEST(killed_run_leaves_a_readable_checkpoint)
     static char md[1 << 14];
     CHECK_EQ_INT(sh(md, sizeof md, "%s report %s", sb_test_bin(), partial), 0);
     CHECK(strstr(md, "| drooping | rmtr | tr | 1083 |") != NULL);
+    /* checkpoints do not touch the numbers: one after every iteration gives the same run as none */
+    static char a[1 << 14], b[1 << 14];
+    for (int k = 0; k < 2; k++)
+        CHECK_EQ_INT(sh(k ? b : a, sizeof a, "cd %s && %s run --scene trampoline --method rmtr --solver rmtr --res 8 "
+                        "--levels 2 --out %s/det%d.h5 --set run.checkpoint=%s --summary json 2>/dev/null "
+                        "| grep -E '^  \"(f|gnorm|iterations|work_units)\":' -A2", sb_test_root(), sb_test_bin(),
+                        tmpdir, k, k ? "1e-9" : "0"), 0);
+    CHECK_MSG(a[0] && strcmp(a, b) == 0, "without checkpoints: %s; with: %s", a, b);
     /* a finished run to the same path replaces it */
     CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method rmtr --solver tr --res 4 --out %s "
                     "--set run.checkpoint=0 --quiet 2>/dev/null", sb_test_root(), sb_test_bin(), rec), 0);
