@@ -133,6 +133,17 @@ SB_TEST(usage_and_input_errors_exit_2)
     CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr --set x 2>/dev/null", root, bin), 2);
     CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr --bogus 2>/dev/null", root, bin), 2);
     CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr --samples 1 2>/dev/null", root, bin), 2);
+    /* the run's own options: out of range or not a number, refused with the key named */
+    static char why[4096];
+    CHECK_EQ_INT(sh(why, sizeof why, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr "
+                    "--set run.perturb=-1 2>&1", root, bin), 2);
+    CHECK(strstr(why, "run.perturb") != NULL);
+    CHECK_EQ_INT(sh(why, sizeof why, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr "
+                    "--set run.checkpoint=abc 2>&1", root, bin), 2);
+    CHECK(strstr(why, "run.checkpoint") != NULL);
+    CHECK_EQ_INT(sh(why, sizeof why, "cd %s && %s run --scene trampoline --method fixture_membrane --solver tr "
+                    "--set run.seed=1.5 2>&1", root, bin), 2);
+    CHECK(strstr(why, "run.seed") != NULL);
     /* impossible combination: refused before any work, naming both sides */
     static char err[4096];
     CHECK_EQ_INT(sh(err, sizeof err, "cd %s && %s run --scene tests/scenes/fixture_static.json --method fixture_quadratic "
