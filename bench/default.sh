@@ -8,6 +8,9 @@ BIN=${1:-build/shellbench}
 OUT=${SB_DEFAULT_OUT:-results/default}
 mkdir -p "$OUT"
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+# OpenBLAS's generic x86-64 kernels unless set: the same round-off on every
+# x86-64 machine, so counts on the nonconvex scenes reproduce (README "Perturbed starts")
+export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Prescott}
 
 methods=$("$BIN" list methods | awk '$0 !~ /TEST FIXTURE/ {print $1}')
 if [ -z "$methods" ]; then

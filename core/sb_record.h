@@ -94,6 +94,7 @@ typedef struct sb_record_summary {
     int *hist_iter;            /* owned; iteration within its step (0 = start of step) */
     int steps_planned, n_cores;
     char build_id[64], cpu_model[128], started[32];
+    char blas_core[64];        /* OpenBLAS kernel set; "unknown" in records written before it was kept */
     char reason_name[32];      /* sb_reason_name(reason) as recorded */
 } sb_record_summary;
 

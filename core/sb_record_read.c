@@ -275,6 +275,8 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
         if (!rc) rc = attr_int(&r, f, "n_cores", &s->n_cores);
         if (!rc) rc = attr_str(&r, f, "build_id", s->build_id, sizeof s->build_id);
         if (!rc) rc = attr_str(&r, f, "cpu_model", s->cpu_model, sizeof s->cpu_model);
+        snprintf(s->blas_core, sizeof s->blas_core, "unknown");
+        if (!rc && H5Aexists(f, "blas_core") > 0) rc = attr_str(&r, f, "blas_core", s->blas_core, sizeof s->blas_core);
         if (!rc) rc = attr_str(&r, f, "started", s->started, sizeof s->started);
     }
     if (!rc && (gs = H5Gopen2(f, "/stats", H5P_DEFAULT)) < 0) rc = rfail(&r, SB_ERR_INPUT, "missing group", "/stats");

@@ -33,8 +33,10 @@ void sb_run_init(sb_run *run)
 
 static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
 {
-    char host[128], now[32];
+    char host[128], now[32], core[64];
     sb_sysinfo_hostname(host, sizeof host);
+    sb_sysinfo_blas_core(core, sizeof core);
+    const char *coretype = getenv("OPENBLAS_CORETYPE");
     sb_sysinfo_now_iso(now, sizeof now);
     const char *blas = getenv("OPENBLAS_NUM_THREADS");
     int bad = 0;
@@ -55,6 +57,8 @@ static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_attr_long(w, f, "n_cores", r->n_cores);
     bad |= sb_h5w_attr_str(w, f, "hostname", host);
     bad |= sb_h5w_attr_str(w, f, "openblas_num_threads", blas ? blas : "unset");
+    bad |= sb_h5w_attr_str(w, f, "blas_core", core);
+    bad |= sb_h5w_attr_str(w, f, "openblas_coretype", coretype ? coretype : "unset");
     bad |= sb_h5w_attr_str(w, f, "started", r->started);
     bad |= sb_h5w_attr_str(w, f, "written", now);
     bad |= sb_h5w_attr_long(w, f, "status", r->status);

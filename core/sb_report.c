@@ -102,7 +102,7 @@ static void csv_header(FILE *out)
     };
     for (size_t i = 0; i < sizeof cols / sizeof *cols; i++) csv_field(out, cols[i], i == 0);
     for (int e = 0; e < SB_EV_COUNT; e++) fprintf(out, ",seconds_%s", sb_event_name((sb_event)e));
-    fputs(",build_id,cpu_model,n_cores,started,file\n", out);
+    fputs(",build_id,cpu_model,n_cores,blas_core,started,file\n", out);
 }
 
 /* Numbers in CSV: %.9g; non-finite values as an empty field. */
@@ -137,6 +137,7 @@ static void csv_row(FILE *out, const sb_record_summary *s, const char *file)
     csv_field(out, s->build_id, 0);
     csv_field(out, s->cpu_model, 0);
     fprintf(out, ",%d", s->n_cores);
+    csv_field(out, s->blas_core, 0);
     csv_field(out, s->started, 0);
     csv_field(out, file, 0);
     fputc('\n', out);

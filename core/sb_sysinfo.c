@@ -2,6 +2,7 @@
 #include "sb_sysinfo.h"
 
 #include <ctype.h>
+#include <dlfcn.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -62,6 +63,23 @@ void sb_sysinfo_build_id(char *buf, size_t len)
 {
     const char *id = SB_BUILD_ID;
     copy_str(buf, len, id[0] ? id : "unknown");
+}
+
+void sb_sysinfo_blas_core(char *buf, size_t len)
+{
+    /* asked of the library already loaded (CHOLMOD's BLAS), never loading
+     * one: libblas.so.3 is OpenBLAS's when Debian's alternative points there */
+    static const char *const libs[] = { "libopenblas.so.0", "libblas.so.3" };
+    copy_str(buf, len, "unknown");
+    for (size_t i = 0; i < sizeof libs / sizeof libs[0]; i++) {
+        void *h = dlopen(libs[i], RTLD_LAZY | RTLD_NOLOAD);
+        if (!h) continue;
+        char *(*corename)(void) = (char *(*)(void))dlsym(h, "openblas_get_corename");
+        const char *name = corename ? corename() : NULL;
+        if (name && name[0]) copy_str(buf, len, name);
+        dlclose(h);
+        if (name && name[0]) return;
+    }
 }
 
 void sb_sysinfo_hostname(char *buf, size_t len)

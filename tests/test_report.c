@@ -188,7 +188,7 @@ SB_TEST(test_csv_table)
     char *text = NULL, err[1024] = "";
     sb_report_options o = { "csv", NULL, NULL };
     CHECK_EQ_INT(report_to_string(3, S.files, &o, &text, err, sizeof err), SB_OK);
-    int expected_cols = 19 + SB_EV_COUNT + 5;
+    int expected_cols = 19 + SB_EV_COUNT + 6;   /* ... build_id, cpu_model, n_cores, blas_core, started, file */
     char f[64][128];
     int row = 0;
     for (char *line = text, *nl; line && *line; line = nl + 1, row++) {

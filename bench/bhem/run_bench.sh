@@ -16,6 +16,9 @@ cd "$ROOT"
 OUT=results/bhem/runs
 mkdir -p "$OUT"
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+# OpenBLAS's generic x86-64 kernels unless set: the same round-off on every
+# x86-64 machine, so counts on the nonconvex scenes reproduce (README "Perturbed starts")
+export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Prescott}
 SC=bench/bhem/scenes
 
 # the profile tool reads /final/x of a record (wrinkle statistics)

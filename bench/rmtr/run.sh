@@ -35,6 +35,9 @@ cd "$ROOT"
 OUT=results/rmtr/runs
 mkdir -p "$OUT"
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+# OpenBLAS's generic x86-64 kernels unless set: the same round-off on every
+# x86-64 machine, so counts on the nonconvex scenes reproduce (README "Perturbed starts")
+export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Prescott}
 CAP=2000
 CAP_PAPER=400
 RES_TR="4 8 16 32"
