@@ -8,6 +8,7 @@
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -537,6 +538,12 @@ SB_TEST(test_sysinfo)
     CHECK(buf[4] == '-' && buf[10] == 'T' && buf[19] == 'Z');
     sb_sysinfo_build_id(buf, sizeof buf);
     CHECK(buf[0] != 0);
+    /* the BLAS kernel set: the one OPENBLAS_CORETYPE asked for (make test pins it) when OpenBLAS is loaded */
+    sb_sysinfo_blas_core(buf, sizeof buf);
+    CHECK(buf[0] != 0);
+    const char *ct = getenv("OPENBLAS_CORETYPE");
+    if (ct && *ct && strcmp(buf, "unknown") != 0)
+        CHECK_MSG(strcasecmp(buf, ct) == 0, "OPENBLAS_CORETYPE=%s but OpenBLAS runs %s", ct, buf);
     char tiny[4];
     sb_sysinfo_cpu_model(tiny, sizeof tiny);
     CHECK(strlen(tiny) <= 3);
