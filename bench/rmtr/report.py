@@ -239,9 +239,11 @@ if paper_runs:
         big = next((k + 1 for k, x in enumerate(d1) if x > 1e15), None)
         first = lambda tol: next((k + 1 for k, gn in enumerate(s1) if gn < tol), None)
         its = it_or_none(r)
+        stop = num(len(s1)) if not unfinished(r) else "%s so far (||g|| %.2g at the checkpoint)" % (
+            num(len(s1)), s1[-1] if s1 else float("nan"))
         print("| %s | %d | %s | %s | %s | %s | %s / %s / %s | %s | %s | %s | %s |" % (
             NAMES[sc], l, r["dofs"], num(T4[sc][l - 2]), num(its), ratio(its, T4[sc][l - 2]),
-            num(first(1e-3)), num(first(5e-5)), num(len(s1)), num(big), num(float(r["work_assembly"])),
+            num(first(1e-3)), num(first(5e-5)), stop, num(big), num(float(r["work_assembly"])),
             num(float(r["seconds"]), "{:.3g}"), r["status"]))
 
 print("\n## Which minimum each configuration ends in\n")
