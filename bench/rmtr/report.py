@@ -345,9 +345,13 @@ if any(a is not None for _, a, _, _ in t8):
             return "not run"
         if ok(r):
             return num(int(r["iterations"]))
-        name = os.path.basename(r["file"])[:-3]
-        g, f = h5col(name, "/history/steps/gnorm"), h5col(name, "/history/steps/f")
-        return "— (%s in step %d: ‖g‖ %.2g, f %.3f)" % (r["reason"], len(g), g[-1], f[-1])
+        name = os.path.basename(r["file"])
+        name = name[:-len(".h5.partial")] if name.endswith(".h5.partial") else name[:-3]
+        g, f, st = (h5col(name, "/history/iterations/" + d) for d in ("gnorm", "f", "step"))
+        if not g:
+            return "— (%s)" % r["status"]
+        what = "unfinished at its checkpoint, %s V-cycles" % num(int(r["iterations"])) if unfinished(r) else r["reason"]
+        return "— (%s in step %d: ‖g‖ %.2g, f %.3f)" % (what, int(st[-1]), g[-1], f[-1])
 
     for s, a, b, c in t8:
         print("| %s | %s | %s | %s | %s | %s |" % (NAMES[s], num(T8[s][0]), num(T8[s][1]), t8cell(a), t8cell(b), t8cell(c)))

@@ -5,6 +5,8 @@
 # full mode all four scenes).
 #
 #   bash bench/rmtr/run.sh [SHELLBENCH] [quick|large|full]
+#   ONLY="rmtrd-drape-l6-gtol1e-6 ..." SCENES=drape bash bench/rmtr/run.sh build/shellbench large
+#     runs just the named records of that mode (e.g. one per core)
 #
 # "large" is quick plus the report's 13,467- and 51,483-dof runs on the hard
 # scenes (drooping, re-entrant corner, drape): "rtol 0.1" and "ours" at 5
@@ -53,6 +55,7 @@ SCENES=${SCENES:-"trampoline drooping reentrant_corner drape"}
 
 run() {   # run FILE SCENE SOLVER RES LEVELS [--set ...]
   local f=$1 scene=$2 solver=$3 res=$4 lev=$5; shift 5
+  case " ${ONLY:-$f} " in *" $f "*) ;; *) return ;; esac   # ONLY="NAME ...": just those records
   [ -f "$OUT/$f.h5" ] && { echo "kept  $f"; return; }      # resume an interrupted sweep
   "$BIN" run --scene "$scene" --method rmtr --solver "$solver" --res "$res" --levels "$lev" \
     --out "$OUT/$f.h5" --quiet --set run.max_iter=$CAP "$@"
