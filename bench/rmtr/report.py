@@ -261,6 +261,8 @@ for s in SCENES[1:]:
             continue
         def fcell(name):
             r, f = rows.get(name), h5col(name, "/history/steps/f")
+            if unfinished(r):   # a checkpoint: its step records are the finished steps only
+                return "— (unfinished at its checkpoint, in step %d)" % (len(f or []) + 1)
             if r is None or not f:
                 return "not run"
             if not ok(r):
