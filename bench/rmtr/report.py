@@ -2,7 +2,7 @@
 """bench/rmtr/report.py — the RMTR paper's Tables 3, 4, 6, 7, 8 beside ours,
 from the records in results/rmtr/runs (read through `shellbench report
 --format csv`, never by re-running).  Paper figures: ../shared/reference/paper_tables.md."""
-import csv, glob, io, os, subprocess, sys
+import collections, csv, glob, io, os, subprocess, sys
 
 RUNS = sys.argv[1] if len(sys.argv) > 1 else "results/rmtr/runs"
 BIN = os.environ.get("SB_BIN", "build/shellbench")
@@ -70,10 +70,8 @@ def provenance():
     if not rows:
         return
     def tally(key):
-        c = {}
-        for r in rows.values():
-            c[r.get(key) or "unknown"] = c.get(r.get(key) or "unknown", 0) + 1
-        return ", ".join("%s (%d)" % (k, v) for k, v in sorted(c.items(), key=lambda kv: -kv[1]))
+        c = collections.Counter(r.get(key) or "unknown" for r in rows.values())
+        return ", ".join("%s (%d)" % kv for kv in c.most_common())
     started = sorted(r["started"] for r in rows.values() if r.get("started"))
     print("Records: %d, started %s to %s; BLAS kernels %s; builds %s; CPUs %s." % (
         len(rows), started[0] if started else "?", started[-1] if started else "?",
