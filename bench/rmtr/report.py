@@ -28,11 +28,13 @@ def load():
     if not files:
         return {}
     out = subprocess.run([BIN, "report", "--format", "csv"] + files, capture_output=True, text=True).stdout
-    rows = {}
-    for r in csv.DictReader(io.StringIO(out)):
-        base = os.path.basename(r["file"])
-        rows[base[:-len(".h5.partial")] if base.endswith(".h5.partial") else base[:-3]] = r
-    return rows
+    return {name_of(r): r for r in csv.DictReader(io.StringIO(out))}
+
+
+def name_of(r):
+    """the record name behind a CSV row: its file's name without .h5 or .h5.partial"""
+    base = os.path.basename(r["file"])
+    return base[:-len(".h5.partial")] if base.endswith(".h5.partial") else base[:-3]
 
 
 def path_of(name):
@@ -345,8 +347,7 @@ if any(a is not None for _, a, _, _ in t8):
             return "not run"
         if ok(r):
             return num(int(r["iterations"]))
-        name = os.path.basename(r["file"])
-        name = name[:-len(".h5.partial")] if name.endswith(".h5.partial") else name[:-3]
+        name = name_of(r)
         g, f, st = (h5col(name, "/history/iterations/" + d) for d in ("gnorm", "f", "step"))
         if not g:
             return "— (%s)" % r["status"]
