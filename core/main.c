@@ -6,8 +6,10 @@
  *   shellbench sweep --scenes A,B --methods M,N --solvers S,T [--res 4,8] [--levels 1,2]
  *                  [--set key=value]... [--dir DIR]
  *   shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...
+ *   shellbench inspect [--format md|csv] FILE.h5...
  * Exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error, 3 internal error. */
 #include "sb_context.h"
+#include "sb_inspect.h"
 #include "sb_method.h"
 #include "sb_record.h"
 #include "sb_run.h"
@@ -30,6 +32,7 @@ static void usage(FILE *f)
             "  shellbench sweep --scenes A,B --methods M,.. --solvers S,.. [--res N,..] [--levels L,..]\n"
             "                 [--set key=value]... [--dir DIR]\n"
             "  shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...\n"
+            "  shellbench inspect [--format md|csv] FILE.h5...   (material state of the recorded final state)\n"
             "exit codes: 0 converged, 1 did not converge, 2 usage or input error, 3 internal error\n");
 }
 
@@ -263,6 +266,34 @@ static int cmd_report(int argc, char **argv)
     return 0;
 }
 
+static int cmd_inspect(int argc, char **argv)
+{
+    const char *format = "md";
+    char **files = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *files);
+    int nf = 0;
+    if (!files) return 3;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--format") && i + 1 < argc) format = argv[++i];
+        else if (argv[i][0] == '-' && argv[i][1] == '-') {
+            fprintf(stderr, "shellbench inspect: unknown option \"%s\"\n", argv[i]);
+            free(files);
+            return 2;
+        } else files[nf++] = argv[i];
+    }
+    int rc = 0;
+    if (strcmp(format, "md") && strcmp(format, "csv")) {
+        fprintf(stderr, "shellbench inspect: --format must be md or csv, got \"%s\"\n", format);
+        rc = 2;
+    } else if (nf == 0) {
+        fprintf(stderr, "shellbench inspect: no record files given\n");
+        rc = 2;
+    } else if (sb_inspect_report(nf, files, format, stdout, stderr) > 0) {
+        rc = 2;
+    }
+    free(files);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) { usage(stderr); return 2; }
@@ -272,6 +303,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "run")) return cmd_run(argc - 2, argv + 2);
     if (!strcmp(cmd, "sweep")) return cmd_sweep(argc - 2, argv + 2);
     if (!strcmp(cmd, "report")) return cmd_report(argc - 2, argv + 2);
+    if (!strcmp(cmd, "inspect")) return cmd_inspect(argc - 2, argv + 2);
     if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) { usage(stdout); return 0; }
     fprintf(stderr, "shellbench: unknown command \"%s\"\n", cmd);
     usage(stderr);

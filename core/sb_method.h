@@ -16,6 +16,7 @@
 #include "sb_scene.h"
 #include "sb_params.h"
 #include "sb_sparse.h"
+#include "sb_material_state.h"
 
 struct sb_context;
 struct sb_csr;
@@ -48,6 +49,7 @@ typedef struct sb_dirichlet {
     const int *dofs;            /* sorted, unique */
     const double *values;       /* prescribed values at the current step */
 } sb_dirichlet;
+
 
 typedef struct sb_method_type {
     const char *name;
@@ -91,6 +93,10 @@ typedef struct sb_method_type {
      * columns), filled with sb_csr_alloc (sb_galerkin.h); used once per run
      * for Galerkin coarse models.  NULL: the core probes prolong() instead. */
     int  (*prolong_matrix)(const void *state, int lc, struct sb_csr *S);
+
+    /* optional: the material state of x on `level` (sb_material_state);
+     * SB_OK, or SB_NONFINITE when some point could not be evaluated */
+    int  (*material_state)(void *state, int level, const double *x, sb_material_state *ms);
 
     /* optional: one line describing the discretization ("8x8 Hermite patches") */
     void (*describe)(const void *state, char *buf, size_t len);

@@ -6,6 +6,7 @@
 #include "sb_scene.h"
 #include "sb_params.h"
 #include "sb_stats.h"
+#include "sb_material_state.h"
 #include <stdio.h>
 
 typedef struct sb_run {
@@ -47,6 +48,9 @@ typedef struct sb_run {
     /* surface for output: triangles over the sample grid */
     int n_tris;
     int *tris;                 /* 3 * n_tris, indices into samples */
+    /* where the final state strains the material (methods with material_state) */
+    int has_material;
+    sb_material_state material;
     /* error against the scene's reference */
     int has_error;
     double error_rms, error_max;   /* relative to the domain diameter (field) */
@@ -103,6 +107,25 @@ void sb_record_summary_free(sb_record_summary *s);
 /* Read the sampled final positions (for reference-run errors). */
 int  sb_record_read_samples(const char *path, int *n, double **st, double **pos,
                             char *err, size_t errlen);
+
+/* What it takes to rebuild a record's discretization and state (for
+ * `shellbench inspect`): the scene text, method, resolution, levels, the
+ * method.* parameters as "key=value" assignments, and the final (or, in a
+ * checkpoint, the current) DOF vector. */
+#define SB_RECORD_MAX_SETS 64
+typedef struct sb_record_setup {
+    char scene[SB_NAME_LEN], method[SB_NAME_LEN], solver[SB_NAME_LEN];
+    char scene_path[512];
+    char *scene_json;          /* owned */
+    int res, levels, status, steps_done;
+    int n_sets;
+    char sets[SB_RECORD_MAX_SETS][320];
+    int n_x;
+    double *x;                 /* owned */
+} sb_record_setup;
+
+int  sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen);
+void sb_record_setup_free(sb_record_setup *s);
 
 /* Report: Markdown (format "md") or CSV table of the files, and, when
  * png_path is non-NULL, a gnuplot PNG of ||g|| against iteration. */

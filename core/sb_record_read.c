@@ -336,3 +336,108 @@ int sb_record_read_samples(const char *path, int *n, double **st, double **pos,
     *n = (int)ds[0];
     return SB_OK;
 }
+
+/* Scalar fixed-length string attribute of any length, into a new buffer. */
+static int attr_str_alloc(h5r *r, hid_t loc, const char *name, char **out)
+{
+    *out = NULL;
+    hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+    if (a < 0) return rfail(r, SB_ERR_INPUT, "missing attribute", name);
+    hid_t t = H5Aget_type(a);
+    int rc = SB_OK;
+    if (t < 0 || H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) != 0) {
+        rc = rfail(r, SB_ERR_INPUT, "attribute is not a fixed-length string:", name);
+    } else if (!(*out = calloc(H5Tget_size(t) + 1, 1))) {
+        rc = SB_ERR_NOMEM;
+        snprintf(r->err, r->errlen, "out of memory reading %s", r->path);
+    } else if (H5Aread(a, t, *out) < 0) {
+        rc = rfail(r, SB_ERR_IO, "cannot read attribute", name);
+    }
+    if (rc) {
+        free(*out);
+        *out = NULL;
+    }
+    if (t >= 0) H5Tclose(t);
+    H5Aclose(a);
+    return rc;
+}
+
+typedef struct param_walk {
+    h5r *r;
+    sb_record_setup *s;
+    int rc;
+} param_walk;
+
+/* one /params attribute "method.KEY" as the assignment "method.KEY=VALUE" */
+static herr_t collect_param(hid_t loc, const char *name, const H5A_info_t *info, void *data)
+{
+    (void)info;
+    param_walk *w = data;
+    if (strncmp(name, "method.", 7) != 0 || w->s->n_sets >= SB_RECORD_MAX_SETS) return 0;
+    char value[256];
+    hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+    hid_t t = a < 0 ? -1 : H5Aget_type(a);
+    H5T_class_t c = t < 0 ? H5T_NO_CLASS : H5Tget_class(t);
+    int rc = SB_OK;
+    if (c == H5T_STRING) {
+        rc = attr_str(w->r, loc, name, value, sizeof value);
+    } else if (c == H5T_INTEGER) {
+        long long v = 0;
+        rc = attr_num(w->r, loc, name, H5T_NATIVE_LLONG, &v);
+        snprintf(value, sizeof value, "%lld", v);
+    } else if (c == H5T_FLOAT) {
+        double v = 0;
+        rc = attr_num(w->r, loc, name, H5T_NATIVE_DOUBLE, &v);
+        snprintf(value, sizeof value, "%.17g", v);
+    } else {
+        rc = rfail(w->r, SB_ERR_INPUT, "parameter of unknown type:", name);
+    }
+    if (t >= 0) H5Tclose(t);
+    if (a >= 0) H5Aclose(a);
+    if (!rc) snprintf(w->s->sets[w->s->n_sets++], sizeof w->s->sets[0], "%s=%s", name, value);
+    w->rc = rc;
+    return rc ? -1 : 0;
+}
+
+int sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen)
+{
+    if (!s) return SB_ERR_INPUT;
+    memset(s, 0, sizeof *s);
+    h5r r = { path, err, errlen, NULL, NULL };
+    hid_t f, gp = -1;
+    hsize_t dx;
+    int rc = open_record(&r, &f);
+    if (!rc) rc = attr_str_alloc(&r, f, "scene_json", &s->scene_json);
+    if (!rc) rc = attr_str(&r, f, "scene_path", s->scene_path, sizeof s->scene_path);
+    if (!rc) rc = attr_str(&r, f, "scene_name", s->scene, sizeof s->scene);
+    if (!rc) rc = attr_str(&r, f, "method", s->method, sizeof s->method);
+    if (!rc) rc = attr_str(&r, f, "solver", s->solver, sizeof s->solver);
+    if (!rc) rc = attr_int(&r, f, "res", &s->res);
+    if (!rc) rc = attr_int(&r, f, "levels", &s->levels);
+    if (!rc) rc = attr_int(&r, f, "status", &s->status);
+    if (!rc) rc = attr_int(&r, f, "steps_done", &s->steps_done);
+    if (!rc && (gp = H5Gopen2(f, "/params", H5P_DEFAULT)) < 0) rc = rfail(&r, SB_ERR_INPUT, "missing group", "/params");
+    if (!rc) {
+        param_walk w = { &r, s, SB_OK };
+        hsize_t idx = 0;
+        if (H5Aiterate2(gp, H5_INDEX_NAME, H5_ITER_INC, &idx, collect_param, &w) < 0)
+            rc = w.rc ? w.rc : rfail(&r, SB_ERR_IO, "cannot list the attributes of", "/params");
+    }
+    if (!rc) rc = dset_read(&r, f, "/final/x", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dx, (void **)&s->x);
+    if (!rc && dx > (hsize_t)INT32_MAX) rc = rfail(&r, SB_ERR_INPUT, "implausibly long", "/final/x");
+    if (!rc) s->n_x = (int)dx;
+    if (gp >= 0) H5Gclose(gp);
+    close_record(&r, f);
+    if (rc) sb_record_setup_free(s);
+    return rc;
+}
+
+void sb_record_setup_free(sb_record_setup *s)
+{
+    if (!s) return;
+    free(s->scene_json);
+    free(s->x);
+    s->scene_json = NULL;
+    s->x = NULL;
+    s->n_x = 0;
+}

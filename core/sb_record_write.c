@@ -237,6 +237,26 @@ static int write_probes(sb_h5w *w, hid_t f, const sb_run *r)
     return bad ? -1 : 0;
 }
 
+/* /final/material: where the final state strains the material (sb_material_state.h) */
+static int write_material(sb_h5w *w, hid_t final, const sb_material_state *m)
+{
+    hid_t g = sb_h5w_group(w, final, "material");
+    if (g < 0) return -1;
+    int bad = 0;
+    bad |= sb_h5w_attr_long(w, g, "points", m->points);
+    bad |= sb_h5w_attr_long(w, g, "soft_membrane", m->soft_membrane);
+    bad |= sb_h5w_attr_long(w, g, "soft_section", m->soft_section);
+    bad |= sb_h5w_attr_dbl(w, g, "area", m->area);
+    bad |= sb_h5w_attr_dbl(w, g, "soft_area", m->soft_area);
+    bad |= sb_h5w_attr_dbl(w, g, "soft_area_fraction", m->area > 0 ? m->soft_area / m->area : 0.0);
+    bad |= sb_h5w_attr_dbl(w, g, "max_E11", m->max_strain[0]);
+    bad |= sb_h5w_attr_dbl(w, g, "max_E22", m->max_strain[1]);
+    bad |= sb_h5w_attr_dbl(w, g, "max_E12", m->max_strain[2]);
+    bad |= sb_h5w_attr_dbl(w, g, "min_rel_eig", m->min_rel_eig);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
 static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
 {
     hid_t g = sb_h5w_group(w, f, "/final");
@@ -257,6 +277,7 @@ static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_dset_dbl(w, g, "displacement", 2, d3, disp, "m");
     bad |= sb_h5w_dset_int(w, g, "triangles", 2, dt, r->tris, NULL);
     free(disp);
+    if (!bad && r->has_material) bad |= write_material(w, g, &r->material);
     H5Gclose(g);
     return bad ? -1 : 0;
 }

@@ -205,6 +205,19 @@ static char *summary_json(run_state *R, const char *out_path)
         json_object_set_new(pr, sp->name, q);
     }
     json_object_set_new(o, "probes", pr);
+    if (R->rec.has_material) {
+        const sb_material_state *m = &R->rec.material;
+        json_t *ma = json_object();
+        json_object_set_new(ma, "points", json_integer(m->points));
+        json_object_set_new(ma, "soft_membrane", json_integer(m->soft_membrane));
+        json_object_set_new(ma, "soft_section", json_integer(m->soft_section));
+        json_set_num(ma, "soft_area_fraction", m->area > 0 ? m->soft_area / m->area : 0.0);
+        json_object_set_new(ma, "max_strain", json_pack("[fff]", m->max_strain[0], m->max_strain[1], m->max_strain[2]));
+        json_set_num(ma, "min_rel_eig", m->min_rel_eig);
+        json_object_set_new(o, "material", ma);
+    } else {
+        json_object_set_new(o, "material", json_null());
+    }
     if (R->rec.has_error) {
         json_t *er = json_object();
         json_object_set_new(er, "kind", json_string(R->rec.error_kind));
@@ -302,6 +315,15 @@ static void remove_partial(run_state *R)
     if (sb_record_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
 }
 
+/* rec->material: where the current state strains the material (methods
+ * with material_state); part of the record's time */
+static void record_material(run_state *R)
+{
+    sb_run *rec = &R->rec;
+    rec->has_material = R->mt->material_state &&
+        R->mt->material_state(R->ms, sb_problem_finest(R->prob), R->x, &rec->material) == SB_OK;
+}
+
 /* Write the record so far (steps done, the iteration history including the
  * current step's, x and the sample positions now) as a checkpoint with
  * status SB_STATUS_UNFINISHED.  A failed write is a warning, once, and ends
@@ -317,6 +339,7 @@ static void write_checkpoint(run_state *R)
     rec->reason = SB_REASON_CHECKPOINT;
     if (R->mt->eval_points)
         R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
+    record_material(R);
     stats->seconds_total = t0 - R->t_start;
     char msg[2048];
     if (sb_record_write(rec, R->partial_path, msg, sizeof msg)) {
@@ -588,6 +611,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         }
     }
     compute_error(R, err);
+    record_material(R);
     if (out_path) {
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
         stats->seconds_total = sb_now() - t_start;

@@ -145,20 +145,11 @@ double sb_shell_section(const sb_material *m, const double A[3], const double B[
     return e;
 }
 
-double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_shell_basis *b,
-                       const double *q, double *grad, double *hess, sb_hess_kind kind,
-                       sb_shell_work *w)
+/* 1. Local jet y = (x_,1, x_,2, x_,11, x_,12, x_,22) and the weights W^I */
+static void gather_jet(const sb_shell_basis *b, const double *q, double (*W)[5], double y[5][3])
 {
-    /* bad input: NaN energy (the caller records SB_NONFINITE), never a crash */
-    if (!m || !r || !b || !q || !w || b->k < 1 || b->k > SB_SHELL_MAX_BASIS || !b->N1 || !b->N2 ||
-        !b->N11 || !b->N12 || !b->N22 || m->n_thick < 1 || m->n_thick > 8)
-        return NAN;
-    const int k = b->k;
-    double (*W)[5] = w->W;
-
-    /* 1. gather weights and the jet y */
-    double y[5][3] = { { 0 } };
-    for (int I = 0; I < k; I++) {
+    memset(y, 0, 15 * sizeof(double));
+    for (int I = 0; I < b->k; I++) {
         W[I][0] = b->N1[I];
         W[I][1] = b->N2[I];
         W[I][2] = b->N11[I];
@@ -171,24 +162,65 @@ double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_she
             y[s][2] += W[I][s] * qi[2];
         }
     }
+}
+
+/* 2. Strains from the jet: BHEM paper Eq. (4a), (5), (6a) without the C
+ * term; covariant A, B mapped to the local warp/weft frame, TA = T A,
+ * TB = T B; n the unit normal, rho = |x_,1 x x_,2|. */
+static void local_strains(const sb_shell_ref *r, double y[5][3], double n[3], double *rho, double TA[3],
+                          double TB[3])
+{
     const double *x1 = y[S_X1], *x2 = y[S_X2];
     const double *v[3] = { y[S_X11], y[S_X22], y[S_X12] };
-
-    /* 2. strains: BHEM paper Eq. (4a), (5), (6a) without the C term */
-    double c[3], n[3];
+    double c[3];
     cross3(x1, x2, c);
-    const double rho = sqrt(dot3(c, c)), irho = 1.0 / rho;
+    *rho = sqrt(dot3(c, c));
+    const double irho = 1.0 / *rho;
     for (int i = 0; i < 3; i++) n[i] = c[i] * irho;
     const double A[3] = { 0.5 * (dot3(x1, x1) - r->abar[0]), 0.5 * (dot3(x2, x2) - r->abar[1]),
                           0.5 * (dot3(x1, x2) - r->abar[2]) };
     const double B[3] = { 0.5 * (dot3(v[0], n) - r->bbar[0]), 0.5 * (dot3(v[1], n) - r->bbar[1]),
                           0.5 * (dot3(v[2], n) - r->bbar[2]) };
     const double *T = r->T;
-    double TA[3], TB[3];
     for (int i = 0; i < 3; i++) {
         TA[i] = T[3 * i] * A[0] + T[3 * i + 1] * A[1] + T[3 * i + 2] * A[2];
         TB[i] = T[3 * i] * B[0] + T[3 * i + 1] * B[1] + T[3 * i + 2] * B[2];
     }
+}
+
+int sb_shell_strains(const sb_shell_ref *r, const sb_shell_basis *b, const double *q, sb_shell_work *w,
+                     double A[3], double B[3])
+{
+    if (!r || !b || !q || !w || !A || !B || b->k < 1 || b->k > SB_SHELL_MAX_BASIS || !b->N1 || !b->N2 || !b->N11 ||
+        !b->N12 || !b->N22)
+        return SB_ERR_INPUT;
+    double y[5][3], n[3], rho;
+    gather_jet(b, q, w->W, y);
+    local_strains(r, y, n, &rho, A, B);
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(A[i]) || !isfinite(B[i])) return SB_NONFINITE;
+    return SB_OK;
+}
+
+double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_shell_basis *b,
+                       const double *q, double *grad, double *hess, sb_hess_kind kind,
+                       sb_shell_work *w)
+{
+    /* bad input: NaN energy (the caller records SB_NONFINITE), never a crash */
+    if (!m || !r || !b || !q || !w || b->k < 1 || b->k > SB_SHELL_MAX_BASIS || !b->N1 || !b->N2 ||
+        !b->N11 || !b->N12 || !b->N22 || m->n_thick < 1 || m->n_thick > 8)
+        return NAN;
+    const int k = b->k;
+    double (*W)[5] = w->W;
+
+    /* 1.-2. the jet y and the local-frame strains */
+    double y[5][3], n[3], rho, TA[3], TB[3];
+    gather_jet(b, q, W, y);
+    local_strains(r, y, n, &rho, TA, TB);
+    const double irho = 1.0 / rho;
+    const double *x1 = y[S_X1], *x2 = y[S_X2];
+    const double *v[3] = { y[S_X11], y[S_X22], y[S_X12] };
+    const double *T = r->T;
 
     /* 3. through the thickness (BHEM paper Eq. 6a, 7) */
     const int need_g = grad || hess, need_h = hess != NULL;

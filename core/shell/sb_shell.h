@@ -77,6 +77,32 @@ double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_she
                        const double *q, double *grad, double *hess, sb_hess_kind kind,
                        sb_shell_work *w);
 
+/* Local-frame membrane strain A and bending strain B (Voigt 11, 22, 12; the
+ * E(xi3) = A - 2 xi3 B that sb_shell_energy integrates) at one quadrature
+ * point.  Returns SB_OK, SB_ERR_INPUT for bad arguments, SB_NONFINITE for a
+ * degenerate current surface. */
+int sb_shell_strains(const sb_shell_ref *r, const sb_shell_basis *b, const double *q, sb_shell_work *w,
+                     double A[3], double B[3]);
+
+/* Stability of the shell section at strains (A, B) (sb_stability.c): the
+ * smallest eigenvalue of the membrane tangent d2e/dA2 (3 x 3, integrated
+ * through the thickness) and of the whole section tangent d2e/d(A,B)2
+ * (6 x 6, B scaled by sqrt(3)/thickness so both blocks weigh alike; a
+ * congruence, so the signs of the eigenvalues are unchanged), each divided
+ * by the largest |eigenvalue| of its matrix.  A negative value means the
+ * material law softens there: the energy is not convex in the strain
+ * (strain softening), so the minimization problem of a fine mesh can
+ * localize.  Returns SB_OK, SB_ERR_INPUT or SB_NONFINITE. */
+int sb_shell_section_stability(const sb_material *m, const double A[3], const double B[3],
+                               double *rel_min_membrane, double *rel_min_section);
+
+/* Accumulate one quadrature point of configuration q into a material state
+ * (sb_material_state, sb_method.h): strains, stability, area.  Init first. */
+struct sb_material_state;
+void sb_material_state_init(struct sb_material_state *ms);
+int sb_material_state_add(struct sb_material_state *ms, const sb_material *m, const sb_shell_ref *r,
+                          const sb_shell_basis *b, const double *q, sb_shell_work *w);
+
 /* External potential of one quadrature point: gravity (dead, density * g)
  * and pressure p along the normal.  follower = 0: dead load on the reference
  * normal (linear potential); follower = 1: follows the deformed normal,

@@ -169,6 +169,7 @@ void bhem_moment_rebranch(bhem_state *S, bhem_level *L, const double *x);
 
 /* ---- energy (bhem_energy.c) --------------------------------------------- */
 int  bhem_energy(bhem_state *S, int level, const double *x, double *f, double *g, sb_matrix *H);
+int  bhem_material_state(bhem_state *S, int level, const double *x, sb_material_state *ms);
 
 /* ---- hierarchy (bhem_transfer.c) ---------------------------------------- */
 int  bhem_transfer_build(bhem_state *S, int lc);

@@ -56,3 +56,22 @@ int bhem_energy(bhem_state *S, int level, const double *x, double *f, double *g,
     if (g && !sb_all_finite(L->n_dofs, g)) return SB_NONFINITE;
     return SB_OK;
 }
+
+/* Where x strains the material (sb_material_state): every Gauss point of
+ * every patch, with the kernel's own strains. */
+int bhem_material_state(bhem_state *S, int level, const double *x, sb_material_state *ms)
+{
+    bhem_level *L = &S->lv[level];
+    sb_material_state_init(ms);
+    int status = SB_OK;
+    for (int e = 0; e < L->n_elems; e++) {
+        bhem_gather(L, e, x, S->qe);
+        const sb_shell_ref *ref = L->ref + (size_t)e * BHEM_NQP;
+        for (int q = 0; q < BHEM_NQP; q++) {
+            const bhem_qp_basis *B = &L->qb[q];
+            sb_shell_basis b = { BHEM_NB, B->N, B->N1, B->N2, B->N11, B->N12, B->N22 };
+            if (sb_material_state_add(ms, &S->mat, &ref[q], &b, S->qe, S->work)) status = SB_NONFINITE;
+        }
+    }
+    return status;
+}

@@ -159,6 +159,11 @@ static int bhem_energy_op(void *state, int level, const double *x, double *f, do
     return bhem_energy(state, level, x, f, g, H);
 }
 
+static int bhem_material_state_op(void *state, int level, const double *x, sb_material_state *ms)
+{
+    return bhem_material_state(state, level, x, ms);
+}
+
 static int bhem_mass_op(void *state, int level, sb_matrix *M)
 {
     bhem_state *S = state;
@@ -201,6 +206,7 @@ const sb_method_type sb_method_bhem = {
     .dirichlet = bhem_dirichlet,
     .energy = bhem_energy_op,
     .mass = bhem_mass_op,
+    .material_state = bhem_material_state_op,
     .eval_points = bhem_eval_points,
     .prolong = bhem_prolong_op,
     .restrict_adj = bhem_restrict_op,

@@ -95,3 +95,24 @@ int cc_mass(cc_state *S, int l, sb_matrix *M)
     }
     return SB_OK;
 }
+
+/* Where x strains the material (sb_material_state): every quadrature point
+ * of every element, with the kernel's own strains. */
+int cc_material_state(cc_state *S, int l, const double *x, sb_material_state *ms)
+{
+    cc_level *L = &S->lv[l];
+    const cc_quad *Q = &L->quad;
+    sb_material_state_init(ms);
+    int status = SB_OK;
+    for (int el = 0; el < Q->ne; el++) {
+        const int *nd = Q->enode + Q->eoff[el];
+        int k = Q->eoff[el + 1] - Q->eoff[el];
+        for (int a = 0; a < k; a++) memcpy(S->qe + 3 * a, x + 3 * nd[a], 3 * sizeof(double));
+        for (int q = 0; q < Q->nq; q++) {
+            sb_shell_basis b = cc_quad_basis(Q, el, q);
+            const sb_shell_ref *r = &L->ref[(size_t)el * Q->nq + q];
+            if (sb_material_state_add(ms, &S->mat, r, &b, S->qe, S->work)) status = SB_NONFINITE;
+        }
+    }
+    return status;
+}

@@ -224,6 +224,11 @@ static int cc_energy_op(void *state, int level, const double *x, double *f, doub
 
 static int cc_mass_op(void *state, int level, sb_matrix *M) { return cc_mass(state, level, M); }
 
+static int cc_material_state_op(void *state, int level, const double *x, sb_material_state *ms)
+{
+    return cc_material_state(state, level, x, ms);
+}
+
 static int cc_eval_points(const void *state, int level, const double *x, int np, const double *st, double *pos)
 {
     const cc_state *S = state;
@@ -312,6 +317,7 @@ const sb_method_type sb_method_subdiv = {
     .dirichlet = cc_dirichlet,
     .energy = cc_energy_op,
     .mass = cc_mass_op,
+    .material_state = cc_material_state_op,
     .eval_points = cc_eval_points,
     .prolong = cc_prolong,
     .restrict_adj = cc_restrict,

@@ -106,5 +106,6 @@ double cc_points_energy(const cc_state *S, const cc_level *L, int e, const doubl
 /* cc_energy.c */
 int  cc_energy(cc_state *S, int l, const double *x, double *f, double *g, sb_matrix *H);
 int  cc_mass(cc_state *S, int l, sb_matrix *M);
+int  cc_material_state(cc_state *S, int l, const double *x, sb_material_state *ms);
 
 #endif

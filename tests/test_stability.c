@@ -1,0 +1,220 @@
+/* test_stability.c — the material-state figure: where a configuration
+ * strains the material beyond the convex range of its law.
+ *  - the section tangent's stability at known strains: the denim law (RMTR
+ *    paper Eq. 3.3-3.4, Table 1) softens in uniaxial warp strain between
+ *    about 0.04 and 0.075 and nowhere else on [0, 0.3]; StVK never does;
+ *  - both shell methods (rmtr, bhem) on uniformly stretched plates: every
+ *    quadrature point sees the applied strain exactly, and every point is
+ *    soft exactly when the strain lies in that interval;
+ *  - a run records the figure (summary, /final/material) and `shellbench
+ *    inspect` recomputes the same numbers from the record alone; a file that
+ *    is not a record is refused with its name. */
+#include "sb_test.h"
+#include "sb_inspect.h"
+#include "sb_method.h"
+#include "sb_run.h"
+#include "sb_scene.h"
+#include "shell/sb_shell.h"
+
+#include <jansson.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static int membrane_soft(const sb_material *m, int c, double e)
+{
+    double A[3] = { 0.0, 0.0, 0.0 }, B[3] = { 0.0, 0.0, 0.0 };
+    A[c] = e;
+    double lm = 0, ls = 0;
+    if (sb_shell_section_stability(m, A, B, &lm, &ls) != SB_OK) return -1;
+    return lm < -1e-9;
+}
+
+/* the edge of the softening interval of strain component c between lo and hi */
+static double edge(const sb_material *m, int c, double lo, double hi)
+{
+    int s_lo = membrane_soft(m, c, lo);
+    for (int it = 0; it < 50; it++) {
+        double mid = 0.5 * (lo + hi);
+        if (membrane_soft(m, c, mid) == s_lo) lo = mid;
+        else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/* The denim membrane tangent [[k1 psi1'', k2 phi2' ...], [.., k3 psi3'']] is
+ * indefinite once the diagonal stiffness of one direction falls below the
+ * coupling k2^2 / k_other: Table 1's weft law saturates within 1 % strain
+ * (alpha_32 = -12802), the warp law dips between 3 and 8 %.  Measured edges
+ * of the uniaxial intervals (one strain component, the others zero). */
+SB_TEST(denim_softening_interval)
+{
+    sb_material_spec spec;
+    sb_material_spec_denim(&spec);
+    sb_material m;
+    CHECK(sb_material_init(&m, &spec, 0) == SB_OK);
+    static const struct { double lo, hi; } iv[3] = { { 0.0265, 0.0830 }, { 0.0055, 0.0650 }, { 0.0175, 0.0305 } };
+    for (int c = 0; c < 3; c++) {
+        double mid = 0.5 * (iv[c].lo + iv[c].hi);
+        double a = edge(&m, c, 0.0, mid), b = edge(&m, c, 0.3, mid);
+        CHECK_MSG(fabs(a - iv[c].lo) < 1e-3, "component %d: softening starts at %g", c, a);
+        CHECK_MSG(fabs(b - iv[c].hi) < 1e-3, "component %d: softening ends at %g", c, b);
+        for (double e = 0.0; e <= 0.3; e += 0.0025) {
+            int in = e > iv[c].lo + 1e-3 && e < iv[c].hi - 1e-3, out = e < iv[c].lo - 1e-3 || e > iv[c].hi + 1e-3;
+            if (in) CHECK_MSG(membrane_soft(&m, c, e) == 1, "component %d, strain %g should soften", c, e);
+            if (out) CHECK_MSG(membrane_soft(&m, c, e) == 0, "component %d, strain %g should be stable", c, e);
+            if (in || out) CHECK(membrane_soft(&m, c, -e) == membrane_soft(&m, c, e));   /* psi(E) = psi(-E) */
+        }
+    }
+}
+
+SB_TEST(stvk_never_softens)
+{
+    sb_material_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.kind = SB_MAT_STVK;
+    spec.young = 1e6;
+    spec.poisson = 0.3;
+    spec.thickness = 1e-3;
+    spec.density = 1.0;
+    sb_material m;
+    CHECK(sb_material_init(&m, &spec, 0) == SB_OK);
+    unsigned long s = 7;
+    for (int i = 0; i < 200; i++) {
+        double A[3], B[3], lm, ls;
+        for (int k = 0; k < 3; k++) {
+            s = s * 6364136223846793005UL + 1442695040888963407UL;
+            A[k] = ((double)(s >> 11) / 9007199254740992.0 - 0.5) * 0.6;
+            B[k] = A[k] * 37.0 * (k + 1);
+        }
+        CHECK(sb_shell_section_stability(&m, A, B, &lm, &ls) == SB_OK);
+        CHECK_MSG(lm > 0 && ls > 0, "StVK at A = (%g, %g, %g): %g, %g", A[0], A[1], A[2], lm, ls);
+    }
+    double lm, ls;
+    const double A[3] = { 0.1, 0, 0 }, B[3] = { NAN, 0, 0 };
+    CHECK(sb_shell_section_stability(&m, A, B, &lm, &ls) == SB_NONFINITE);
+    CHECK(sb_shell_section_stability(NULL, A, B, &lm, &ls) == SB_ERR_INPUT);
+}
+
+/* A flat 1 m plate stretched uniformly along the warp (x) direction to the
+ * Green strain e11 = (s^2 - 1)/2: an affine map of every control value, which
+ * both bases reproduce exactly. */
+static void stretched_plate(sb_test_state *T, const char *method, int res, double e11)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/bench/scenes/trampoline.json", sb_test_root());
+    sb_scene sc;
+    char err[512];
+    CHECK_MSG(sb_scene_load(path, &sc, err, sizeof err) == SB_OK, "%s", err);
+    const sb_method_type *mt = sb_method_find(method);
+    CHECK(mt != NULL && mt->material_state != NULL);
+    if (!mt || !mt->material_state) return;
+    void *st = calloc(1, mt->state_size);
+    sb_method_config cfg = { res, 1, NULL, NULL };
+    int rc = mt->create(st, &sc, &cfg);
+    CHECK_MSG(rc == SB_OK, "%s create: %d", method, rc);
+    if (rc == SB_OK) {
+        int n = mt->n_dofs(st, 0);
+        double *x = malloc((size_t)n * sizeof *x), s = sqrt(1.0 + 2.0 * e11);
+        mt->initial(st, 0, x);
+        for (int i = 0; i < n; i += 3) x[i] *= s;   /* dof % 3 = component for both methods */
+        sb_material_state ms;
+        CHECK(mt->material_state(st, 0, x, &ms) == SB_OK);
+        int expect_soft = e11 > 0.04 && e11 < 0.075;
+        CHECK_MSG(ms.points > 0, "%s: no quadrature points", method);
+        CHECK_MSG(ms.soft_membrane == (expect_soft ? ms.points : 0), "%s, e11 = %g: %ld of %ld points soft", method,
+                  e11, ms.soft_membrane, ms.points);
+        CHECK_REL(ms.max_strain[0], e11, 1e-10);
+        CHECK_NEAR(ms.max_strain[1], 0.0, 1e-12);
+        CHECK_NEAR(ms.max_strain[2], 0.0, 1e-12);
+        CHECK_REL(ms.area, 1.0, 1e-10);
+        CHECK_NEAR(ms.soft_area, expect_soft ? 1.0 : 0.0, 1e-10);
+        free(x);
+    }
+    mt->destroy(st);
+    free(st);
+    sb_scene_free(&sc);
+}
+
+SB_TEST(stretched_plates)
+{
+    const double strains[] = { 0.01, 0.055, 0.1 };
+    for (int i = 0; i < 3; i++) {
+        stretched_plate(T, "rmtr", 8, strains[i]);
+        stretched_plate(T, "bhem", 4, strains[i]);
+    }
+}
+
+static double num(json_t *o, const char *a, const char *b)
+{
+    json_t *v = json_object_get(o, a);
+    if (b) v = json_object_get(v, b);
+    return json_number_value(v);
+}
+
+/* drooping at 363 dofs: the run's figure, and inspect's from the record alone */
+SB_TEST(run_records_and_inspect_recomputes)
+{
+    char scene[1024], dir[] = "/tmp/sb_test_stability_XXXXXX";   /* mkdtemp template */
+    snprintf(scene, sizeof scene, "%s/tests/scenes/drooping_1step.json", sb_test_root());
+    CHECK(mkdtemp(dir) != NULL);
+    char out[1100], bad[1100];
+    snprintf(out, sizeof out, "%s/d.h5", dir);
+    snprintf(bad, sizeof bad, "%s/not_a_record.h5", dir);
+    sb_run_request req;
+    memset(&req, 0, sizeof req);
+    req.scene = scene;
+    req.method = "rmtr";
+    req.solver = "tr";
+    req.res = 8;
+    req.levels = 1;
+    req.out = out;
+    req.quiet = 1;
+    char *js = NULL;
+    FILE *devnull = fopen("/dev/null", "w");
+    int ec = sb_run_execute(&req, devnull, stderr, &js);
+    fclose(devnull);
+    json_error_t e;
+    json_t *r = js ? json_loads(js, 0, &e) : NULL;
+    free(js);
+    CHECK_EQ_INT(ec, 0);
+    CHECK(r != NULL);
+    if (!r) return;
+    json_t *ma = json_object_get(r, "material");
+    CHECK(json_is_object(ma));
+    sb_material_state ms;
+    char err[2048];
+    CHECK_MSG(sb_inspect_material(out, &ms, err, sizeof err) == SB_OK, "%s", err);
+    CHECK_EQ_INT(ms.points, (long)num(ma, "points", NULL));
+    CHECK_EQ_INT(ms.soft_membrane, (long)num(ma, "soft_membrane", NULL));
+    CHECK_EQ_INT(ms.soft_section, (long)num(ma, "soft_section", NULL));
+    CHECK_REL(ms.area > 0 ? ms.soft_area / ms.area : 0, num(ma, "soft_area_fraction", NULL), 1e-10);
+    for (int k = 0; k < 3; k++)
+        CHECK_REL(ms.max_strain[k], json_number_value(json_array_get(json_object_get(ma, "max_strain"), k)), 1e-10);
+    /* the cloth has fallen: strains well above the trampoline's 0.3 % */
+    CHECK(ms.max_strain[0] > 0.01);
+    json_decref(r);
+    /* not a record: refused, naming the file */
+    FILE *f = fopen(bad, "w");
+    if (f) {
+        fputs("not hdf5\n", f);
+        fclose(f);
+    }
+    CHECK(sb_inspect_material(bad, &ms, err, sizeof err) != SB_OK);
+    CHECK_MSG(strstr(err, bad) != NULL, "message does not name the file: %s", err);
+    unlink(bad);
+    unlink(out);
+    char side[1100];
+    snprintf(side, sizeof side, "%s/d.xdmf", dir);
+    unlink(side);
+    rmdir(dir);
+}
+
+int main(int argc, char **argv)
+{
+    static const sb_test_case cases[] = {
+        SB_CASE(denim_softening_interval), SB_CASE(stvk_never_softens), SB_CASE(stretched_plates),
+        SB_CASE(run_records_and_inspect_recomputes), SB_END,
+    };
+    return sb_test_main(argc, argv, cases);
+}
