@@ -271,6 +271,74 @@ for s in SCENES[1:]:
         d = next(rows[x]["dofs"] for x in names[1:] if rows.get(x))
         print("| %s | %d | %s | %s |" % (NAMES[s], l, d, " | ".join(fcell(x) for x in names)))
 
+
+
+def material_rows():
+    """results/rmtr/material.csv (`shellbench inspect --format csv` over the records, written by run.sh):
+    where each record's final (or checkpointed) state strains the material, by record name"""
+    path = os.path.join(os.path.dirname(RUNS.rstrip("/")), "material.csv")
+    if not os.path.exists(path):
+        return {}
+    with open(path) as fh:
+        return {name_of(r): r for r in csv.DictReader(fh)}
+
+
+mat = material_rows()
+if mat:
+    print("\n## How far the final states leave the convex range of the denim law\n")
+    print("The denim law (Eq. 3.3-3.4, Table 1, with our mu_j1 assumption) is not convex in the membrane strain")
+    print("everywhere: its thickness-integrated membrane tangent is indefinite for uniaxial strains |E11| in")
+    print("(0.0265, 0.083), |E22| in (0.0055, 0.065) and |E12| in (0.0175, 0.0305) (the weft law saturates within")
+    print("1 % strain, alpha_32 = -12,802, and the coupling k2 E11 E22 then dominates; `tests/test_stability.c`).")
+    print("A state whose strain lies there is strain-softening: the minimization can localize it, which adds")
+    print("material nonconvexity to the buckling of the hard scenes.  \"soft\": share of the reference area whose")
+    print("quadrature points have an indefinite membrane tangent in the final state (a checkpoint: its current")
+    print("state), from `shellbench inspect` (`results/rmtr/material.csv`); max |E|: the largest strain component")
+    print("met; f: energy after step 5 (J).  The trampoline's states stay convex everywhere (max |E| ~ 0.3 %).\n")
+    print("| scene | dofs | ours: soft area | max \\|E\\| | f | TR (shift): soft area | max \\|E\\| | f |")
+    print("|---|--:|--:|--:|--:|--:|--:|--:|")
+
+    def mcell(name):
+        m, r = mat.get(name), rows.get(name)
+        if m is None or r is None:
+            return ["not run", "", ""]
+        f = h5col(name, "/history/steps/f")
+        mx = max(float(m[k]) for k in ("max_E11", "max_E22", "max_E12"))
+        tag = " (checkpoint)" if unfinished(r) else "" if ok(r) else " (%s)" % r["reason"]
+        return ["%.1f %%%s" % (100 * float(m["soft_area_fraction"]), tag), "%.3f" % mx,
+                "%.3f" % f[-1] if ok(r) and f else "—"]
+    for s in SCENES:
+        for k in range(len(DOFS)):
+            l = k + 1
+            ours, _ = rec("rmtrd-%s-l%d" % (s, l)) if l >= 2 else ("", None)
+            if l >= 5 and rows.get(ours) is None:
+                ours, _ = rec("rmtrdL-%s-l%d" % (s, l))
+            tr = "trshift-%s-r%d" % (s, 4 << k)
+            if mat.get(ours) is None and mat.get(tr) is None:
+                continue
+            d = (rows.get(ours) or rows.get(tr))["dofs"]
+            label = "" if not ours.startswith("rmtrdL") else " (own h)"
+            print("| %s%s | %s | %s |" % (NAMES[s], label, d, " | ".join(mcell(ours) + mcell(tr))))
+    pairs = []   # (ours, TR) where both converged on the same dofs: does the lower minimum soften less?
+    for s in SCENES[1:]:
+        for k in range(1, 4):
+            a, b = "rmtrd-%s-l%d" % (s, k + 1), "trshift-%s-r%d" % (s, 4 << k)
+            fa, fb = h5col(a, "/history/steps/f"), h5col(b, "/history/steps/f")
+            if ok(rows.get(a)) and ok(rows.get(b)) and a in mat and b in mat and fa and fb:
+                lo, hi = (a, b) if fa[-1] < fb[-1] else (b, a)
+                pairs.append(float(mat[lo]["soft_area_fraction"]) < float(mat[hi]["soft_area_fraction"]))
+    if pairs:
+        print("\nWhere both solvers converged on the same discretization, the lower-energy minimum has the smaller")
+        print("soft share in %d of %d cases: the better minimizers keep more of the cloth out of the softening range." % (
+            sum(pairs), len(pairs)))
+    soft = {n: float(m["soft_area_fraction"]) for n, m in mat.items() if ok(rows.get(n))}
+    hard = [n for n in soft if n.startswith(("rmtrd-", "trshift-")) and not n.startswith(("rmtrd-trampoline", "trshift-trampoline"))]
+    if hard:
+        print("\nOver the converged records of the three hard scenes (every configuration), the soft share of the")
+        print("final state's area ranges from %.1f %% to %.1f %%; on the trampoline it is %.1f %% in every record." % (
+            100 * min(soft[n] for n in soft if "trampoline" not in n), 100 * max(soft[n] for n in soft if "trampoline" not in n),
+            100 * max([soft[n] for n in soft if "trampoline" in n] or [0])))
+
 own = [(s, l) for s in SCENES for l in range(2, 7) if rec("rmtrdL-%s-l%d" % (s, l))[1] is not None]
 if own:
     print("\n## The nested start on each level's own discretization (`method.penalty_h=level`)\n")
@@ -337,7 +405,7 @@ t8 = [(s, rows.get("rmtrn-%s-l4-lsq" % s), rows.get("rmtrn-%s-l4" % s), rows.get
 if any(a is not None for _, a, _, _ in t8):
     print("\n## Table 8 — V-cycles at 3,675 dofs, 4 levels, by projection (ours, nonlinear coarse models)\n")
     print("The projection P x only enters the nonlinear coarse models (a Galerkin model depends on the")
-    print("correction alone), so Table 8 uses those.  Quick mode runs the trampoline and drooping; `full` mode all")
+    print("correction alone), so Table 8 uses those, on all four scenes; a run stops at the first step that hits the")
     print("four.  A run that hit the cap shows the step it was in and its ||g|| and f there (how far each projection")
     print("got in the same number of V-cycles).\n")
     print("| scene | paper lsq | paper reverse | ours lsq | ours reverse | ours restriction |\n|---|--:|--:|--:|--:|--:|")
@@ -540,14 +608,14 @@ print("* Quick mode (`bash bench/rmtr/run.sh`): single-level TR to 3,675 dofs; R
 print("  3 levels (capped at %s V-cycles per step), and with a cap of 20,000 on the trampoline at 2 levels; ours" % CAP_PAPER)
 print("  with nonlinear coarse models to 3 levels (6 on the trampoline); Galerkin models (all three Galerkin")
 print("  configurations) to 4 levels (3,675 dofs) on drooping / re-entrant corner / drape and to 6 levels (51,483")
-print("  dofs) on the trampoline; Table 8 on the trampoline and drooping; the perturbed-start series at 1,083 dofs.")
+print("  dofs) on the trampoline; Table 8 on all four scenes; the perturbed-start series at 1,083 dofs.")
 print("  `large` mode adds, on the hard scenes, \"rtol 0.1\" and \"ours\" at 5 levels (13,467 dofs) and \"ours\" at 6")
 print("  (run.gtol = 1e-6: the trampoline's ||g|| stalls near 2e-7 at 51,483 dofs), with `method.penalty_h=level`")
 print("  beside them (at 6 levels on the re-entrant corner only), the perturbed-start series at 3,675 dofs and the")
 print("  paper's configuration with room to converge on the trampoline at 3 levels and drooping at 2; the")
 print("  10-iteration rule is left out there (see below).  `full` mode (caps 40,000 per step, 2,000 for the paper's")
 print("  configuration) adds TR at 13,467 dofs, the paper's configuration at 4 levels, all configurations at 5 and")
-print("  6 levels on every scene and Table 8 on the re-entrant corner and the drape; it was not run.  Rows without a")
+print("  6 levels on every scene; it was not run.  Rows without a")
 print("  record read \"not run\".")
 
 
@@ -590,7 +658,7 @@ nl3 = [NAMES[sc] for sc in SCENES if rows.get("rmtrn-%s-l3" % sc) is not None an
 print("* Known failures, reported as measured:")
 if nl3:
     print("  with the paper's nonlinear coarse models (even with the Schwarz smoother) 3 levels do not converge")
-    print("  %s within %s V-cycles per step (Table 4; Table 8 shows where drooping got at 4 levels)." %
+    print("  %s within %s V-cycles per step (Table 4; Table 8 shows where each scene got at 4 levels)." %
           (" or ".join(nl3), num(CAP)))
 g4 = [float(rows["rmtrg10-%s-l4" % sc]["seconds"]) / float(rows["rmtrs-%s-l4" % sc]["seconds"]) for sc in SCENES
       if sc != "trampoline" and ok(rows.get("rmtrg10-%s-l4" % sc)) and ok(rows.get("rmtrs-%s-l4" % sc))]
