@@ -28,26 +28,38 @@ static int rfail(h5r *r, int status, const char *what, const char *name)
     return status;
 }
 
+/* Scalar fixed-length string attribute of any length, into a new buffer. */
+static int attr_str_alloc(h5r *r, hid_t loc, const char *name, char **out)
+{
+    *out = NULL;
+    hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
+    if (a < 0) return rfail(r, SB_ERR_INPUT, "missing attribute", name);
+    hid_t t = H5Aget_type(a);
+    int rc = SB_OK;
+    if (t < 0 || H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) != 0) {
+        rc = rfail(r, SB_ERR_INPUT, "attribute is not a fixed-length string:", name);
+    } else if (!(*out = calloc(H5Tget_size(t) + 1, 1))) {
+        rc = SB_ERR_NOMEM;
+        snprintf(r->err, r->errlen, "out of memory reading %s", r->path);
+    } else if (H5Aread(a, t, *out) < 0) {
+        rc = rfail(r, SB_ERR_IO, "cannot read attribute", name);
+    }
+    if (rc) {
+        free(*out);
+        *out = NULL;
+    }
+    if (t >= 0) H5Tclose(t);
+    H5Aclose(a);
+    return rc;
+}
+
 /* Scalar string attribute of fixed length, copied (truncated) into buf. */
 static int attr_str(h5r *r, hid_t loc, const char *name, char *buf, size_t len)
 {
-    int rc = SB_OK;
-    char *tmp = NULL;
-    hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
-    hid_t t = a < 0 ? -1 : H5Aget_type(a);
-    if (a < 0) return rfail(r, SB_ERR_INPUT, "missing attribute", name);
-    if (t < 0 || H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) != 0) {
-        rc = rfail(r, SB_ERR_INPUT, "attribute is not a fixed-length string:", name);
-    } else {
-        size_t size = H5Tget_size(t);
-        tmp = calloc(size + 1, 1);
-        if (!tmp) rc = SB_ERR_NOMEM, snprintf(r->err, r->errlen, "out of memory reading %s", r->path);
-        else if (H5Aread(a, t, tmp) < 0) rc = rfail(r, SB_ERR_IO, "cannot read attribute", name);
-        else snprintf(buf, len, "%s", tmp);
-    }
+    char *tmp;
+    int rc = attr_str_alloc(r, loc, name, &tmp);
+    if (!rc) snprintf(buf, len, "%s", tmp);
     free(tmp);
-    if (t >= 0) H5Tclose(t);
-    H5Aclose(a);
     return rc;
 }
 
@@ -335,31 +347,6 @@ int sb_record_read_samples(const char *path, int *n, double **st, double **pos,
     }
     *n = (int)ds[0];
     return SB_OK;
-}
-
-/* Scalar fixed-length string attribute of any length, into a new buffer. */
-static int attr_str_alloc(h5r *r, hid_t loc, const char *name, char **out)
-{
-    *out = NULL;
-    hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
-    if (a < 0) return rfail(r, SB_ERR_INPUT, "missing attribute", name);
-    hid_t t = H5Aget_type(a);
-    int rc = SB_OK;
-    if (t < 0 || H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) != 0) {
-        rc = rfail(r, SB_ERR_INPUT, "attribute is not a fixed-length string:", name);
-    } else if (!(*out = calloc(H5Tget_size(t) + 1, 1))) {
-        rc = SB_ERR_NOMEM;
-        snprintf(r->err, r->errlen, "out of memory reading %s", r->path);
-    } else if (H5Aread(a, t, *out) < 0) {
-        rc = rfail(r, SB_ERR_IO, "cannot read attribute", name);
-    }
-    if (rc) {
-        free(*out);
-        *out = NULL;
-    }
-    if (t >= 0) H5Tclose(t);
-    H5Aclose(a);
-    return rc;
 }
 
 typedef struct param_walk {

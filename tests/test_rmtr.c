@@ -2,6 +2,7 @@
  * hierarchy: convergence, first-order consistency (RMTR paper Eq. 4.5),
  * agreement with single-level TR, work-unit accounting. */
 #include "sb_test.h"
+#include "run_json.h"
 #include "sb_context.h"
 #include "sb_run.h"
 #include "sb_solver.h"
@@ -32,14 +33,7 @@ static json_t *run_on(const char *scene_file, const char *method, int res, const
     req.quiet = 1;
     req.n_sets = nsets;
     req.sets = sets;
-    char *js = NULL;
-    FILE *devnull = fopen("/dev/null", "w");
-    *exit_code = sb_run_execute(&req, devnull, stderr, &js);
-    fclose(devnull);
-    json_error_t e;
-    json_t *root = js ? json_loads(js, 0, &e) : NULL;
-    free(js);
-    return root;
+    return sb_test_run_json(&req, exit_code);
 }
 
 static json_t *run(const char *solver, int levels, int nsets, const char *const *sets, int *exit_code)

@@ -10,13 +10,12 @@
  *    inspect` recomputes the same numbers from the record alone; a file that
  *    is not a record is refused with its name. */
 #include "sb_test.h"
+#include "run_json.h"
 #include "sb_inspect.h"
 #include "sb_method.h"
-#include "sb_run.h"
 #include "sb_scene.h"
 #include "shell/sb_shell.h"
 
-#include <jansson.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -170,13 +169,8 @@ SB_TEST(run_records_and_inspect_recomputes)
     req.levels = 1;
     req.out = out;
     req.quiet = 1;
-    char *js = NULL;
-    FILE *devnull = fopen("/dev/null", "w");
-    int ec = sb_run_execute(&req, devnull, stderr, &js);
-    fclose(devnull);
-    json_error_t e;
-    json_t *r = js ? json_loads(js, 0, &e) : NULL;
-    free(js);
+    int ec;
+    json_t *r = sb_test_run_json(&req, &ec);
     CHECK_EQ_INT(ec, 0);
     CHECK(r != NULL);
     if (!r) return;
