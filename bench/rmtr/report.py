@@ -55,6 +55,10 @@ def num(v, fmt="{:,.0f}"):
     return "—" if v is None else fmt.format(v)
 
 
+def status(r):
+    return r["status"] if r else "not run"
+
+
 def ratio(a, b):
     return "—" if a is None or b is None or b == 0 else "{:.3g}".format(a / b)
 
@@ -93,13 +97,13 @@ print("| scene | dofs | paper | ours | ours / paper | status | ours, shift | sta
 for s in SCENES:
     for k, d in enumerate(DOFS):
         r = rows.get("tr-%s-r%d" % (s, 4 << k))
-        if r is None:
+        q = rows.get("trshift-%s-r%d" % (s, 4 << k))
+        if r is None and q is None:
             continue
         it = int(r["iterations"]) if ok(r) else None
-        q = rows.get("trshift-%s-r%d" % (s, 4 << k))
         qi = int(q["iterations"]) if ok(q) else None
-        print("| %s | %s | %s | %s | %s | %s | %s | %s |" % (NAMES[s], r["dofs"], num(T3[s][k]), num(it), ratio(it, T3[s][k]),
-              r["status"], num(qi), q["status"] if q else "not run"))
+        print("| %s | %s | %s | %s | %s | %s | %s | %s |" % (NAMES[s], (r or q)["dofs"], num(T3[s][k]),
+              num(it) if r else "not run", ratio(it, T3[s][k]), status(r), num(qi), status(q)))
 
 print("\n## Table 4 — RMTR V-cycles against the number of levels (coarsest 4×4 elements)\n")
 print("Five configurations.  \"paper config\": the paper's nonlinear coarse models (Eq. 4.3-4.4), smoother")
@@ -124,10 +128,6 @@ print("|---|--:|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|---|")
 
 def it_or_none(r):
     return int(r["iterations"]) if ok(r) else None
-
-
-def status(r):
-    return r["status"] if r else "not run"
 
 
 def rec(name):

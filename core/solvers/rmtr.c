@@ -58,6 +58,7 @@
 
 static const char *const coarse_model_names[] = { "auto", "nonlinear", "galerkin", "corrected", NULL };
 enum { MODEL_AUTO = 0, MODEL_NONLINEAR = 1, MODEL_GALERKIN = 2, MODEL_CORRECTED = 3 };
+static const char *const coarse_radius_names[] = { "fine", "own", NULL };
 
 static const sb_param_def rmtr_params[] = {
     { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
@@ -90,6 +91,10 @@ static const sb_param_def rmtr_params[] = {
     { "nested_gtol", SB_PARAM_REAL, 1e-4, 0, 1e10, NULL,
       "nested start: a coarse top level is solved until ||grad f^l|| < nested_gtol" },
     { "nested_max_iter", SB_PARAM_INT, 1000, 1, 1e9, NULL, "nested start: at most this many V-cycles per coarse top level" },
+    { "coarse_radius", SB_PARAM_CHOICE, 0, 0, 0, coarse_radius_names,
+      "radius of the top level's coarse corrections (not in the paper's choice): fine (Alg. 4.2 line 4: the fine "
+      "radius, the paper's) or own (a radius of their own, updated by the multilevel ratio Eq. 4.11, never below "
+      "the fine one)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -126,6 +131,8 @@ typedef struct rmtr_state {
     double nested_gtol;
     double cn[SB_MAX_LEVELS][SB_MAX_LEVELS];   /* cn[top][l]: c_l of level l when `top` is the finest */
     double consistency_err;   /* max relative |grad h^l(x0) - R g^{l+1}| seen (Eq. 4.5) */
+    int own_coarse_radius;    /* solver.coarse_radius = own */
+    double dc;                /* the top level's coarse-correction radius (own) */
 } rmtr_state;
 
 enum { COARSE_UNUSABLE = 100 };   /* internal: a coarse level could not build its model */
@@ -251,6 +258,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     R->nested = R->L >= 2 ? sb_param_int(ps, "solver.nested") : 0;
     R->nested_gtol = sb_param(ps, "solver.nested_gtol");
     R->nested_max = sb_param_int(ps, "solver.nested_max_iter");
+    R->own_coarse_radius = sb_param_int(ps, "solver.coarse_radius") == 1;
     R->L_fine = R->L;
     /* c_l for every top level a nested start can run on (R->L is the top) */
     for (int top = R->nested ? 1 : R->L; top <= R->L_fine; top++) {
@@ -520,8 +528,13 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         if ((rc = sb_problem_project(p, l - 1, V->x, C->x0))) return rc;
         /* R grad h^l goes to C->xt: read only at the coarse level's entry */
         if ((rc = sb_problem_restrict(p, l - 1, V->g, C->xt))) return rc;
-        C->delta = V->delta;
-        rc = rmtr_level(R, p, l - 1, C->xt, V->delta, lin_iters, accepted_coarse);
+        /* the coarse level starts from, and is bounded by, the fine radius
+         * (Alg. 4.2 line 4), or on the top level with coarse_radius = own by
+         * the coarse corrections' own radius, never below the fine one */
+        const int own = l == R->L && R->own_coarse_radius;
+        const double cb = own ? fmax(R->dc, V->delta) : V->delta;
+        C->delta = cb;
+        rc = rmtr_level(R, p, l - 1, C->xt, cb, lin_iters, accepted_coarse);
         if (rc == COARSE_UNUSABLE) goto post_smoothing;
         if (rc) return rc;
         /* coarse reduction h^{l-1}(x0) - h^{l-1}(x_end) (denominator of Eq. 4.11),
@@ -543,7 +556,9 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
             if ((rc = accept_trial(R, p, l, ft, have_gt))) return rc;
             if (l == R->L) (*accepted_coarse)++;
         }
-        if ((rc = radius_update(R, p, l, rho, bound))) return rc;   /* line 12 */
+        if (own)   /* the standard update (Alg. 4.3 lines 1-3) of the coarse radius; the fine one stays */
+            R->dc = fmin(rho < R->eta1 ? R->gamma1 * cb : rho > R->eta2 ? R->gamma2 * cb : cb, 1e300);
+        else if ((rc = radius_update(R, p, l, rho, bound))) return rc;   /* line 12 */
         if (l < R->L && sb_problem_norm(p, l, V->g) <= R->gtol) return SB_OK;   /* lines 13-14 */
     }
 post_smoothing:
@@ -566,6 +581,7 @@ static int start_top(rmtr_state *R, sb_problem *p, int hess)
 {
     rlevel *V = &R->lv[R->L];
     V->delta = R->delta0;
+    R->dc = R->delta0;
     int rc = sb_problem_eval(p, R->L, V->x, &V->f, V->g, hess ? sb_problem_hessian(p, R->L) : NULL);
     V->fresh = 1;
     V->hess_ok = hess;
@@ -687,11 +703,12 @@ static void rmtr_describe(const void *st, char *buf, size_t len)
 {
     const rmtr_state *R = st;
     snprintf(buf, len, "%d levels; coarse models %s%s; smoother mu1=%d mu2=%d x %d ST-CG (%s); coarsest dogleg; "
-             "nested start: %s",
+             "nested start: %s; coarse radius %s",
              R->nl, R->galerkin ? "galerkin (I^T H I)" : R->corrected ? "corrected (Eq. 4.3-4.4 + 1/2 d^T (I^T H I - H^l) d)"
              : "nonlinear (Eq. 4.3-4.4)",
              R->model_param == MODEL_AUTO ? " (auto)" : "", R->mu1, R->mu2, R->cg_iter, sb_trs_precond_names[R->precond],
-             R->nested == 2 ? "every step" : R->nested == 1 ? "first step" : "off");
+             R->nested == 2 ? "every step" : R->nested == 1 ? "first step" : "off",
+             R->own_coarse_radius ? "own" : "fine");
 }
 
 const sb_solver_type sb_solver_rmtr = {
