@@ -27,7 +27,8 @@
 # stopped at a tenfold residual reduction, at most 200 iterations) and "ours"
 # (the defaults: the same plus the nested start of the first step); from 4
 # levels on the hard scenes also the defaults with each level's own penalty
-# (method.penalty_h=level, which only the nested start's coarse problems see).
+# (method.penalty_h=level, which only the nested start's coarse problems see);
+# on the hard scenes also the defaults with solver.coarse_radius=own (rmtrdR).
 set -u
 BIN=${1:-build/shellbench}
 MODE=${2:-quick}
@@ -102,6 +103,8 @@ for s in $SCENES; do
     run "rmtrd-$s-l$l" "$s" rmtr "$r" "$l"
     case "$s:$l" in trampoline:*|*:2|*:3) ;; *)   # the nested start on each level's own discretization
       run "rmtrdL-$s-l$l" "$s" rmtr "$r" "$l" --set method.penalty_h=level ;; esac
+    [ "$s" = trampoline ] ||   # the defaults with the coarse corrections' own radius
+      run "rmtrdR-$s-l$l" "$s" rmtr "$r" "$l" --set solver.coarse_radius=own
   done
   case " $lo " in *" 6 "*)   # 51,483 dofs: |g| stalls near 2e-7 (round-off against beta = 128^5)
     run "rmtrg10-$s-l6-gtol1e-6" "$s" rmtr 128 6 $G10 --set run.gtol=1e-6
@@ -148,10 +151,12 @@ if [ "$MODE" = large ]; then   # the hard scenes at 13,467 and 51,483 dofs, chea
     run "rmtrd-$s-l5" "$s" rmtr 64 5
     run "rmtrdL-$s-l5" "$s" rmtr 64 5 --set method.penalty_h=level
     run "rmtrs-$s-l5" "$s" rmtr 64 5 $NN
+    run "rmtrdR-$s-l5" "$s" rmtr 64 5 --set solver.coarse_radius=own
   done
   for s in $SCENES; do
     [ "$s" = trampoline ] && continue
     run "rmtrd-$s-l6-gtol1e-6" "$s" rmtr 128 6 --set run.gtol=1e-6
+    run "rmtrdR-$s-l6-gtol1e-6" "$s" rmtr 128 6 --set solver.coarse_radius=own --set run.gtol=1e-6
     [ "$s" = reentrant_corner ] &&   # own h only where it helped at 5 levels
       run "rmtrdL-$s-l6-gtol1e-6" "$s" rmtr 128 6 --set method.penalty_h=level --set run.gtol=1e-6
   done
