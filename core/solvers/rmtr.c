@@ -43,6 +43,17 @@
  *    that its Hessian at x0 is the Galerkin one; "auto" (default) is galerkin
  *    when the product fits every coarse sparsity pattern
  *    (sb_problem_galerkin_prepare), else nonlinear.
+ *  - solver.coarse_radius (not in the paper; default "fine", the paper's):
+ *    "own" gives the top level a second radius for its coarse corrections.
+ *    The coarse level then starts from, and is bounded by (Eq. 4.7-4.8),
+ *    max(own radius, fine radius) instead of the fine radius; the own radius
+ *    follows the multilevel ratio (4.11) with the rules of Alg. 4.3 lines
+ *    1-3, the fine radius the smoothing steps only.  Reason: in the
+ *    nonconvex first step of the hard scenes the fine radius settles at about
+ *    one element, and under the paper's rule the coarse corrections are held
+ *    to it too (README "RMTR coarse radius").  ASSUMPTION: the own radius
+ *    starts at Delta_0 whenever the fine one does (every step, every level of
+ *    the nested start); acceptance still needs rho > eta1.
  *  - solver.nested (not in the paper; default: the first step of a run):
  *    nested iteration over the levels before the finest V-cycles, see
  *    promote(); its V-cycles on coarser top levels are outer iterations
