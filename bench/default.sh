@@ -10,7 +10,7 @@ mkdir -p "$OUT"
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 # OpenBLAS's generic x86-64 kernels unless set: the same round-off on every
 # x86-64 machine, so counts on the nonconvex scenes reproduce (README "Perturbed starts")
-export OPENBLAS_CORETYPE=${OPENBLAS_CORETYPE:-Prescott}
+export OPENBLAS_CORETYPE=${SB_BLAS_CORE:-Prescott}   # not the environment's: some machines preset another set
 
 methods=$("$BIN" list methods | awk '$0 !~ /TEST FIXTURE/ {print $1}')
 if [ -z "$methods" ]; then
