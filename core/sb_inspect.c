@@ -9,21 +9,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-int sb_inspect_material(const char *path, sb_material_state *ms, char *err, size_t errlen)
+/* the material state of a record already read (su) */
+static int material_of(const char *path, const sb_record_setup *su, sb_material_state *ms, char *err, size_t errlen)
 {
-    sb_record_setup su;
-    int rc = sb_record_read_setup(path, &su, err, errlen);
-    if (rc) return rc;
+        int rc;
     sb_scene scene;
     memset(&scene, 0, sizeof scene);
     sb_context ctx;
     void *state = NULL;
     int created = 0, have_ctx = 0;
-    const sb_method_type *mt = sb_method_find(su.method);
+    const sb_method_type *mt = sb_method_find(su->method);
     char msg[1024];
     if (!mt) {
         rc = SB_ERR_INPUT;
-        snprintf(err, errlen, "%s: method \"%s\" is not in this build", path, su.method);
+        snprintf(err, errlen, "%s: method \"%s\" is not in this build", path, su->method);
         goto done;
     }
     if (!mt->material_state) {
@@ -31,7 +30,7 @@ int sb_inspect_material(const char *path, sb_material_state *ms, char *err, size
         snprintf(err, errlen, "%s: method %s cannot report its material state", path, mt->name);
         goto done;
     }
-    if ((rc = sb_scene_parse_string(su.scene_json, su.scene_path, &scene, msg, sizeof msg))) {
+    if ((rc = sb_scene_parse_string(su->scene_json, su->scene_path, &scene, msg, sizeof msg))) {
         snprintf(err, errlen, "%s: its scene does not parse: %s", path, msg);
         goto done;
     }
@@ -45,9 +44,9 @@ int sb_inspect_material(const char *path, sb_material_state *ms, char *err, size
         snprintf(err, errlen, "%s: too many parameters", path);
         goto done;
     }
-    for (int i = 0; i < su.n_sets; i++)
-        if ((rc = sb_paramset_set(&ctx.params, su.sets[i], msg, sizeof msg))) {
-            snprintf(err, errlen, "%s: parameter %s: %s", path, su.sets[i], msg);
+    for (int i = 0; i < su->n_sets; i++)
+        if ((rc = sb_paramset_set(&ctx.params, su->sets[i], msg, sizeof msg))) {
+            snprintf(err, errlen, "%s: parameter %s: %s", path, su->sets[i], msg);
             goto done;
         }
     if (!(state = calloc(1, mt->state_size))) {
@@ -55,7 +54,7 @@ int sb_inspect_material(const char *path, sb_material_state *ms, char *err, size
         snprintf(err, errlen, "%s: out of memory", path);
         goto done;
     }
-    sb_method_config cfg = { su.res, su.levels > 0 ? su.levels : 1, &ctx.params, &ctx };
+    sb_method_config cfg = { su->res, su->levels > 0 ? su->levels : 1, &ctx.params, &ctx };
     rc = mt->create(state, &scene, &cfg);
     created = 1;
     if (rc) {
@@ -63,19 +62,27 @@ int sb_inspect_material(const char *path, sb_material_state *ms, char *err, size
         goto done;
     }
     const int F = mt->n_levels(state) - 1;
-    if (mt->n_dofs(state, F) != su.n_x) {
+    if (mt->n_dofs(state, F) != su->n_x) {
         rc = SB_ERR_INPUT;
-        snprintf(err, errlen, "%s: /final/x has %d dofs, the rebuilt discretization %d", path, su.n_x,
+        snprintf(err, errlen, "%s: /final/x has %d dofs, the rebuilt discretization %d", path, su->n_x,
                  mt->n_dofs(state, F));
         goto done;
     }
-    rc = mt->material_state(state, F, su.x, ms);
+    rc = mt->material_state(state, F, su->x, ms);
     if (rc) snprintf(err, errlen, "%s: some quadrature points of the state could not be evaluated", path);
 done:
     if (created) mt->destroy(state);
     free(state);
     if (have_ctx) sb_context_free(&ctx);
     sb_scene_free(&scene);
+    return rc;
+}
+
+int sb_inspect_material(const char *path, sb_material_state *ms, char *err, size_t errlen)
+{
+    sb_record_setup su;
+    int rc = sb_record_read_setup(path, &su, err, errlen);
+    if (!rc) rc = material_of(path, &su, ms, err, errlen);
     sb_record_setup_free(&su);
     return rc;
 }
@@ -94,8 +101,9 @@ int sb_inspect_report(int n_files, char **files, const char *format, FILE *out, 
         sb_material_state ms;
         sb_record_setup su;
         char e[1536];
-        if (sb_inspect_material(files[i], &ms, e, sizeof e) || sb_record_read_setup(files[i], &su, e, sizeof e)) {
+        if (sb_record_read_setup(files[i], &su, e, sizeof e) || material_of(files[i], &su, &ms, e, sizeof e)) {
             fprintf(err, "shellbench inspect: %s\n", e);
+            sb_record_setup_free(&su);
             bad++;
             continue;
         }

@@ -18,6 +18,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 static int membrane_soft(const sb_material *m, int c, double e)
@@ -154,7 +155,7 @@ static double num(json_t *o, const char *a, const char *b)
 /* drooping at 363 dofs: the run's figure, and inspect's from the record alone */
 SB_TEST(run_records_and_inspect_recomputes)
 {
-    char scene[1024], dir[] = "/tmp/sb_test_stability_XXXXXX";   /* mkdtemp template */
+    char scene[1024], dir[] = "/tmp/sb_test_stability_XXXXXX";   /* template: mkdtemp replaces the X characters */
     snprintf(scene, sizeof scene, "%s/tests/scenes/drooping_1step.json", sb_test_root());
     CHECK(mkdtemp(dir) != NULL);
     char out[1100], bad[1100];
@@ -196,6 +197,16 @@ SB_TEST(run_records_and_inspect_recomputes)
     }
     CHECK(sb_inspect_material(bad, &ms, err, sizeof err) != SB_OK);
     CHECK_MSG(strstr(err, bad) != NULL, "message does not name the file: %s", err);
+    /* the command line: no files, an unknown format, a file that is not a record -> exit 2 */
+    char cmd[3000];
+    const char *args[] = { "", "--format xml", bad };
+    for (int i = 0; i < 3; i++) {
+        snprintf(cmd, sizeof cmd, "%s inspect %s %s > /dev/null 2>&1", sb_test_bin(), args[i], i == 1 ? out : "");
+        int st = system(cmd);
+        CHECK_MSG(WIFEXITED(st) && WEXITSTATUS(st) == 2, "'%s' exited %d", cmd, WIFEXITED(st) ? WEXITSTATUS(st) : -1);
+    }
+    snprintf(cmd, sizeof cmd, "%s inspect %s > /dev/null 2>&1", sb_test_bin(), out);
+    CHECK_EQ_INT(system(cmd), 0);
     unlink(bad);
     unlink(out);
     char side[1100];
