@@ -427,8 +427,8 @@ if any(a is not None for _, a, _, _ in t8):
     print("\n## Table 8 — V-cycles at 3,675 dofs, 4 levels, by projection (ours, nonlinear coarse models)\n")
     print("The projection P x only enters the nonlinear coarse models (a Galerkin model depends on the")
     print("correction alone), so Table 8 uses those, on all four scenes; a run stops at the first step that hits the")
-    print("four.  A run that hit the cap shows the step it was in and its ||g|| and f there (how far each projection")
-    print("got in the same number of V-cycles).\n")
+    print("cap of %s V-cycles per step.  A run that hit the cap shows the step it was in and its ||g|| and f there" % num(CAP))
+    print("(how far each projection got in the same number of V-cycles).\n")
     print("| scene | paper lsq | paper reverse | ours lsq | ours reverse | ours restriction |\n|---|--:|--:|--:|--:|--:|")
 
     def t8cell(r):
