@@ -444,12 +444,13 @@ def t8rows(prefix):
 t8, t8c = t8rows("rmtrn"), t8rows("rmtrc")
 if any(a is not None for t in (t8, t8c) for _, a, _, _ in t):
     print("\n## Table 8 — V-cycles at 3,675 dofs, 4 levels, by projection (ours, nonlinear and corrected coarse models)\n")
-    print("The projection P x only enters the nonlinear coarse models (a Galerkin model depends on the")
-    print("correction alone), so Table 8 uses those, on all four scenes; a run stops at the first step that hits the")
-    print("cap of %s V-cycles per step.  A run that hit the cap shows the step it was in and its ||g|| and f there" % num(CAP))
-    print("(how far each projection got in the same number of V-cycles).  The first table is the paper's models")
-    print("(Eq. 4.3-4.4) with our Schwarz smoother; the second adds the second-order term 1/2 d^T (I^T H I - H^l) d")
-    print("to them (solver.coarse_model=corrected, no nested start), which still sees P x through f^l(P x + d).\n")
+    print("The projection P x only enters coarse models that evaluate f^l at P x + d (a Galerkin model depends on")
+    print("the correction alone), so Table 8 uses those, on all four scenes; a run stops at the first step that hits")
+    print("the cap of %s V-cycles per step.  A run that hit the cap shows the step it was in and its ||g|| and f" % num(CAP))
+    print("there (how far each projection got in the same number of V-cycles).  First table: the paper's models")
+    print("(Eq. 4.3-4.4), Schwarz smoother with 10 iterations and the inexact-Newton forcing (\"ours, nonlinear\").")
+    print("Second: those models plus the second-order term 1/2 d^T (I^T H I - H^l) d (solver.coarse_model=corrected)")
+    print("with the default smoother (tenfold residual reduction, at most 200 iterations); neither has the nested start.\n")
     shown = [(title, t) for title, t in (("nonlinear", t8), ("corrected", t8c)) if any(a is not None for _, a, _, _ in t)]
     for k, (title, t) in enumerate(shown):
         if k:
