@@ -29,11 +29,15 @@ static void usage(FILE *f)
             "  shellbench check SCENE.json...\n"
             "  shellbench run --scene NAME|PATH --method NAME --solver NAME [--res N] [--levels L]\n"
             "                 [--set key=value]... [--out FILE.h5|none] [--summary json] [--samples N] [--quiet]\n"
+            "                 [--resume] [--stop-after-steps K]\n"
             "  shellbench sweep --scenes A,B --methods M,.. --solvers S,.. [--res N,..] [--levels L,..]\n"
-            "                 [--set key=value]... [--dir DIR]\n"
+            "                 [--set key=value]... [--dir DIR] [--resume]\n"
+            "  --resume: skip a run whose record exists, continue one from the last completed step of\n"
+            "            its checkpoint OUT.partial (same scene, method, solver, sizes and parameters)\n"
             "  shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...\n"
             "  shellbench inspect [--format md|csv] FILE.h5...   (material state of the recorded final state)\n"
-            "exit codes: 0 converged, 1 did not converge, 2 usage or input error, 3 internal error\n");
+            "exit codes: 0 converged, 1 did not converge, 2 usage or input error, 3 internal error,\n"
+            "            4 stopped by --stop-after-steps (resumable)\n");
 }
 
 static int parse_int(const char *s, int *out)
@@ -119,6 +123,7 @@ static int parse_run_args(int argc, char **argv, cli_run *c, int sweep)
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
 #define NEED_VALUE() do { if (!v) { fprintf(stderr, "shellbench: %s needs a value\n", a); return 2; } i++; } while (0)
         if (!strcmp(a, "--quiet")) { c->req.quiet = 1; continue; }
+        if (!strcmp(a, "--resume")) { c->req.resume = 1; continue; }
         if (!sweep && !strcmp(a, "--scene")) { NEED_VALUE(); c->req.scene = v; }
         else if (!sweep && !strcmp(a, "--method")) { NEED_VALUE(); c->req.method = v; }
         else if (!sweep && !strcmp(a, "--solver")) { NEED_VALUE(); c->req.solver = v; }
@@ -132,6 +137,12 @@ static int parse_run_args(int argc, char **argv, cli_run *c, int sweep)
             NEED_VALUE();
             if (parse_int(v, &c->req.sample_n) || c->req.sample_n < 2 || c->req.sample_n > 2001) {
                 fprintf(stderr, "shellbench: --samples: \"%s\" is not an integer in [2, 2001]\n", v);
+                return 2;
+            }
+        } else if (!sweep && !strcmp(a, "--stop-after-steps")) {
+            NEED_VALUE();
+            if (parse_int(v, &c->req.stop_after_steps) || c->req.stop_after_steps < 1) {
+                fprintf(stderr, "shellbench: --stop-after-steps: \"%s\" is not a positive integer\n", v);
                 return 2;
             }
         } else if (!sweep && !strcmp(a, "--out")) { NEED_VALUE(); c->req.out = v; }
@@ -222,7 +233,7 @@ static int cmd_sweep(int argc, char **argv)
                         r.quiet = 1;
                         int x = sb_run_execute(&r, stdout, stderr, NULL);
                         runs++;
-                        printf("%-40s %s\n", out, x == 0 ? "converged" : x == 1 ? "NOT converged" : x == 2 ? "input error" : "internal error");
+                        printf("%-40s %s\n", out, x == 0 ? "converged" : x == 1 ? "NOT converged" : x == 2 ? "input error" : x == 4 ? "stopped" : "internal error");
                         fflush(stdout);
                         if (x > worst) worst = x;
                     }

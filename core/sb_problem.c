@@ -30,6 +30,7 @@ struct sb_problem {
     void *ms;
     const sb_scene *scene;
     int nl;
+    int step;                  /* sb_problem_step */
     level_data lv[SB_MAX_LEVELS];
     int dynamic, damping;
     double dt, ray_a, ray_b;
@@ -132,6 +133,8 @@ fail:
 int sb_problem_levels(const sb_problem *p) { return p->nl; }
 int sb_problem_n(const sb_problem *p, int level) { return p->lv[level].n; }
 int sb_problem_finest(const sb_problem *p) { return p->nl - 1; }
+
+int sb_problem_step(const sb_problem *p) { return p->step; }
 int sb_problem_has_hierarchy(const sb_problem *p)
 {
     return p->nl > 1 && (p->mt->flags & SB_METHOD_HIERARCHY);
@@ -202,6 +205,7 @@ double sb_problem_norm(const sb_problem *p, int level, const double *v)
 
 int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x_n, const double *v_n, double *x0)
 {
+    p->step = si->step;
     int rc = p->mt->set_step(p->ms, si);
     if (rc) return rc < 0 ? rc : sb_error(p->ctx, SB_ERR_INTERNAL, "method %s: set_step failed", p->mt->name);
     for (int l = 0; l < p->nl; l++) {

@@ -28,6 +28,11 @@ void sb_problem_free(sb_problem *p);
 int  sb_problem_levels(const sb_problem *p);
 int  sb_problem_n(const sb_problem *p, int level);
 int  sb_problem_finest(const sb_problem *p);
+/* The step of the run under way (sb_problem_begin_step; 0 before the first).
+ * Solvers keep no state across steps, so that a run resumed at a step
+ * boundary computes what an uninterrupted one does: what depends on the
+ * step (RMTR's first-step nested start) asks here. */
+int  sb_problem_step(const sb_problem *p);
 int  sb_problem_has_hierarchy(const sb_problem *p);
 struct sb_context *sb_problem_context(sb_problem *p);
 const sb_method_type *sb_problem_method_type(const sb_problem *p);

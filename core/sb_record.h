@@ -9,6 +9,29 @@
 #include "sb_material_state.h"
 #include <stdio.h>
 
+/* Interruptions a run came through (--resume), accumulated over resumes and
+ * written as root attributes of every record (all zero for a run that ran
+ * in one process). */
+typedef struct sb_resume_log {
+    int count;                 /* resumes */
+    char steps[256];           /* the completed step each resume started after, "1,3" */
+    double setup_seconds;      /* set-up time of the resumed processes (in seconds_total) */
+    double lost_seconds;       /* time an interrupted process spent past its last step boundary
+                                  (discarded, not in seconds_total) */
+    char builds[256];          /* build ids of the interrupted processes that differ from this one */
+} sb_resume_log;
+
+/* A step boundary a run can resume from: a checkpoint's /resume group. */
+typedef struct sb_resume_point {
+    int step;                  /* steps completed (0: the start) */
+    int n_x;
+    double *x, *v;             /* state at the end of `step` */
+    double seconds;            /* seconds_total at the boundary */
+    /* statistics at the boundary: event counts and seconds per level, work
+     * units, not_posdef; history records of steps 1..step (n_iters, n_steps) */
+    sb_stats stats;
+} sb_resume_point;
+
 typedef struct sb_run {
     /* identity */
     char scene_name[SB_NAME_LEN];
@@ -56,6 +79,11 @@ typedef struct sb_run {
     double error_rms, error_max;   /* relative to the domain diameter (field) */
     double error_probe;            /* max probe relative error (probes) */
     char error_kind[16];           /* "none", "probes", "field" */
+    sb_resume_log resumed;
+    /* checkpoints only: the last step boundary, written as /resume (NULL in
+     * a final record); its stats' history pointers are not used, the
+     * boundary is n_iters / n_steps records into /history */
+    const sb_resume_point *resume;
 } sb_run;
 
 /* Zero the run and fill the machine/build fields (build_id, cpu_model,
@@ -123,6 +151,20 @@ typedef struct sb_record_setup {
     int n_x;
     double *x;                 /* owned */
 } sb_record_setup;
+
+/* Read the resume point of the checkpoint PATH for the run `expect` (its
+ * identity filled in, params resolved): refuses, with a sentence naming the
+ * file and the field, a checkpoint of another scene text, method, solver,
+ * resolution, level count, dof count or parameter value (run.checkpoint may
+ * differ), and one without a /resume group.  On success rp owns x, v and
+ * stats.iters / stats.steps (sb_resume_point_free), `ckpt_seconds` is the
+ * checkpoint's seconds_total, `ckpt_build` its build id, `log` its resume
+ * log, and probe_traj receives rows 0..step of its probe trajectory
+ * (expect->n_probes probes; the caller's buffer). */
+int  sb_record_read_resume(const char *path, const sb_run *expect, sb_resume_point *rp, double *ckpt_seconds,
+                           char *ckpt_build, size_t build_len, sb_resume_log *log, double *probe_traj,
+                           char *err, size_t errlen);
+void sb_resume_point_free(sb_resume_point *rp);
 
 int  sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen);
 void sb_record_setup_free(sb_record_setup *s);

@@ -42,6 +42,46 @@ int   sb_h5w_dset_long(sb_h5w *w, hid_t loc, const char *name, int rank, const h
                        const long *buf, const char *units);
 hid_t sb_h5w_group(sb_h5w *w, hid_t file, const char *name);
 
+/* The columns of /history/iterations and /history/steps: one struct member
+ * each, written as a 1-D dataset (sb_record_write.c) and read back by
+ * sb_record_read_resume.  "units" is empty where the unit depends on the
+ * method's DOF layout (docs/recorded_figures.md). */
+typedef struct sb_record_column { const char *name; size_t off; int is_int; const char *units; } sb_record_column;
+extern const sb_record_column sb_record_iter_cols[], sb_record_step_cols[];
+extern const int sb_record_n_iter_cols, sb_record_n_step_cols;
+
+/* The /resume group of a checkpoint (sb_record_resume.c); 0 or -1. */
+int   sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp);
+/* The resume log as root attributes (every record). */
+int   sb_record_write_resume_log(sb_h5w *w, hid_t f, const sb_resume_log *log);
+
+/* ---- HDF5 readers (sb_record_h5r.c): SB_OK, or a status with one sentence
+ * in r->err naming the file and the object ---- */
+typedef struct sb_h5r {
+    const char *path;
+    char *err;
+    size_t errlen;
+    H5E_auto2_t old_fn;      /* the caller's HDF5 error printer, restored by sb_h5r_close */
+    void *old_data;
+} sb_h5r;
+
+int  sb_h5r_fail(sb_h5r *r, int status, const char *what, const char *name);
+/* Silences HDF5's error printing (restored by sb_h5r_close, which must follow
+ * every sb_h5r_open), checks the path and opens a shellbench record. */
+int  sb_h5r_open(sb_h5r *r, hid_t *file);
+void sb_h5r_close(sb_h5r *r, hid_t f);
+/* scalar fixed-length string attribute into a new buffer / copied into buf */
+int  sb_h5r_attr_str_alloc(sb_h5r *r, hid_t loc, const char *name, char **out);
+int  sb_h5r_attr_str(sb_h5r *r, hid_t loc, const char *name, char *buf, size_t len);
+/* scalar numeric attribute converted to mtype */
+int  sb_h5r_attr_num(sb_h5r *r, hid_t loc, const char *name, hid_t mtype, void *v);
+int  sb_h5r_attr_int(sb_h5r *r, hid_t loc, const char *name, int *v);
+int  sb_h5r_attr_dbl(sb_h5r *r, hid_t loc, const char *name, double *v);
+/* whole numeric dataset of the given rank, converted to mtype (esize bytes),
+ * into a new buffer of at least one element; dims receives its shape */
+int  sb_h5r_dset(sb_h5r *r, hid_t loc, const char *name, int rank, hid_t mtype, size_t esize,
+                 hsize_t *dims, void **out);
+
 /* Plot log10 ||g|| against cumulative iteration for the n summaries (one
  * line each, titled scene/method/solver) through gnuplot into plot_path
  * (SVG when it ends in ".svg", else PNG), replaced atomically.  gnuplot is

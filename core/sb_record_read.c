@@ -3,7 +3,7 @@
  * (missing, not HDF5, truncated, another program's HDF5 file, a newer
  * layout) gives SB_ERR_IO or SB_ERR_INPUT and one sentence naming the file,
  * never a crash.  Layout: docs/recorded_figures.md. */
-#include "sb_record.h"
+#include "sb_record_io.h"
 
 #include <errno.h>
 #include <hdf5.h>
@@ -13,186 +13,13 @@
 #include <string.h>
 #include <sys/stat.h>
 
-typedef struct h5r {
-    const char *path;
-    char *err;
-    size_t errlen;
-    H5E_auto2_t old_fn;      /* the caller's HDF5 error printer, restored by close_record */
-    void *old_data;
-} h5r;
-
-static int rfail(h5r *r, int status, const char *what, const char *name)
-{
-    snprintf(r->err, r->errlen, "cannot read record %s: %s %s (file truncated, corrupt or not a shellbench record)",
-             r->path, what, name);
-    return status;
-}
-
-/* Scalar fixed-length string attribute of any length, into a new buffer. */
-static int attr_str_alloc(h5r *r, hid_t loc, const char *name, char **out)
-{
-    *out = NULL;
-    hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
-    if (a < 0) return rfail(r, SB_ERR_INPUT, "missing attribute", name);
-    hid_t t = H5Aget_type(a);
-    int rc = SB_OK;
-    if (t < 0 || H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) != 0) {
-        rc = rfail(r, SB_ERR_INPUT, "attribute is not a fixed-length string:", name);
-    } else if (!(*out = calloc(H5Tget_size(t) + 1, 1))) {
-        rc = SB_ERR_NOMEM;
-        snprintf(r->err, r->errlen, "out of memory reading %s", r->path);
-    } else if (H5Aread(a, t, *out) < 0) {
-        rc = rfail(r, SB_ERR_IO, "cannot read attribute", name);
-    }
-    if (rc) {
-        free(*out);
-        *out = NULL;
-    }
-    if (t >= 0) H5Tclose(t);
-    H5Aclose(a);
-    return rc;
-}
-
-/* Scalar string attribute of fixed length, copied (truncated) into buf. */
-static int attr_str(h5r *r, hid_t loc, const char *name, char *buf, size_t len)
-{
-    char *tmp;
-    int rc = attr_str_alloc(r, loc, name, &tmp);
-    if (!rc) snprintf(buf, len, "%s", tmp);
-    free(tmp);
-    return rc;
-}
-
-/* Scalar numeric attribute converted to mtype (HDF5 converts int <-> float). */
-static int attr_num(h5r *r, hid_t loc, const char *name, hid_t mtype, void *v)
-{
-    hid_t a = H5Aopen(loc, name, H5P_DEFAULT);
-    if (a < 0) return rfail(r, SB_ERR_INPUT, "missing attribute", name);
-    hid_t t = H5Aget_type(a), sp = H5Aget_space(a);
-    H5T_class_t c = t < 0 ? H5T_NO_CLASS : H5Tget_class(t);
-    int rc = SB_OK;
-    if ((c != H5T_INTEGER && c != H5T_FLOAT) || sp < 0 || H5Sget_simple_extent_npoints(sp) != 1)
-        rc = rfail(r, SB_ERR_INPUT, "attribute is not a number:", name);
-    else if (H5Aread(a, mtype, v) < 0)
-        rc = rfail(r, SB_ERR_IO, "cannot read attribute", name);
-    if (sp >= 0) H5Sclose(sp);
-    if (t >= 0) H5Tclose(t);
-    H5Aclose(a);
-    return rc;
-}
-
-static int attr_int(h5r *r, hid_t loc, const char *name, int *v)
-{
-    return attr_num(r, loc, name, H5T_NATIVE_INT, v);
-}
-
-static int attr_dbl(h5r *r, hid_t loc, const char *name, double *v)
-{
-    return attr_num(r, loc, name, H5T_NATIVE_DOUBLE, v);
-}
-
-/* Whole numeric dataset `name` (path relative to loc) of the given rank,
- * converted to mtype (elements of esize bytes) into a new buffer (at least
- * one element allocated, so empty datasets give a valid pointer). */
-static int dset_read(h5r *r, hid_t loc, const char *name, int rank, hid_t mtype, size_t esize,
-                     hsize_t *dims, void **out)
-{
-    *out = NULL;
-    if (H5Lexists(loc, name, H5P_DEFAULT) <= 0) return rfail(r, SB_ERR_INPUT, "missing dataset", name);
-    hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
-    if (d < 0) return rfail(r, SB_ERR_IO, "cannot open dataset", name);
-    hid_t sp = H5Dget_space(d);
-    int rc = SB_OK;
-    if (sp < 0 || H5Sget_simple_extent_ndims(sp) != rank) {
-        rc = rfail(r, SB_ERR_INPUT, "dataset has the wrong rank:", name);
-    } else {
-        H5Sget_simple_extent_dims(sp, dims, NULL);
-        hsize_t n = 1;
-        for (int i = 0; i < rank; i++) n *= dims[i];
-        if (n > (hsize_t)(SIZE_MAX / esize) - 1) {
-            rc = rfail(r, SB_ERR_INPUT, "dataset is implausibly large:", name);
-        } else {
-            *out = malloc((size_t)(n ? n : 1) * esize);
-            if (!*out) rc = SB_ERR_NOMEM, snprintf(r->err, r->errlen, "out of memory reading %s", r->path);
-            else if (n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, *out) < 0)
-                rc = rfail(r, SB_ERR_IO, "cannot read dataset", name);
-        }
-    }
-    if (sp >= 0) H5Sclose(sp);
-    H5Dclose(d);
-    if (rc) {
-        free(*out);
-        *out = NULL;
-    }
-    return rc;
-}
-
-/* Open PATH and check it is a shellbench record of a layout we read. */
-/* Silences HDF5's error printing (restored by close_record, which must follow
- * every open_record), checks the path and opens a shellbench record. */
-static int open_record(h5r *r, hid_t *file)
-{
-    *file = -1;
-    H5Eget_auto2(H5E_DEFAULT, &r->old_fn, &r->old_data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    if (!r->path || !r->path[0]) {
-        snprintf(r->err, r->errlen, "no record file given");
-        return SB_ERR_INPUT;
-    }
-    struct stat st;
-    if (stat(r->path, &st) != 0) {
-        snprintf(r->err, r->errlen, "cannot read record %s: %s", r->path, strerror(errno));
-        return SB_ERR_IO;
-    }
-    if (!S_ISREG(st.st_mode)) {
-        snprintf(r->err, r->errlen, "cannot read record %s: not a regular file", r->path);
-        return SB_ERR_INPUT;
-    }
-    if (H5Fis_hdf5(r->path) <= 0) {
-        snprintf(r->err, r->errlen, "%s is not an HDF5 file, so not a shellbench record", r->path);
-        return SB_ERR_INPUT;
-    }
-    hid_t f = H5Fopen(r->path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (f < 0) {
-        snprintf(r->err, r->errlen, "cannot open record %s: HDF5 cannot open it (truncated or corrupt file?)", r->path);
-        return SB_ERR_IO;
-    }
-    char fmt[64] = "";
-    int version = 0;
-    if (H5Aexists(f, "format") <= 0 || attr_str(r, f, "format", fmt, sizeof fmt) != SB_OK ||
-        strcmp(fmt, SB_RECORD_FORMAT_NAME) != 0) {
-        snprintf(r->err, r->errlen, "%s is an HDF5 file but not a shellbench run record (no \"format\" = \"%s\" attribute)",
-                 r->path, SB_RECORD_FORMAT_NAME);
-        H5Fclose(f);
-        return SB_ERR_INPUT;
-    }
-    int rc = attr_int(r, f, "format_version", &version);
-    if (rc == SB_OK && (version < 1 || version > SB_RECORD_FORMAT_VERSION)) {
-        snprintf(r->err, r->errlen, "%s has record format version %d; this build reads versions 1 to %d",
-                 r->path, version, SB_RECORD_FORMAT_VERSION);
-        rc = SB_ERR_INPUT;
-    }
-    if (rc) {
-        H5Fclose(f);
-        return rc;
-    }
-    *file = f;
-    return SB_OK;
-}
-
-static void close_record(h5r *r, hid_t f)
-{
-    if (f >= 0) H5Fclose(f);
-    H5Eset_auto2(H5E_DEFAULT, r->old_fn, r->old_data);
-}
-
 /* Per-event seconds summed over levels, matched by event name so a file
  * with a different event list still reads. */
-static int read_event_seconds(h5r *r, hid_t f, sb_record_summary *s)
+static int read_event_seconds(sb_h5r *r, hid_t f, sb_record_summary *s)
 {
     hsize_t dims[2];
     double *sec = NULL;
-    int rc = dset_read(r, f, "/stats/events_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), dims, (void **)&sec);
+    int rc = sb_h5r_dset(r, f, "/stats/events_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), dims, (void **)&sec);
     if (rc) return rc;
     hid_t g = H5Gopen2(f, "/stats", H5P_DEFAULT);
     hid_t a = g < 0 ? -1 : H5Aopen(g, "event_names", H5P_DEFAULT);
@@ -201,12 +28,12 @@ static int read_event_seconds(h5r *r, hid_t f, sb_record_summary *s)
     size_t width = t < 0 ? 0 : H5Tget_size(t);
     if (t < 0 || sp < 0 || H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) != 0 || width == 0 ||
         H5Sget_simple_extent_npoints(sp) != (hssize_t)dims[1]) {
-        rc = rfail(r, SB_ERR_INPUT, "bad attribute", "/stats/event_names");
+        rc = sb_h5r_fail(r, SB_ERR_INPUT, "bad attribute", "/stats/event_names");
     } else if (!(names = calloc(dims[1] ? dims[1] : 1, width + 1))) {
         rc = SB_ERR_NOMEM;
         snprintf(r->err, r->errlen, "out of memory reading %s", r->path);
     } else if (dims[1] > 0 && H5Aread(a, t, names) < 0) {
-        rc = rfail(r, SB_ERR_IO, "cannot read attribute", "/stats/event_names");
+        rc = sb_h5r_fail(r, SB_ERR_IO, "cannot read attribute", "/stats/event_names");
     } else {
         for (hsize_t c = 0; c < dims[1]; c++) {
             char name[64];
@@ -225,17 +52,17 @@ static int read_event_seconds(h5r *r, hid_t f, sb_record_summary *s)
     return rc;
 }
 
-static int read_history(h5r *r, hid_t f, sb_record_summary *s)
+static int read_history(sb_h5r *r, hid_t f, sb_record_summary *s)
 {
     hsize_t dg, ds, dl, di, dn;
     int *steps_iters = NULL;
-    int rc = dset_read(r, f, "/history/iterations/gnorm", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dg, (void **)&s->hist_gnorm);
-    if (!rc) rc = dset_read(r, f, "/history/iterations/step", 1, H5T_NATIVE_INT, sizeof(int), &ds, (void **)&s->hist_step);
-    if (!rc) rc = dset_read(r, f, "/history/iterations/level", 1, H5T_NATIVE_INT, sizeof(int), &dl, (void **)&s->hist_level);
-    if (!rc) rc = dset_read(r, f, "/history/iterations/iter", 1, H5T_NATIVE_INT, sizeof(int), &di, (void **)&s->hist_iter);
-    if (!rc && (ds != dg || dl != dg || di != dg)) rc = rfail(r, SB_ERR_INPUT, "columns of different lengths in", "/history/iterations");
-    if (!rc && dg > (hsize_t)INT32_MAX) rc = rfail(r, SB_ERR_INPUT, "too many records in", "/history/iterations");
-    if (!rc) rc = dset_read(r, f, "/history/steps/iterations", 1, H5T_NATIVE_INT, sizeof(int), &dn, (void **)&steps_iters);
+    int rc = sb_h5r_dset(r, f, "/history/iterations/gnorm", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dg, (void **)&s->hist_gnorm);
+    if (!rc) rc = sb_h5r_dset(r, f, "/history/iterations/step", 1, H5T_NATIVE_INT, sizeof(int), &ds, (void **)&s->hist_step);
+    if (!rc) rc = sb_h5r_dset(r, f, "/history/iterations/level", 1, H5T_NATIVE_INT, sizeof(int), &dl, (void **)&s->hist_level);
+    if (!rc) rc = sb_h5r_dset(r, f, "/history/iterations/iter", 1, H5T_NATIVE_INT, sizeof(int), &di, (void **)&s->hist_iter);
+    if (!rc && (ds != dg || dl != dg || di != dg)) rc = sb_h5r_fail(r, SB_ERR_INPUT, "columns of different lengths in", "/history/iterations");
+    if (!rc && dg > (hsize_t)INT32_MAX) rc = sb_h5r_fail(r, SB_ERR_INPUT, "too many records in", "/history/iterations");
+    if (!rc) rc = sb_h5r_dset(r, f, "/history/steps/iterations", 1, H5T_NATIVE_INT, sizeof(int), &dn, (void **)&steps_iters);
     if (rc) {
         free(steps_iters);
         return rc;
@@ -267,45 +94,45 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
 {
     if (!s) return SB_ERR_INPUT;
     memset(s, 0, sizeof *s);
-    h5r r = { path, err, errlen, NULL, NULL };
+    sb_h5r r = { path, err, errlen, NULL, NULL };
     hid_t f;
-    int rc = open_record(&r, &f);
+    int rc = sb_h5r_open(&r, &f);
     hid_t ge = -1, gs = -1;
     if (!rc) {
         long dofs_l = 0;
-        rc = attr_str(&r, f, "scene_name", s->scene, sizeof s->scene);
-        if (!rc) rc = attr_str(&r, f, "method", s->method, sizeof s->method);
-        if (!rc) rc = attr_str(&r, f, "solver", s->solver, sizeof s->solver);
-        if (!rc) rc = attr_num(&r, f, "n_dofs", H5T_NATIVE_LONG, &dofs_l);
+        rc = sb_h5r_attr_str(&r, f, "scene_name", s->scene, sizeof s->scene);
+        if (!rc) rc = sb_h5r_attr_str(&r, f, "method", s->method, sizeof s->method);
+        if (!rc) rc = sb_h5r_attr_str(&r, f, "solver", s->solver, sizeof s->solver);
+        if (!rc) rc = sb_h5r_attr_num(&r, f, "n_dofs", H5T_NATIVE_LONG, &dofs_l);
         s->dofs = dofs_l;
-        if (!rc) rc = attr_int(&r, f, "levels", &s->levels);
-        if (!rc) rc = attr_int(&r, f, "steps_done", &s->steps);
-        if (!rc) rc = attr_int(&r, f, "steps_planned", &s->steps_planned);
-        if (!rc) rc = attr_int(&r, f, "status", &s->status);
-        if (!rc) rc = attr_int(&r, f, "reason_code", &s->reason);
-        if (!rc) rc = attr_str(&r, f, "reason", s->reason_name, sizeof s->reason_name);
-        if (!rc) rc = attr_int(&r, f, "n_cores", &s->n_cores);
-        if (!rc) rc = attr_str(&r, f, "build_id", s->build_id, sizeof s->build_id);
-        if (!rc) rc = attr_str(&r, f, "cpu_model", s->cpu_model, sizeof s->cpu_model);
+        if (!rc) rc = sb_h5r_attr_int(&r, f, "levels", &s->levels);
+        if (!rc) rc = sb_h5r_attr_int(&r, f, "steps_done", &s->steps);
+        if (!rc) rc = sb_h5r_attr_int(&r, f, "steps_planned", &s->steps_planned);
+        if (!rc) rc = sb_h5r_attr_int(&r, f, "status", &s->status);
+        if (!rc) rc = sb_h5r_attr_int(&r, f, "reason_code", &s->reason);
+        if (!rc) rc = sb_h5r_attr_str(&r, f, "reason", s->reason_name, sizeof s->reason_name);
+        if (!rc) rc = sb_h5r_attr_int(&r, f, "n_cores", &s->n_cores);
+        if (!rc) rc = sb_h5r_attr_str(&r, f, "build_id", s->build_id, sizeof s->build_id);
+        if (!rc) rc = sb_h5r_attr_str(&r, f, "cpu_model", s->cpu_model, sizeof s->cpu_model);
         snprintf(s->blas_core, sizeof s->blas_core, "unknown");
-        if (!rc && H5Aexists(f, "blas_core") > 0) rc = attr_str(&r, f, "blas_core", s->blas_core, sizeof s->blas_core);
-        if (!rc) rc = attr_str(&r, f, "started", s->started, sizeof s->started);
+        if (!rc && H5Aexists(f, "blas_core") > 0) rc = sb_h5r_attr_str(&r, f, "blas_core", s->blas_core, sizeof s->blas_core);
+        if (!rc) rc = sb_h5r_attr_str(&r, f, "started", s->started, sizeof s->started);
     }
-    if (!rc && (gs = H5Gopen2(f, "/stats", H5P_DEFAULT)) < 0) rc = rfail(&r, SB_ERR_INPUT, "missing group", "/stats");
-    if (!rc) rc = attr_dbl(&r, gs, "work_assembly", &s->work_assembly);
-    if (!rc) rc = attr_dbl(&r, gs, "work_qp", &s->work_qp);
-    if (!rc) rc = attr_dbl(&r, gs, "seconds_total", &s->seconds);
+    if (!rc && (gs = H5Gopen2(f, "/stats", H5P_DEFAULT)) < 0) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "missing group", "/stats");
+    if (!rc) rc = sb_h5r_attr_dbl(&r, gs, "work_assembly", &s->work_assembly);
+    if (!rc) rc = sb_h5r_attr_dbl(&r, gs, "work_qp", &s->work_qp);
+    if (!rc) rc = sb_h5r_attr_dbl(&r, gs, "seconds_total", &s->seconds);
     if (!rc) rc = read_event_seconds(&r, f, s);
     if (!rc) rc = read_history(&r, f, s);
-    if (!rc && (ge = H5Gopen2(f, "/error", H5P_DEFAULT)) < 0) rc = rfail(&r, SB_ERR_INPUT, "missing group", "/error");
-    if (!rc) rc = attr_int(&r, ge, "has_error", &s->has_error);
-    if (!rc) rc = attr_str(&r, ge, "kind", s->error_kind, sizeof s->error_kind);
-    if (!rc) rc = attr_dbl(&r, ge, "rms", &s->error_rms);
-    if (!rc) rc = attr_dbl(&r, ge, "max", &s->error_max);
-    if (!rc) rc = attr_dbl(&r, ge, "probe", &s->error_probe);
+    if (!rc && (ge = H5Gopen2(f, "/error", H5P_DEFAULT)) < 0) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "missing group", "/error");
+    if (!rc) rc = sb_h5r_attr_int(&r, ge, "has_error", &s->has_error);
+    if (!rc) rc = sb_h5r_attr_str(&r, ge, "kind", s->error_kind, sizeof s->error_kind);
+    if (!rc) rc = sb_h5r_attr_dbl(&r, ge, "rms", &s->error_rms);
+    if (!rc) rc = sb_h5r_attr_dbl(&r, ge, "max", &s->error_max);
+    if (!rc) rc = sb_h5r_attr_dbl(&r, ge, "probe", &s->error_probe);
     if (ge >= 0) H5Gclose(ge);
     if (gs >= 0) H5Gclose(gs);
-    close_record(&r, f);
+    sb_h5r_close(&r, f);
     if (rc) sb_record_summary_free(s);
     return rc;
 }
@@ -330,15 +157,15 @@ int sb_record_read_samples(const char *path, int *n, double **st, double **pos,
     if (!n || !st || !pos) return SB_ERR_INPUT;
     *n = 0;
     *st = *pos = NULL;
-    h5r r = { path, err, errlen, NULL, NULL };
+    sb_h5r r = { path, err, errlen, NULL, NULL };
     hid_t f;
     hsize_t ds[2], dp[2];
-    int rc = open_record(&r, &f);
-    if (!rc) rc = dset_read(&r, f, "/final/sample_st", 2, H5T_NATIVE_DOUBLE, sizeof(double), ds, (void **)st);
-    if (!rc) rc = dset_read(&r, f, "/final/sample_pos", 2, H5T_NATIVE_DOUBLE, sizeof(double), dp, (void **)pos);
+    int rc = sb_h5r_open(&r, &f);
+    if (!rc) rc = sb_h5r_dset(&r, f, "/final/sample_st", 2, H5T_NATIVE_DOUBLE, sizeof(double), ds, (void **)st);
+    if (!rc) rc = sb_h5r_dset(&r, f, "/final/sample_pos", 2, H5T_NATIVE_DOUBLE, sizeof(double), dp, (void **)pos);
     if (!rc && (ds[1] != 2 || dp[1] != 3 || ds[0] != dp[0] || ds[0] > (hsize_t)INT32_MAX))
-        rc = rfail(&r, SB_ERR_INPUT, "inconsistent shapes of", "/final/sample_st and /final/sample_pos");
-    close_record(&r, f);
+        rc = sb_h5r_fail(&r, SB_ERR_INPUT, "inconsistent shapes of", "/final/sample_st and /final/sample_pos");
+    sb_h5r_close(&r, f);
     if (rc) {
         free(*st);
         free(*pos);
@@ -350,7 +177,7 @@ int sb_record_read_samples(const char *path, int *n, double **st, double **pos,
 }
 
 typedef struct param_walk {
-    h5r *r;
+    sb_h5r *r;
     sb_record_setup *s;
     int rc;
 } param_walk;
@@ -367,17 +194,17 @@ static herr_t collect_param(hid_t loc, const char *name, const H5A_info_t *info,
     H5T_class_t c = t < 0 ? H5T_NO_CLASS : H5Tget_class(t);
     int rc = SB_OK;
     if (c == H5T_STRING) {
-        rc = attr_str(w->r, loc, name, value, sizeof value);
+        rc = sb_h5r_attr_str(w->r, loc, name, value, sizeof value);
     } else if (c == H5T_INTEGER) {
         long long v = 0;
-        rc = attr_num(w->r, loc, name, H5T_NATIVE_LLONG, &v);
+        rc = sb_h5r_attr_num(w->r, loc, name, H5T_NATIVE_LLONG, &v);
         snprintf(value, sizeof value, "%lld", v);
     } else if (c == H5T_FLOAT) {
         double v = 0;
-        rc = attr_num(w->r, loc, name, H5T_NATIVE_DOUBLE, &v);
+        rc = sb_h5r_attr_num(w->r, loc, name, H5T_NATIVE_DOUBLE, &v);
         snprintf(value, sizeof value, "%.17g", v);
     } else {
-        rc = rfail(w->r, SB_ERR_INPUT, "parameter of unknown type:", name);
+        rc = sb_h5r_fail(w->r, SB_ERR_INPUT, "parameter of unknown type:", name);
     }
     if (t >= 0) H5Tclose(t);
     if (a >= 0) H5Aclose(a);
@@ -390,31 +217,31 @@ int sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t
 {
     if (!s) return SB_ERR_INPUT;
     memset(s, 0, sizeof *s);
-    h5r r = { path, err, errlen, NULL, NULL };
+    sb_h5r r = { path, err, errlen, NULL, NULL };
     hid_t f, gp = -1;
     hsize_t dx;
-    int rc = open_record(&r, &f);
-    if (!rc) rc = attr_str_alloc(&r, f, "scene_json", &s->scene_json);
-    if (!rc) rc = attr_str(&r, f, "scene_path", s->scene_path, sizeof s->scene_path);
-    if (!rc) rc = attr_str(&r, f, "scene_name", s->scene, sizeof s->scene);
-    if (!rc) rc = attr_str(&r, f, "method", s->method, sizeof s->method);
-    if (!rc) rc = attr_str(&r, f, "solver", s->solver, sizeof s->solver);
-    if (!rc) rc = attr_int(&r, f, "res", &s->res);
-    if (!rc) rc = attr_int(&r, f, "levels", &s->levels);
-    if (!rc) rc = attr_int(&r, f, "status", &s->status);
-    if (!rc) rc = attr_int(&r, f, "steps_done", &s->steps_done);
-    if (!rc && (gp = H5Gopen2(f, "/params", H5P_DEFAULT)) < 0) rc = rfail(&r, SB_ERR_INPUT, "missing group", "/params");
+    int rc = sb_h5r_open(&r, &f);
+    if (!rc) rc = sb_h5r_attr_str_alloc(&r, f, "scene_json", &s->scene_json);
+    if (!rc) rc = sb_h5r_attr_str(&r, f, "scene_path", s->scene_path, sizeof s->scene_path);
+    if (!rc) rc = sb_h5r_attr_str(&r, f, "scene_name", s->scene, sizeof s->scene);
+    if (!rc) rc = sb_h5r_attr_str(&r, f, "method", s->method, sizeof s->method);
+    if (!rc) rc = sb_h5r_attr_str(&r, f, "solver", s->solver, sizeof s->solver);
+    if (!rc) rc = sb_h5r_attr_int(&r, f, "res", &s->res);
+    if (!rc) rc = sb_h5r_attr_int(&r, f, "levels", &s->levels);
+    if (!rc) rc = sb_h5r_attr_int(&r, f, "status", &s->status);
+    if (!rc) rc = sb_h5r_attr_int(&r, f, "steps_done", &s->steps_done);
+    if (!rc && (gp = H5Gopen2(f, "/params", H5P_DEFAULT)) < 0) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "missing group", "/params");
     if (!rc) {
         param_walk w = { &r, s, SB_OK };
         hsize_t idx = 0;
         if (H5Aiterate2(gp, H5_INDEX_NAME, H5_ITER_INC, &idx, collect_param, &w) < 0)
-            rc = w.rc ? w.rc : rfail(&r, SB_ERR_IO, "cannot list the attributes of", "/params");
+            rc = w.rc ? w.rc : sb_h5r_fail(&r, SB_ERR_IO, "cannot list the attributes of", "/params");
     }
-    if (!rc) rc = dset_read(&r, f, "/final/x", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dx, (void **)&s->x);
-    if (!rc && dx > (hsize_t)INT32_MAX) rc = rfail(&r, SB_ERR_INPUT, "implausibly long", "/final/x");
+    if (!rc) rc = sb_h5r_dset(&r, f, "/final/x", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dx, (void **)&s->x);
+    if (!rc && dx > (hsize_t)INT32_MAX) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "implausibly long", "/final/x");
     if (!rc) s->n_x = (int)dx;
     if (gp >= 0) H5Gclose(gp);
-    close_record(&r, f);
+    sb_h5r_close(&r, f);
     if (rc) sb_record_setup_free(s);
     return rc;
 }

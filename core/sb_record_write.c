@@ -140,13 +140,10 @@ static int write_stats(sb_h5w *w, hid_t f, const sb_stats *s)
     return bad ? -1 : 0;
 }
 
-/* One column of a record array: a struct member written as a 1-D dataset.
- * "units" attributes are written only where the unit does not depend on the
- * method's DOF layout (||g||, Delta, step norms mix position DOFs (m) with
- * Hermite derivative DOFs; see docs/recorded_figures.md). */
-typedef struct column { const char *name; size_t off; int is_int; const char *units; } column;
-
-static const column iter_cols[] = {
+/* The history columns (sb_record_io.h).  "units" attributes are written
+ * only where the unit does not depend on the method's DOF layout (||g||,
+ * Delta, step norms mix position DOFs (m) with Hermite derivative DOFs). */
+const sb_record_column sb_record_iter_cols[] = {
     { "step", offsetof(sb_iter_record, step), 1, "" },
     { "iter", offsetof(sb_iter_record, iter), 1, "" },
     { "level", offsetof(sb_iter_record, level), 1, "" },
@@ -160,7 +157,8 @@ static const column iter_cols[] = {
     { "linear_iters", offsetof(sb_iter_record, linear_iters), 1, "" },
     { "reason", offsetof(sb_iter_record, reason), 1, "" },
 };
-static const column step_cols[] = {
+const int sb_record_n_iter_cols = (int)(sizeof sb_record_iter_cols / sizeof *sb_record_iter_cols);
+const sb_record_column sb_record_step_cols[] = {
     { "step", offsetof(sb_step_record, step), 1, "" },
     { "t", offsetof(sb_step_record, t), 0, "" },
     { "iterations", offsetof(sb_step_record, iterations), 1, "" },
@@ -171,9 +169,10 @@ static const column step_cols[] = {
     { "work_assembly", offsetof(sb_step_record, work_assembly), 0, "WU" },
     { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU" },
 };
+const int sb_record_n_step_cols = (int)(sizeof sb_record_step_cols / sizeof *sb_record_step_cols);
 
 /* buf holds n doubles (reused for int columns). */
-static int write_columns(sb_h5w *w, hid_t g, const column *cols, int ncols, const void *recs,
+static int write_columns(sb_h5w *w, hid_t g, const sb_record_column *cols, int ncols, const void *recs,
                          size_t rec_size, size_t n, double *buf)
 {
     hsize_t d = (hsize_t)n;
@@ -204,9 +203,9 @@ static int write_history(sb_h5w *w, hid_t f, const sb_stats *s)
     hid_t gi = bad ? -1 : sb_h5w_group(w, f, "/history/iterations");
     hid_t gs = gi < 0 ? -1 : sb_h5w_group(w, f, "/history/steps");
     if (gi < 0 || gs < 0) bad = -1;
-    if (!bad) bad |= write_columns(w, gi, iter_cols, (int)(sizeof iter_cols / sizeof *iter_cols), s->iters,
+    if (!bad) bad |= write_columns(w, gi, sb_record_iter_cols, sb_record_n_iter_cols, s->iters,
                                    sizeof *s->iters, s->n_iters, buf);
-    if (!bad) bad |= write_columns(w, gs, step_cols, (int)(sizeof step_cols / sizeof *step_cols), s->steps,
+    if (!bad) bad |= write_columns(w, gs, sb_record_step_cols, sb_record_n_step_cols, s->steps,
                                    sizeof *s->steps, s->n_steps, buf);
     free(buf);
     if (gs >= 0) H5Gclose(gs);
@@ -315,6 +314,8 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
     if (!bad) bad = write_probes(w, f, run);
     if (!bad) bad = write_final(w, f, run);
     if (!bad) bad = write_error(w, f, run);
+    if (!bad) bad = sb_record_write_resume_log(w, f, &run->resumed);
+    if (!bad && run->resume) bad = sb_record_write_resume(w, f, run->resume);
     if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = sb_h5w_fail(w, -1, "(flush)");
     if (H5Fclose(f) < 0 && !bad) bad = sb_h5w_fail(w, -1, "(close)");
     return bad;
@@ -348,6 +349,11 @@ static int validate(const sb_run *r, const char *path, char *err, size_t errlen)
         BAD("cannot record %s: statistics history arrays are missing", path);
     if (s && (s->n_iters > INT32_MAX || s->n_steps > INT32_MAX))
         BAD("cannot record %s: history too long", path);
+    const sb_resume_point *rp = r->resume;
+    if (rp && (rp->n_x != r->n_x || !rp->x || !rp->v || !s || rp->stats.n_iters > s->n_iters ||
+               rp->stats.n_steps > s->n_steps || rp->step > r->steps_done))
+        BAD("cannot record %s: resume point (step %d, %zu iterations) inconsistent with the record", path,
+            rp->step, rp->stats.n_iters);
 #undef BAD
     return SB_OK;
 }

@@ -34,6 +34,8 @@ typedef struct run_state {
     double t_start, checkpoint_every, checkpoint_last;
     int checkpoint_failed;
     char partial_path[1100];
+    /* the last completed step: the resume point the checkpoints carry */
+    sb_resume_point bp;
 } run_state;
 
 static void run_cleanup(run_state *R)
@@ -44,6 +46,7 @@ static void run_cleanup(run_state *R)
     if (R->ms_created) R->mt->destroy(R->ms);
     free(R->ms);
     free(R->x); free(R->xn); free(R->v); free(R->xref);
+    sb_resume_point_free(&R->bp);
     free(R->rec.probe_traj); free(R->rec.probe_expected); free(R->rec.probe_rel_error);
     free(R->rec.sample_st); free(R->rec.sample_ref); free(R->rec.sample_pos); free(R->rec.tris);
     free(R->probe_names);
@@ -337,6 +340,7 @@ static void write_checkpoint(run_state *R)
     const int status = rec->status, reason = rec->reason;
     rec->status = SB_STATUS_UNFINISHED;
     rec->reason = SB_REASON_CHECKPOINT;
+    rec->resume = &R->bp;
     if (R->mt->eval_points)
         R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
     record_material(R);
@@ -348,8 +352,94 @@ static void write_checkpoint(run_state *R)
     }
     rec->status = status;
     rec->reason = reason;
+    rec->resume = NULL;
     sb_stats_event(stats, F, SB_EV_RECORD, t0);
     R->checkpoint_last = sb_now();
+}
+
+/* The end of step `step` (0: the start) as the resume point: x, v and a
+ * snapshot of the statistics (history pointers left out: the boundary is
+ * n_iters / n_steps records into the live history). */
+static void mark_boundary(run_state *R, int step)
+{
+    sb_resume_point *b = &R->bp;
+    b->step = step;
+    b->n_x = R->rec.n_x;
+    sb_copy(b->n_x, R->x, b->x);
+    sb_copy(b->n_x, R->v, b->v);
+    b->stats = R->ctx.stats;
+    b->stats.iters = NULL;
+    b->stats.steps = NULL;
+    b->stats.cap_iters = b->stats.cap_steps = 0;
+    b->seconds = sb_now() - R->t_start;
+}
+
+/* "a,b" + ",c" into a fixed buffer (kept whole or left as it was) */
+static void list_append(char *buf, size_t len, const char *item)
+{
+    size_t u = strlen(buf);
+    if (u + strlen(item) + 2 <= len) snprintf(buf + u, len - u, "%s%s", u ? "," : "", item);
+}
+
+/* --resume: continue from the resume point of OUT.partial.  No checkpoint:
+ * the run starts at step 1 (0).  A checkpoint of another run, or an
+ * unreadable one, is an input error (-1) and stays untouched.  Statistics
+ * become the checkpoint's at its boundary (set-up of this process is in
+ * the resume log, not in the event counts, so the counts equal those of an
+ * uninterrupted run); seconds_total goes on from the boundary. */
+static int resume_run(run_state *R, int quiet)
+{
+    sb_run *rec = &R->rec;
+    if (access(R->partial_path, F_OK) != 0) {
+        if (!quiet) fprintf(R->err, "shellbench: no checkpoint %s: starting at step 1\n", R->partial_path);
+        return 0;
+    }
+    sb_resume_point rp;
+    sb_resume_log log;
+    double ck_seconds = 0, setup = sb_now() - R->t_start;
+    char ck_build[64] = "", msg[2048];
+    if (sb_record_read_resume(R->partial_path, rec, &rp, &ck_seconds, ck_build, sizeof ck_build, &log, rec->probe_traj,
+                              msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: %s\n", msg);
+        return -1;
+    }
+    sb_stats *st = &R->ctx.stats;
+    memcpy(st->ev, rp.stats.ev, sizeof st->ev);
+    st->work_assembly = rp.stats.work_assembly;
+    st->work_qp = rp.stats.work_qp;
+    st->not_posdef = rp.stats.not_posdef;
+    st->n_iters = st->n_steps = 0;
+    int bad = 0;
+    for (size_t i = 0; i < rp.stats.n_iters && !bad; i++) bad = sb_stats_push_iter(st, &rp.stats.iters[i]);
+    for (size_t i = 0; i < rp.stats.n_steps && !bad; i++) bad = sb_stats_push_step(st, &rp.stats.steps[i]);
+    if (bad) {
+        sb_resume_point_free(&rp);
+        fprintf(R->err, "shellbench: out of memory\n");
+        return -1;
+    }
+    sb_copy(rp.n_x, rp.x, R->x);
+    sb_copy(rp.n_x, rp.v, R->v);
+    rec->steps_done = rp.step;
+    rec->reason = rp.step > 0 ? rp.stats.steps[rp.step - 1].reason : SB_REASON_NONE;
+    char item[32];
+    snprintf(item, sizeof item, "%d", rp.step);
+    rec->resumed = log;
+    rec->resumed.count++;
+    list_append(rec->resumed.steps, sizeof rec->resumed.steps, item);
+    rec->resumed.setup_seconds += setup;
+    rec->resumed.lost_seconds += fmax(ck_seconds - rp.seconds, 0.0);
+    if (strcmp(ck_build, rec->build_id) && !strstr(rec->resumed.builds, ck_build)) {
+        list_append(rec->resumed.builds, sizeof rec->resumed.builds, ck_build);
+        fprintf(R->err, "shellbench: warning: resuming a checkpoint of build %s with build %s (recorded in resume_builds)\n",
+                ck_build, rec->build_id);
+    }
+    R->t_start -= rp.seconds;   /* seconds_total: the boundary's, then this process's */
+    if (!quiet)
+        fprintf(R->err, "shellbench: resuming %s after step %d of %d (%ld iterations recorded)\n", R->partial_path,
+                rp.step, rec->steps_planned, (long)rp.stats.n_iters);
+    sb_resume_point_free(&rp);
+    mark_boundary(R, rec->steps_done);
+    return rec->steps_done;
 }
 
 /* sb_context.monitor: after every iteration of the outer loop */
@@ -366,11 +456,10 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     if (!R) { fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
     int exit_code = SB_EXIT_INTERNAL, rc;
     char path[1024], msg[2048];
-    double t_start = sb_now();
     if (summary) *summary = NULL;
     if (sb_context_init(&R->ctx)) { free(R); fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
     R->err = err;
-    R->t_start = t_start;
+    R->t_start = sb_now();
     R->n_grid = req->sample_n > 1 ? req->sample_n : 21;
 
     /* scene */
@@ -472,11 +561,13 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     R->xn = malloc((size_t)n * sizeof(double));
     R->v = calloc((size_t)n, sizeof(double));
     R->xref = malloc((size_t)n * sizeof(double));
+    R->bp.x = malloc((size_t)n * sizeof(double));
+    R->bp.v = malloc((size_t)n * sizeof(double));
     R->rec.probe_traj = calloc(((size_t)sc->time.steps + 1) * (sc->n_probes ? sc->n_probes : 1) * 3, sizeof(double));
     R->rec.probe_expected = malloc((size_t)(sc->n_probes ? sc->n_probes : 1) * 3 * sizeof(double));
     R->rec.probe_rel_error = malloc((size_t)(sc->n_probes ? sc->n_probes : 1) * sizeof(double));
     R->probe_names = calloc((size_t)(sc->n_probes ? sc->n_probes : 1), sizeof *R->probe_names);
-    if (!R->x || !R->xn || !R->v || !R->xref || !R->rec.probe_traj || !R->rec.probe_expected ||
+    if (!R->x || !R->xn || !R->v || !R->xref || !R->bp.x || !R->bp.v || !R->rec.probe_traj || !R->rec.probe_expected ||
         !R->rec.probe_rel_error || !R->probe_names || build_samples(R))
         goto nomem;
     R->mt->initial(R->ms, F, R->x);
@@ -539,6 +630,12 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     } else if (strcmp(req->out, "none") != 0) {
         out_path = req->out;
     }
+    if (!out_path && (req->resume || req->stop_after_steps > 0)) {
+        fprintf(err, "shellbench: %s needs a record path (--out), not --out none\n",
+                req->resume ? "--resume" : "--stop-after-steps");
+        exit_code = SB_EXIT_INPUT;
+        goto done;
+    }
     if (out_path && mkdir_p(out_path)) {
         fprintf(err, "shellbench: cannot create the directory of %s: %s\n", out_path, strerror(errno));
         exit_code = SB_EXIT_INPUT;
@@ -552,11 +649,31 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         R->ctx.monitor_data = R;
     }
 
-    /* time / load stepping */
+    /* time / load stepping, from the start or from a checkpoint's last step */
     sb_stats *stats = &R->ctx.stats;
     sb_reason reason = SB_REASON_NONE;
     rec->status = 0;
-    for (int step = 1; step <= sc->time.steps; step++) {
+    mark_boundary(R, 0);
+    int first_step = 1;
+    if (req->resume) {
+        if (access(out_path, F_OK) == 0) {
+            sb_record_summary done_s;
+            if (sb_record_read_summary(out_path, &done_s, msg, sizeof msg) == SB_OK) {
+                if (!req->quiet) fprintf(err, "shellbench: %s is already recorded (%s): nothing to resume\n", out_path, done_s.reason_name);
+                exit_code = done_s.status == 0 ? SB_EXIT_CONVERGED : SB_EXIT_NOT_CONVERGED;
+                sb_record_summary_free(&done_s);
+                goto done;
+            }
+            fprintf(err, "shellbench: warning: %s exists but is no readable record (%s): running again\n", out_path, msg);
+        }
+        int k = resume_run(R, req->quiet);
+        if (k < 0) {
+            exit_code = SB_EXIT_INPUT;
+            goto done;
+        }
+        first_step = k + 1;
+    }
+    for (int step = first_step; step <= sc->time.steps; step++) {
         double t0 = sb_now();
         double wa0 = stats->work_assembly, wq0 = stats->work_qp;
         sb_step_info si;
@@ -596,8 +713,25 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
             rec->status = 1;
             break;
         }
+        /* a resume point; written at once when the last checkpoint is a
+         * tenth of run.checkpoint old, so a long step is never lost to a kill */
+        mark_boundary(R, step);
+        if (req->stop_after_steps == step && step < sc->time.steps) {
+            write_checkpoint(R);
+            if (R->checkpoint_failed) {
+                exit_code = SB_EXIT_INTERNAL;
+                goto done;
+            }
+            if (!req->quiet)
+                fprintf(err, "shellbench: stopped after step %d of %d as asked; checkpoint %s (continue with --resume)\n",
+                        step, sc->time.steps, R->partial_path);
+            exit_code = SB_EXIT_STOPPED;
+            goto done;
+        }
+        if (R->ctx.monitor && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every)
+            write_checkpoint(R);
     }
-    stats->seconds_total = sb_now() - t_start;
+    stats->seconds_total = sb_now() - R->t_start;
 
     /* results: probes, samples, error, record */
     double tr0 = sb_now();
@@ -614,7 +748,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     record_material(R);
     if (out_path) {
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
-        stats->seconds_total = sb_now() - t_start;
+        stats->seconds_total = sb_now() - R->t_start;
         double tw0 = sb_now();
         if (sb_record_write(rec, out_path, msg, sizeof msg)) {
             fprintf(err, "shellbench: %s\n", msg);
@@ -624,10 +758,10 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         remove_partial(R);   /* the record is in place: the checkpoint has served */
         /* the file cannot hold its own write time: the summary does */
         sb_stats_event(stats, F, SB_EV_RECORD, tw0);
-        stats->seconds_total = sb_now() - t_start;
+        stats->seconds_total = sb_now() - R->t_start;
     } else {
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
-        stats->seconds_total = sb_now() - t_start;
+        stats->seconds_total = sb_now() - R->t_start;
     }
     char *js = summary_json(R, out_path);
     if (req->summary_json && js) fprintf(out, "%s\n", js);

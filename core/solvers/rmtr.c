@@ -135,7 +135,6 @@ typedef struct rmtr_state {
     int precond;              /* smoother preconditioner (index into sb_trs_precond_names) */
     rlevel lv[SB_MAX_LEVELS];
     int nested;               /* nested-iteration start (solver.nested: 0 off, 1 first step, 2 every step) */
-    int n_solves;             /* rmtr_set calls so far (steps of the run) */
     int L_fine;               /* the finest level; R->L is the current top, < L_fine while nesting */
     int top_cycles;           /* V-cycles run on the current top level */
     int nested_max;
@@ -647,8 +646,7 @@ static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *i
     set_top(R, R->L_fine);
     rlevel *V = &R->lv[R->L];
     sb_copy(V->n, x, V->x);
-    const int nested = R->nested == 2 || (R->nested == 1 && R->n_solves == 0);
-    R->n_solves++;
+    const int nested = R->nested == 2 || (R->nested == 1 && sb_problem_step(p) <= 1);
     /* with a nested start the finest Hessian is first needed at the prolongated start */
     int rc = start_top(R, p, !nested);
     info->f = V->f;
