@@ -234,6 +234,12 @@ static char *summary_json(run_state *R, const char *out_path)
     } else {
         json_object_set_new(o, "error", json_null());
     }
+    json_t *rs = json_object();
+    json_object_set_new(rs, "count", json_integer(R->rec.resumed.count));
+    json_object_set_new(rs, "after_steps", json_string(R->rec.resumed.steps));
+    json_set_num(rs, "setup_seconds", R->rec.resumed.setup_seconds);
+    json_set_num(rs, "lost_seconds", R->rec.resumed.lost_seconds);
+    json_object_set_new(o, "resumed", rs);
     json_object_set_new(o, "file", out_path ? json_string(out_path) : json_null());
     char *s = json_dumps(o, JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(12));
     json_decref(o);

@@ -58,8 +58,12 @@ run() {   # run FILE SCENE SOLVER RES LEVELS [--set ...]
   local f=$1 scene=$2 solver=$3 res=$4 lev=$5; shift 5
   case " ${ONLY:-$f} " in *" $f "*) ;; *) return ;; esac   # ONLY="NAME ...": just those records
   [ -f "$OUT/$f.h5" ] && { echo "kept  $f"; return; }      # resume an interrupted sweep
+  # an interrupted run goes on from its checkpoint's last completed step; a
+  # checkpoint written before resumes existed has none: that run starts afresh
+  local resume=()
+  h5ls "$OUT/$f.h5.partial/resume" >/dev/null 2>&1 && resume=(--resume)
   "$BIN" run --scene "$scene" --method rmtr --solver "$solver" --res "$res" --levels "$lev" \
-    --out "$OUT/$f.h5" --quiet --set run.max_iter=$CAP "$@"
+    --out "$OUT/$f.h5" --quiet --set run.max_iter=$CAP "${resume[@]}" "$@"
   echo "exit $?  $f"
 }
 
