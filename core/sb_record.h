@@ -128,6 +128,9 @@ typedef struct sb_record_summary {
     char build_id[64], cpu_model[128], started[32];
     char blas_core[64];        /* OpenBLAS kernel set; "unknown" in records written before it was kept */
     char reason_name[32];      /* sb_reason_name(reason) as recorded */
+    int resumes;               /* times the run was resumed (0 in records written before resumes existed) */
+    char resume_steps[256];    /* after which completed steps, "2,3" */
+    int resume_point;          /* a checkpoint: the completed step --resume continues after; -1 otherwise */
 } sb_record_summary;
 
 int  sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen);

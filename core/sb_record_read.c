@@ -117,6 +117,15 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
         snprintf(s->blas_core, sizeof s->blas_core, "unknown");
         if (!rc && H5Aexists(f, "blas_core") > 0) rc = sb_h5r_attr_str(&r, f, "blas_core", s->blas_core, sizeof s->blas_core);
         if (!rc) rc = sb_h5r_attr_str(&r, f, "started", s->started, sizeof s->started);
+        if (!rc && H5Aexists(f, "resumes") > 0) rc = sb_h5r_attr_int(&r, f, "resumes", &s->resumes);
+        if (!rc && H5Aexists(f, "resume_steps") > 0)
+            rc = sb_h5r_attr_str(&r, f, "resume_steps", s->resume_steps, sizeof s->resume_steps);
+        s->resume_point = -1;
+        hid_t gr = rc || H5Lexists(f, "/resume", H5P_DEFAULT) <= 0 ? -1 : H5Gopen2(f, "/resume", H5P_DEFAULT);
+        if (gr >= 0) {
+            rc = sb_h5r_attr_int(&r, gr, "step", &s->resume_point);
+            H5Gclose(gr);
+        }
     }
     if (!rc && (gs = H5Gopen2(f, "/stats", H5P_DEFAULT)) < 0) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "missing group", "/stats");
     if (!rc) rc = sb_h5r_attr_dbl(&r, gs, "work_assembly", &s->work_assembly);

@@ -102,7 +102,7 @@ static void csv_header(FILE *out)
     };
     for (size_t i = 0; i < sizeof cols / sizeof *cols; i++) csv_field(out, cols[i], i == 0);
     for (int e = 0; e < SB_EV_COUNT; e++) fprintf(out, ",seconds_%s", sb_event_name((sb_event)e));
-    fputs(",build_id,cpu_model,n_cores,blas_core,started,file\n", out);
+    fputs(",build_id,cpu_model,n_cores,blas_core,started,file,resumes,resume_steps,resume_point\n", out);
 }
 
 /* Numbers in CSV: %.9g; non-finite values as an empty field. */
@@ -140,6 +140,10 @@ static void csv_row(FILE *out, const sb_record_summary *s, const char *file)
     csv_field(out, s->blas_core, 0);
     csv_field(out, s->started, 0);
     csv_field(out, file, 0);
+    fprintf(out, ",%d", s->resumes);
+    csv_field(out, s->resume_steps, 0);
+    if (s->resume_point >= 0) fprintf(out, ",%d", s->resume_point);
+    else fputs(",", out);
     fputc('\n', out);
 }
 
