@@ -85,6 +85,12 @@ SB_TEST(stopped_and_resumed_run_equals_uninterrupted_run)
     outcome S1 = run(b, 0, 2, NULL, 8);
     CHECK_EQ_INT(S1.exit_code, SB_EXIT_STOPPED);
     CHECK_MSG(access(pb, R_OK) == 0 && access(b, F_OK) != 0, "stopped run: want %s and no record", pb);
+    sb_record_summary rs;
+    char msg[1024];
+    CHECK_EQ_INT(sb_record_read_summary(pb, &rs, msg, sizeof msg), SB_OK);
+    CHECK_MSG(rs.status == SB_STATUS_UNFINISHED && rs.resume_point == 2 && rs.steps == 2 && rs.resumes == 0,
+              "checkpoint: status %d, resume point %d, steps %d", rs.status, rs.resume_point, rs.steps);
+    sb_record_summary_free(&rs);
     outcome S2 = run(b, 1, 3, NULL, 8);                /* resume after step 2, stop after step 3 */
     CHECK_EQ_INT(S2.exit_code, SB_EXIT_STOPPED);
     outcome B = run(b, 1, 0, NULL, 8);                 /* resume after step 3 to the end */
@@ -105,7 +111,6 @@ SB_TEST(stopped_and_resumed_run_equals_uninterrupted_run)
     CHECK(strcmp(json_string_value(json_object_get(json_object_get(B.summary, "resumed"), "after_steps")), "2,3") == 0);
     CHECK_EQ_INT((int)num(A.summary, "resumed", "count"), 0);
     /* the records: history and final state bit for bit */
-    char msg[1024];
     sb_record_summary ra, rb;
     CHECK_EQ_INT(sb_record_read_summary(a, &ra, msg, sizeof msg), SB_OK);
     CHECK_EQ_INT(sb_record_read_summary(b, &rb, msg, sizeof msg), SB_OK);
@@ -127,6 +132,15 @@ SB_TEST(stopped_and_resumed_run_equals_uninterrupted_run)
     json_t *pa = json_object_get(json_object_get(A.summary, "probes"), "free_corner");
     json_t *pbj = json_object_get(json_object_get(B.summary, "probes"), "free_corner");
     CHECK(pa && json_equal(pa, pbj));
+    /* the report's CSV says so */
+    char *csv = NULL;
+    size_t csv_len = 0;
+    FILE *mem = open_memstream(&csv, &csv_len);
+    char *files[1] = { b };
+    CHECK(mem && sb_report(1, files, "csv", mem, NULL, msg, sizeof msg) == SB_OK);
+    if (mem) fclose(mem);
+    CHECK_MSG(csv && strstr(csv, ",resumes,resume_steps,resume_point\n") && strstr(csv, ",2,\"2,3\",\n"), "CSV: %s", csv ? csv : "");
+    free(csv);
     /* a resume of a recorded run does not run it again */
     struct stat before;
     CHECK(stat(b, &before) == 0);
