@@ -51,6 +51,18 @@ def ok(r):
     return r is not None and r["status_code"] == "0"
 
 
+def resumable(r):
+    """', resumable after step K' for a checkpoint with a resume point past the start (run --resume)"""
+    k = r.get("resume_point", "") if r else ""
+    return ", resumable after step %s" % k if k not in ("", "0") else ""
+
+
+def resumed(r):
+    """' (resumed after steps ...)' for a record made over several processes"""
+    n = r.get("resumes", "0") if r else "0"
+    return " (resumed after step%s %s)" % ("s" if "," in r["resume_steps"] else "", r["resume_steps"]) if n not in ("", "0") else ""
+
+
 def num(v, fmt="{:,.0f}"):
     return "—" if v is None else fmt.format(v)
 
@@ -187,8 +199,8 @@ def split_cell(name, r):
     if r is None or sp is None:
         return "not run"
     if unfinished(r):
-        return "— (unfinished at its last checkpoint, %s s: %s V-cycles, by top level %s)" % (
-            num(float(r["seconds"])), num(int(r["iterations"])), ", ".join(num(c) for c in by_level(name)))
+        return "— (unfinished at its last checkpoint, %s s: %s V-cycles, by top level %s%s)" % (
+            num(float(r["seconds"])), num(int(r["iterations"])), ", ".join(num(c) for c in by_level(name)), resumable(r))
     if not ok(r):
         return "— (%s)" % r["reason"] + cap_note(name)
     return ("%s + %s" % (num(sp[0]), num(sp[1])) if sp[1] else num(sp[0])) + cap_note(name)
@@ -706,11 +718,11 @@ def outcome(name):
     if ok(r):
         v = ("%s finest + %s coarser-top V-cycles" % (num(sp[0]), num(sp[1])) if sp[1]
              else "%s V-cycles" % num(sp[0]))
-        return "converges (%s, %s)" % (v, secs)
+        return "converges (%s, %s%s)" % (v, secs, resumed(r))
     bl = by_level(name)
     if unfinished(r):
-        return "had not finished at its last checkpoint (step %d, %s V-cycles by top level, coarsest first: %s; %s)" % (
-            int(r["steps"]) + 1, num(int(r["iterations"])), ", ".join(num(c) for c in bl), secs)
+        return "had not finished at its last checkpoint (step %d, %s V-cycles by top level, coarsest first: %s; %s%s)" % (
+            int(r["steps"]) + 1, num(int(r["iterations"])), ", ".join(num(c) for c in bl), secs, resumable(r))
     where = "; V-cycles by top level, coarsest first: %s" % ", ".join(num(c) for c in bl) if len(bl) > 1 else ""
     return "stops in step %s: %s%s (%s%s)" % (r["steps"], r["reason"], cap_note(name), secs, where)
 
