@@ -188,7 +188,8 @@ SB_TEST(test_csv_table)
     char *text = NULL, err[1024] = "";
     sb_report_options o = { "csv", NULL, NULL };
     CHECK_EQ_INT(report_to_string(3, S.files, &o, &text, err, sizeof err), SB_OK);
-    int expected_cols = 19 + SB_EV_COUNT + 6;   /* ... build_id, cpu_model, n_cores, blas_core, started, file */
+    int expected_cols = 19 + SB_EV_COUNT + 9;   /* ... build_id, cpu_model, n_cores, blas_core, started, file,
+                                                 resumes, resume_steps, resume_point */
     char f[64][128];
     int row = 0;
     for (char *line = text, *nl; line && *line; line = nl + 1, row++) {
@@ -208,7 +209,9 @@ SB_TEST(test_csv_table)
             CHECK_NEAR(atof(f[10]), 0.0425, 1e-12);
             CHECK(strcmp(f[14], "probes") == 0);
             CHECK_NEAR(atof(f[19 + SB_EV_FACTORIZE]), 0.125, 1e-12);
-            CHECK(strcmp(f[expected_cols - 1], S.paths[1]) == 0);
+            CHECK(strcmp(f[expected_cols - 4], S.paths[1]) == 0);
+            CHECK(strcmp(f[expected_cols - 3], "0") == 0);   /* resumes: a run never resumed */
+            CHECK(f[expected_cols - 1][0] == 0);              /* resume_point: only checkpoints */
         }
         if (row == 3) {
             CHECK(f[10][0] == 0);                 /* no error figure: empty field */
