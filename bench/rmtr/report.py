@@ -58,9 +58,12 @@ def resumable(r):
 
 
 def resumed(r):
-    """' (resumed after steps ...)' for a record made over several processes"""
+    """'; resumed after steps 1 and 3' for a record made over several processes"""
     n = r.get("resumes", "0") if r else "0"
-    return " (resumed after step%s %s)" % ("s" if "," in r["resume_steps"] else "", r["resume_steps"]) if n not in ("", "0") else ""
+    if n in ("", "0"):
+        return ""
+    st = r["resume_steps"].split(",")
+    return "; resumed after step%s %s" % ("s" if len(st) > 1 else "", " and ".join([", ".join(st[:-1]), st[-1]] if len(st) > 1 else st))
 
 
 def num(v, fmt="{:,.0f}"):
@@ -729,14 +732,14 @@ def outcome(name):
 
 for l, suffix, dofs in ((5, "", "13,467"), (6, "-gtol1e-6", "51,483")):
     names = [(c, "%s-%s-l%d%s" % (c, sc, l, suffix)) for sc in SCENES if sc != "trampoline"
-             for c in ("rmtrs", "rmtrd", "rmtrdL")]
+             for c in ("rmtrs", "rmtrd", "rmtrdL", "rmtrdR")]
     if not any(n in rows for _, n in names):
         continue
     print("* %d levels (%s dofs%s), the hard scenes; seconds as recorded (these runs shared the 2 cores with one" %
           (l, dofs, "; 48,411 on the re-entrant corner's notched cage" if l == 6 else ""))
     print("  other run):")
     label = {"rmtrs": "plain start (\"rtol 0.1\")", "rmtrd": "nested start (\"ours\")",
-             "rmtrdL": "nested start, own-h penalties"}
+             "rmtrdL": "nested start, own-h penalties", "rmtrdR": "nested start, own coarse radius"}
     for sc in SCENES:
         if sc == "trampoline":
             continue
