@@ -63,7 +63,9 @@ def resumed(r):
     if n in ("", "0"):
         return ""
     st = r["resume_steps"].split(",")
-    return "; resumed after step%s %s" % ("s" if len(st) > 1 else "", " and ".join([", ".join(st[:-1]), st[-1]] if len(st) > 1 else st))
+    if len(st) == 1:
+        return "; resumed after step " + st[0]
+    return "; resumed after steps %s and %s" % (", ".join(st[:-1]), st[-1])
 
 
 def num(v, fmt="{:,.0f}"):
@@ -524,7 +526,7 @@ def print_perf(perf, first):
     print("|---|--:|--:|--:|--:|---|--:|--:|--:|--:|--:|--:|--:|")
     for label, l, d, it, secs, wu, th, why, steps, ncg in perf:
         # growth against the same configuration at 4 levels (3,675 dofs; 3,483 on the notched cage)
-        base = next((p[4] for p in perf if str(p[1]) == "4" and p[0] == label), None)
+        base = next((p[4] for p in perf if p[1] == 4 and p[0] == label), None)
         spc = secs / it
         whole = steps.split("/")[0] == steps.split("/")[1]
         print("| %s | %s | %d | %s | %d | %s | %.2f | %.0f | %.3g | %s | %s | %.3g | %s |" % (
