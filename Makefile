@@ -11,18 +11,21 @@ PKGS    := hdf5-serial jansson gsl
 PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
+# core/ is the architecture, one folder per part (docs/architecture.md):
+# base -> scene -> problem (method + run) -> linalg -> solvers -> record -> report, cli
+CORE_DIRS := base scene problem linalg shell solvers record report cli
+CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
-           -Icore -I/usr/include/suitesparse $(PKGCF) $(SAN) -MMD -MP
+           $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) -MMD -MP
 CXXFLAGS ?= $(OPT) -g
-CXXFLAGS += -std=c++14 -Wall -Wextra -Icore $(SAN) -MMD -MP
+CXXFLAGS += -std=c++14 -Wall -Wextra $(CORE_INC) $(SAN) -MMD -MP
 LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -lstdc++ -lm
 LDFLAGS += $(SAN)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-LIB_C   := $(sort $(wildcard core/*.c core/shell/*.c core/solvers/*.c \
-             methods/*/*.c tests/fixture/*.c))
-LIB_C   := $(filter-out core/main.c,$(LIB_C))
+LIB_C   := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c) methods/*/*.c tests/fixture/*.c))
+LIB_C   := $(filter-out core/cli/main.c,$(LIB_C))
 LIB_CXX := $(sort $(wildcard methods/*/*.cpp))
 LIB_OBJ := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
 LIB     := $(BUILD)/libshellbench.a
@@ -61,8 +64,8 @@ $(BUILD)/build_id.h: FORCE | $(DEPS_STAMP)
 	@mkdir -p $(BUILD)
 	@echo '#define SB_BUILD_ID "$(BUILD_ID)"' > $@.new
 	@cmp -s $@.new $@ || mv $@.new $@; rm -f $@.new
-$(BUILD)/core/sb_sysinfo.o: $(BUILD)/build_id.h
-$(BUILD)/core/sb_sysinfo.o: CFLAGS += -include $(BUILD)/build_id.h
+$(BUILD)/core/base/sb_sysinfo.o: $(BUILD)/build_id.h
+$(BUILD)/core/base/sb_sysinfo.o: CFLAGS += -include $(BUILD)/build_id.h
 .PHONY: FORCE
 FORCE:
 
@@ -70,7 +73,7 @@ $(LIB): $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BIN): $(BUILD)/core/main.o $(LIB)
+$(BIN): $(BUILD)/core/cli/main.o $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 $(TEST_HELP_OBJ): $(BUILD)/tests/%.o: tests/%.c | $(DEPS_STAMP)

@@ -7,7 +7,7 @@
  * kernel_flops()) against the machine's nominal peak.
  *
  * usage: bench_shell [seconds_per_case]   (default 0.3) */
-#include "shell/sb_shell.h"
+#include "sb_shell.h"
 
 #include <math.h>
 #include <stdio.h>

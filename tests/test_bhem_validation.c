@@ -51,7 +51,7 @@ static double probe_field(json_t *o, const char *probe, const char *key)
 static void check_probe(sb_test_state *T, const char *scene, int res, const char *probe, double tol,
                         int n_sets, const char *const *sets)
 {
-    CHECK_MSG(sb_method_find("bhem") != NULL, "method bhem is not registered (core/sb_registry.c: &sb_method_bhem)");
+    CHECK_MSG(sb_method_find("bhem") != NULL, "method bhem is not registered (core/problem/sb_registry.c: &sb_method_bhem)");
     if (!sb_method_find("bhem")) return;
     int code;
     json_t *o = run_scene(T, scene, "lsnewton", res, n_sets, sets, &code);

@@ -5,7 +5,7 @@
 #include "sb_test.h"
 #include "sb_method.h"
 #include "sb_geometry.h"
-#include "shell/sb_material.h"
+#include "sb_material.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -2,7 +2,7 @@
  * values, finite-difference derivatives, small-strain stiffness, domain
  * guards, input validation, Gauss rules and the denim thickness-point study. */
 #include "sb_test.h"
-#include "shell/sb_material.h"
+#include "sb_material.h"
 #include "test_shell_bases.h"
 
 #include <math.h>

@@ -6,7 +6,7 @@
 #include "sb_context.h"
 #include "sb_run.h"
 #include "sb_solver.h"
-#include "solvers/sb_trs.h"
+#include "sb_trs.h"
 
 #include <jansson.h>
 #include <math.h>

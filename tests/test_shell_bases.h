@@ -6,7 +6,7 @@
 #ifndef TEST_SHELL_BASES_H
 #define TEST_SHELL_BASES_H
 
-#include "shell/sb_shell.h"
+#include "sb_shell.h"
 
 #include <math.h>
 #include <string.h>

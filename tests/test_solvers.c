@@ -2,7 +2,7 @@
  * minimizers, through the same code path as `shellbench run`. */
 #include "sb_test.h"
 #include "sb_run.h"
-#include "solvers/sb_trs.h"
+#include "sb_trs.h"
 
 #include <jansson.h>
 #include <stdlib.h>

@@ -3,7 +3,7 @@
 #include "sb_test.h"
 #include "sb_context.h"
 #include "sb_linsolve.h"
-#include "solvers/sb_schwarz.h"
+#include "sb_schwarz.h"
 #include "sb_galerkin.h"
 
 #include <stdlib.h>

@@ -14,7 +14,7 @@
 #include "sb_inspect.h"
 #include "sb_method.h"
 #include "sb_scene.h"
-#include "shell/sb_shell.h"
+#include "sb_shell.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -6,7 +6,7 @@
 #ifndef SB_MATERIAL_H
 #define SB_MATERIAL_H
 
-#include "../sb_scene.h"
+#include "sb_scene.h"
 
 typedef struct sb_material {
     sb_material_kind kind;

@@ -10,7 +10,7 @@
  * minimization can localize the strain into single elements.  This file
  * reports it; it changes nothing that a solver sees. */
 #include "sb_shell.h"
-#include "../sb_material_state.h"
+#include "sb_material_state.h"
 
 #include <math.h>
 #include <string.h>

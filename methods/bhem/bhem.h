@@ -27,7 +27,7 @@
 
 #include "sb_method.h"
 #include "sb_geometry.h"
-#include "shell/sb_shell.h"
+#include "sb_shell.h"
 
 #define BHEM_NQ1 4                  /* Gauss–Legendre points per direction (App. A) */
 #define BHEM_NQP (BHEM_NQ1 * BHEM_NQ1)

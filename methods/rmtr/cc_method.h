@@ -7,7 +7,7 @@
 #include "cc.h"
 #include "sb_method.h"
 #include "sb_geometry.h"
-#include "shell/sb_shell.h"
+#include "sb_shell.h"
 
 /* ---- quadrature (cc_quad.c) --------------------------------------------- */
 typedef struct cc_cfg {         /* basis tables of one face configuration (§6) */

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "sb_scene_json.h"
-#include "shell/sb_material.h"
+#include "sb_material.h"
 
 /* "k"/"d": an array of 4 numbers or an object with keys "1".."4". */
 static int parse_per_direction(sbj_ctx *c, const json_t *mat, const char *key, int integer,

@@ -102,7 +102,7 @@ typedef struct sb_method_type {
     void (*describe)(const void *state, char *buf, size_t len);
 } sb_method_type;
 
-/* registry (core/sb_registry.c) */
+/* registry (core/problem/sb_registry.c) */
 const sb_method_type *sb_method_find(const char *name);
 int sb_method_count(void);
 const sb_method_type *sb_method_at(int i);

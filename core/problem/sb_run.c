@@ -1,0 +1,439 @@
+/* sb_run.c — one run, end to end: scene -> method -> problem -> solver ->
+ * record (sb_run.h).  sb_run_execute() runs its phases in order, each a
+ * function of its own:
+ *
+ *   resolve_request   scene, method, solver, parameters; refuse what cannot work
+ *   prepare_run       method -> problem -> solver, work vectors, record identity
+ *   prepare_output    where the record and its checkpoint go
+ *   start_or_resume   step 1, a checkpoint's last completed step, or nothing to do
+ *   run_steps         the time / load steps
+ *   finish_run        probes, samples, error, material, record, summary
+ *
+ * A phase returns RUN_GO_ON to continue or the exit code to stop with.  All
+ * statistics come from the core wrappers (sb_problem.c). */
+#include "sb_run_state.h"
+#include "sb_sysinfo.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+enum { RUN_GO_ON = -1 };
+
+static void run_cleanup(run_state *R)
+{
+    if (R->ss_allocated) R->stype->free(R->ss);
+    free(R->ss);
+    sb_problem_free(R->prob);
+    if (R->ms_created) R->mt->destroy(R->ms);
+    free(R->ms);
+    free(R->x); free(R->xn); free(R->v); free(R->xref);
+    sb_resume_point_free(&R->bp);
+    free(R->rec.probe_traj); free(R->rec.probe_expected); free(R->rec.probe_rel_error);
+    free(R->rec.sample_st); free(R->rec.sample_ref); free(R->rec.sample_pos); free(R->rec.tris);
+    free(R->probe_names);
+    if (R->scene_loaded) sb_scene_free(&R->scene);
+    sb_context_free(&R->ctx);
+}
+
+static int mkdir_p(const char *path)
+{
+    char tmp[1024];
+    snprintf(tmp, sizeof tmp, "%s", path);
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
+            *p = '/';
+        }
+    return 0;
+}
+
+/* run.perturb: each dof of the start gets an offset uniform in [-a, a], from
+ * a SplitMix64 stream seeded by run.seed (Steele, Lea & Flood 2014; local
+ * state, so runs with the same seed are bit-identical).  Round-off-sized
+ * offsets sample how much a count on a nonconvex scene owes to round-off. */
+static void perturb_start(int n, double *x, double a, unsigned long long seed)
+{
+    if (!(a > 0)) return;
+    unsigned long long z = seed;
+    for (int i = 0; i < n; i++) {
+        z += 0x9E3779B97F4A7C15ull;
+        unsigned long long w = z;
+        w = (w ^ (w >> 30)) * 0xBF58476D1CE4E5B9ull;
+        w = (w ^ (w >> 27)) * 0x94D049BB133111EBull;
+        w ^= w >> 31;
+        double u = (double)(w >> 11) * 0x1.0p-53;        /* uniform in [0, 1) */
+        x[i] += a * (2.0 * u - 1.0);
+    }
+}
+
+
+/* Scene, method and solver, whether they fit together, and the parameters. */
+static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
+{
+    FILE *err = R->err;
+    char path[1024], msg[2048];
+    if (sb_scene_resolve(req->scene, path, sizeof path)) {
+        fprintf(err, "shellbench: scene \"%s\" not found (neither a file nor a name in bench/scenes; try `shellbench list scenes`)\n", req->scene);
+        return SB_EXIT_INPUT;
+    }
+    if (sb_scene_load(path, &R->scene, msg, sizeof msg)) {
+        fprintf(err, "%s\n", msg);
+        return SB_EXIT_INPUT;
+    }
+    R->scene_loaded = 1;
+
+    R->mt = sb_method_find(req->method);
+    R->stype = sb_solver_find(req->solver);
+    if (!R->mt || !R->stype) {
+        fprintf(err, "shellbench: unknown %s \"%s\" (see `shellbench list %s`)\n", !R->mt ? "method" : "solver",
+                !R->mt ? req->method : req->solver, !R->mt ? "methods" : "solvers");
+        return SB_EXIT_INPUT;
+    }
+    *levels = req->levels > 0 ? req->levels : 1;
+    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
+        fprintf(err, "shellbench: solver %s needs a level hierarchy (prolongation, restriction, projection), "
+                     "but method %s provides none\n", R->stype->name, R->mt->name);
+        return SB_EXIT_INPUT;
+    }
+    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && *levels < 2) {
+        fprintf(err, "shellbench: solver %s needs at least 2 levels, but --levels is %d\n", R->stype->name, *levels);
+        return SB_EXIT_INPUT;
+    }
+    if (*levels > 1 && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
+        fprintf(err, "shellbench: --levels %d asks for a hierarchy, but method %s has none\n", *levels, R->mt->name);
+        return SB_EXIT_INPUT;
+    }
+    if (*levels > SB_MAX_LEVELS || req->res < 0) {
+        fprintf(err, "shellbench: --levels must be in [1, %d] and --res >= 0\n", SB_MAX_LEVELS);
+        return SB_EXIT_INPUT;
+    }
+    if (!(R->mt->flags & SB_METHOD_POTENTIAL) && !(R->stype->flags & SB_SOLVER_SINGLE_STEP)) {
+        fprintf(err, "shellbench: method %s has no energy potential (lagged forces); solver %s needs one: use linearized\n",
+                R->mt->name, R->stype->name);
+        return SB_EXIT_INPUT;
+    }
+
+    /* parameters: declared tables, then overrides */
+    sb_paramset *ps = &R->ctx.params;
+    if (sb_paramset_add(ps, "run", sb_solve_params) || sb_paramset_add(ps, "solver", R->stype->params) ||
+        sb_paramset_add(ps, "method", R->mt->params)) {
+        fprintf(err, "shellbench: internal error: too many parameters\n");
+        return SB_EXIT_INTERNAL;
+    }
+    for (int i = 0; i < req->n_sets; i++)
+        if (sb_paramset_set(ps, req->sets[i], msg, sizeof msg)) {
+            fprintf(err, "shellbench: %s\n", msg);
+            return SB_EXIT_INPUT;
+        }
+    return RUN_GO_ON;
+}
+
+/* The record's identity: what ran, where, with which build. */
+static void record_identity(run_state *R, const sb_run_request *req)
+{
+    const sb_scene *sc = &R->scene;
+    sb_run *rec = &R->rec;
+    snprintf(rec->scene_name, sizeof rec->scene_name, "%s", sc->name);
+    snprintf(rec->scene_path, sizeof rec->scene_path, "%s", sc->path);
+    rec->scene_json = sc->json_text;
+    snprintf(rec->method, sizeof rec->method, "%s", R->mt->name);
+    snprintf(rec->solver, sizeof rec->solver, "%s", R->stype->name);
+    if (R->mt->describe) R->mt->describe(R->ms, rec->method_info, sizeof rec->method_info);
+    if (R->stype->describe) R->stype->describe(R->ss, rec->solver_info, sizeof rec->solver_info);
+    rec->res = req->res;
+    rec->levels = sb_problem_levels(R->prob);
+    rec->n_dofs = R->rec.n_x;
+    rec->params = &R->ctx.params;
+    sb_sysinfo_build_id(rec->build_id, sizeof rec->build_id);
+    sb_sysinfo_cpu_model(rec->cpu_model, sizeof rec->cpu_model);
+    rec->n_cores = sb_sysinfo_cores();
+    sb_sysinfo_now_iso(rec->started, sizeof rec->started);
+    rec->steps_planned = sc->time.steps;
+    rec->stats = &R->ctx.stats;
+    rec->n_probes = R->mt->eval_points ? sc->n_probes : 0;
+    rec->probe_names = R->probe_names;
+    for (int p = 0; p < sc->n_probes; p++) {
+        snprintf(R->probe_names[p], SB_NAME_LEN, "%s", sc->probes[p].name);
+        for (int k = 0; k < 3; k++)
+            rec->probe_expected[3 * p + k] = sc->probes[p].has_expected &&
+                (sc->probes[p].expected_component < 0 || k == 0) ? sc->probes[p].expected[k] : NAN;
+        rec->probe_rel_error[p] = NAN;
+    }
+    rec->x_final = R->x;
+}
+
+/* method -> problem -> solver, the work vectors, the record's identity and
+ * the reference state (probes, sample grid), then run.perturb's start. */
+static int prepare_run(run_state *R, const sb_run_request *req, int levels)
+{
+    FILE *err = R->err;
+    sb_paramset *ps = &R->ctx.params;
+    int rc;
+    R->ms = calloc(1, R->mt->state_size);
+    if (!R->ms) goto nomem;
+    sb_method_config cfg = { req->res, levels, ps, &R->ctx };
+    rc = R->mt->create(R->ms, &R->scene, &cfg);
+    R->ms_created = 1;
+    if (rc) {
+        fprintf(err, "shellbench: method %s on scene %s: %s\n", R->mt->name, R->scene.name,
+                R->ctx.err[0] ? R->ctx.err : "set-up failed");
+        return rc == SB_ERR_INPUT || rc == SB_ERR_UNSUPPORTED ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
+    }
+    rc = sb_problem_create(&R->ctx, R->mt, R->ms, &R->scene, &R->prob);
+    if (rc) {
+        fprintf(err, "shellbench: %s\n", R->ctx.err);
+        return rc == SB_ERR_UNSUPPORTED || rc == SB_ERR_INPUT ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
+    }
+    R->ss = calloc(1, R->stype->state_size);
+    if (!R->ss) goto nomem;
+    rc = R->stype->alloc(R->ss, R->prob, ps);
+    R->ss_allocated = 1;
+    if (rc) {
+        fprintf(err, "shellbench: solver %s: %s\n", R->stype->name, R->ctx.err[0] ? R->ctx.err : "allocation failed");
+        return rc == SB_ERR_UNSUPPORTED || rc == SB_ERR_INPUT ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
+    }
+
+    const int F = sb_problem_finest(R->prob), n = sb_problem_n(R->prob, F);
+    const sb_scene *sc = &R->scene;
+    const size_t np = (size_t)(sc->n_probes ? sc->n_probes : 1);
+    R->x = malloc((size_t)n * sizeof(double));
+    R->xn = malloc((size_t)n * sizeof(double));
+    R->v = calloc((size_t)n, sizeof(double));
+    R->xref = malloc((size_t)n * sizeof(double));
+    R->bp.x = malloc((size_t)n * sizeof(double));
+    R->bp.v = malloc((size_t)n * sizeof(double));
+    R->rec.probe_traj = calloc(((size_t)sc->time.steps + 1) * np * 3, sizeof(double));
+    R->rec.probe_expected = malloc(np * 3 * sizeof(double));
+    R->rec.probe_rel_error = malloc(np * sizeof(double));
+    R->probe_names = calloc(np, sizeof *R->probe_names);
+    if (!R->x || !R->xn || !R->v || !R->xref || !R->bp.x || !R->bp.v || !R->rec.probe_traj || !R->rec.probe_expected ||
+        !R->rec.probe_rel_error || !R->probe_names || sb_run_build_samples(R))
+        goto nomem;
+    R->mt->initial(R->ms, F, R->x);
+    sb_copy(n, R->x, R->xref);
+    R->rec.n_x = n;
+    record_identity(R, req);
+    sb_run *rec = &R->rec;
+    if (R->mt->eval_points) {
+        if (sb_run_record_probes(R, 0) ||
+            R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_ref)) {
+            fprintf(err, "shellbench: method %s cannot evaluate the probes / sample grid of scene %s\n", R->mt->name, sc->name);
+            return SB_EXIT_INTERNAL;
+        }
+    } else {
+        rec->n_samples = 0;
+        rec->n_tris = 0;
+    }
+    /* run.perturb: the start, perturbed (the reference state, probes and
+     * sample grid above are the unperturbed ones) */
+    perturb_start(n, R->x, sb_param(ps, "run.perturb"), (unsigned long long)sb_param_int(ps, "run.seed"));
+    return RUN_GO_ON;
+nomem:
+    fprintf(err, "shellbench: out of memory\n");
+    return SB_EXIT_INTERNAL;
+}
+
+/* Where the record goes (*out_path, NULL for --out none): its directory is
+ * made now, so that a run that cannot be recorded fails before it computes
+ * anything; the checkpoint monitor is installed when checkpoints are on. */
+static int prepare_output(run_state *R, const sb_run_request *req, const char **out_path, char *auto_path, size_t len)
+{
+    FILE *err = R->err;
+    const sb_scene *sc = &R->scene;
+    *out_path = NULL;
+    if (!req->out) {
+        snprintf(auto_path, len, "results/runs/%s-%s-%s-r%d-l%d.h5", sc->name, R->mt->name, R->stype->name,
+                 req->res, R->rec.levels);
+        *out_path = auto_path;
+    } else if (strcmp(req->out, "none") != 0) {
+        *out_path = req->out;
+    }
+    if (!*out_path && (req->resume || req->stop_after_steps > 0)) {
+        fprintf(err, "shellbench: %s needs a record path (--out), not --out none\n",
+                req->resume ? "--resume" : "--stop-after-steps");
+        return SB_EXIT_INPUT;
+    }
+    if (*out_path && mkdir_p(*out_path)) {
+        fprintf(err, "shellbench: cannot create the directory of %s: %s\n", *out_path, strerror(errno));
+        return SB_EXIT_INPUT;
+    }
+    R->checkpoint_every = sb_param(&R->ctx.params, "run.checkpoint");
+    if (*out_path && sb_run_partial_path(*out_path, R->partial_path, sizeof R->partial_path)) R->partial_path[0] = 0;
+    if (R->partial_path[0] && R->checkpoint_every > 0) {
+        R->checkpoint_last = sb_now();
+        R->ctx.monitor = sb_run_checkpoint_monitor;
+        R->ctx.monitor_data = R;
+    }
+    return RUN_GO_ON;
+}
+
+/* The first step to run: 1, or (--resume) the one after the checkpoint's
+ * last completed step.  A finished record means nothing to do: its status
+ * is the exit code. */
+static int start_or_resume(run_state *R, const sb_run_request *req, const char *out_path, int *first_step)
+{
+    FILE *err = R->err;
+    char msg[2048];
+    R->rec.status = 0;
+    sb_run_mark_boundary(R, 0);
+    *first_step = 1;
+    if (!req->resume) return RUN_GO_ON;
+    if (access(out_path, F_OK) == 0) {
+        sb_record_summary done_s;
+        if (sb_record_read_summary(out_path, &done_s, msg, sizeof msg) == SB_OK) {
+            if (!req->quiet) fprintf(err, "shellbench: %s is already recorded (%s): nothing to resume\n", out_path, done_s.reason_name);
+            int code = done_s.status == 0 ? SB_EXIT_CONVERGED : SB_EXIT_NOT_CONVERGED;
+            sb_record_summary_free(&done_s);
+            return code;
+        }
+        fprintf(err, "shellbench: warning: %s exists but is no readable record (%s): running again\n", out_path, msg);
+    }
+    int k = sb_run_resume(R, req->quiet);
+    if (k < 0) return SB_EXIT_INPUT;
+    *first_step = k + 1;
+    return RUN_GO_ON;
+}
+
+/* The time / load steps from first_step on; stops at the first step that
+ * does not converge (recorded) or after --stop-after-steps. */
+static int run_steps(run_state *R, const sb_run_request *req, int first_step)
+{
+    FILE *err = R->err;
+    const sb_scene *sc = &R->scene;
+    const sb_paramset *ps = &R->ctx.params;
+    sb_stats *stats = &R->ctx.stats;
+    sb_run *rec = &R->rec;
+    const int F = sb_problem_finest(R->prob), n = sb_problem_n(R->prob, F);
+    for (int step = first_step; step <= sc->time.steps; step++) {
+        double t0 = sb_now();
+        double wa0 = stats->work_assembly, wq0 = stats->work_qp;
+        sb_step_info si;
+        sb_run_step_info(sc, step, &si);
+        sb_copy(n, R->x, R->xn);
+        int rc = sb_problem_begin_step(R->prob, &si, R->xn, R->v, R->x);
+        if (rc < 0) {
+            fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+            return SB_EXIT_INTERNAL;
+        }
+        /* lifting of boundary motion; not for the single-step solver, which is
+         * by definition one Newton step from x_n */
+        if (sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
+            (rc = sb_problem_lift(R->prob, R->xn, R->x)) < 0) {
+            fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+            return SB_EXIT_INTERNAL;
+        }
+        int iters = 0;
+        double f = 0, gn = 0;
+        sb_reason reason = sb_solve_step(R->stype, R->ss, R->prob, ps, step, R->x, &iters, &f, &gn);
+        if (sc->time.mode == SB_TIME_DYNAMIC)
+            for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
+        double tr0 = sb_now();
+        sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0 };
+        sr.seconds = tr0 - t0;
+        sb_stats_push_step(stats, &sr);
+        rec->steps_done = step;
+        if (R->mt->eval_points) sb_run_record_probes(R, step);
+        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
+        if (!req->quiet)
+            fprintf(err, "step %d/%d: %s after %d iterations, f = %.10g, |g| = %.3g (%.3f s)\n", step, sc->time.steps,
+                    sb_reason_name(reason), iters, f, gn, sr.seconds);
+        rec->reason = reason;
+        if (!sb_reason_converged(reason)) {
+            rec->status = 1;
+            break;
+        }
+        /* a resume point; written at once when the last checkpoint is a
+         * tenth of run.checkpoint old, so a long step is never lost to a kill */
+        sb_run_mark_boundary(R, step);
+        if (req->stop_after_steps == step && step < sc->time.steps) {
+            sb_run_write_checkpoint(R);
+            if (R->checkpoint_failed) return SB_EXIT_INTERNAL;
+            if (!req->quiet)
+                fprintf(err, "shellbench: stopped after step %d of %d as asked; checkpoint %s (continue with --resume)\n",
+                        step, sc->time.steps, R->partial_path);
+            return SB_EXIT_STOPPED;
+        }
+        if (R->ctx.monitor && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every)
+            sb_run_write_checkpoint(R);
+    }
+    stats->seconds_total = sb_now() - R->t_start;
+    return RUN_GO_ON;
+}
+
+/* Probes, samples, error and material of the final state; the record (its
+ * checkpoint removed once it is in place) and the summary. */
+static int finish_run(run_state *R, const sb_run_request *req, const char *out_path, FILE *out, char **summary)
+{
+    FILE *err = R->err;
+    const sb_scene *sc = &R->scene;
+    sb_stats *stats = &R->ctx.stats;
+    sb_run *rec = &R->rec;
+    const int F = sb_problem_finest(R->prob);
+    char msg[2048];
+    double tr0 = sb_now();
+    if (R->mt->eval_points) {
+        R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
+        for (int p = 0; p < rec->n_probes; p++) {
+            const double *pos = rec->probe_traj + ((size_t)rec->steps_done * rec->n_probes + p) * 3;
+            const double *ref = rec->probe_traj + (size_t)p * 3;
+            double u[3] = { pos[0] - ref[0], pos[1] - ref[1], pos[2] - ref[2] };
+            rec->probe_rel_error[p] = sb_run_probe_rel_error(&sc->probes[p], u);
+        }
+    }
+    sb_run_compute_error(R, err);
+    sb_run_record_material(R);
+    if (out_path) {
+        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
+        stats->seconds_total = sb_now() - R->t_start;
+        double tw0 = sb_now();
+        if (sb_record_write(rec, out_path, msg, sizeof msg)) {
+            fprintf(err, "shellbench: %s\n", msg);
+            return SB_EXIT_INPUT;
+        }
+        sb_run_remove_partial(R);   /* the record is in place: the checkpoint has served */
+        /* the file cannot hold its own write time: the summary does */
+        sb_stats_event(stats, F, SB_EV_RECORD, tw0);
+        stats->seconds_total = sb_now() - R->t_start;
+    } else {
+        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
+        stats->seconds_total = sb_now() - R->t_start;
+    }
+    char *js = sb_run_summary_json(R, out_path);
+    if (req->summary_json && js) fprintf(out, "%s\n", js);
+    if (summary) *summary = js;
+    else free(js);
+    if (!req->quiet && !req->summary_json)
+        fprintf(err, "%s/%s/%s: %s (%s), %ld dofs, %d of %d steps, %.3f s%s%s\n", sc->name, R->mt->name, R->stype->name,
+                rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason), rec->n_dofs,
+                rec->steps_done, rec->steps_planned, stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
+    return rec->status ? SB_EXIT_NOT_CONVERGED : SB_EXIT_CONVERGED;
+}
+
+int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summary)
+{
+    if (summary) *summary = NULL;
+    run_state *R = calloc(1, sizeof *R);
+    if (!R) { fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
+    if (sb_context_init(&R->ctx)) { free(R); fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
+    R->err = err;
+    R->t_start = sb_now();
+    R->n_grid = req->sample_n > 1 ? req->sample_n : 21;
+
+    int levels = 1, first_step = 1, code;
+    const char *out_path = NULL;
+    char auto_path[1024];
+    if ((code = resolve_request(R, req, &levels)) == RUN_GO_ON &&
+        (code = prepare_run(R, req, levels)) == RUN_GO_ON &&
+        (code = prepare_output(R, req, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
+        (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
+        (code = run_steps(R, req, first_step)) == RUN_GO_ON)
+        code = finish_run(R, req, out_path, out, summary);
+    run_cleanup(R);
+    free(R);
+    return code;
+}

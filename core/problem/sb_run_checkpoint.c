@@ -1,0 +1,150 @@
+/* sb_run_checkpoint.c — checkpoints of a run under way (OUT.partial), the
+ * resume point at each step boundary, and --resume (sb_run_state.h). */
+#include "sb_run_state.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* The path of a run's checkpoint: OUT.partial (its XDMF sidecar
+ * OUT.partial.xdmf), so that globs for *.h5 and a sweep's resume never take
+ * it for a finished record. */
+int sb_run_partial_path(const char *out_path, char *buf, size_t len)
+{
+    return snprintf(buf, len, "%s.partial", out_path) >= (int)len ? -1 : 0;
+}
+
+/* Once the record is written, its checkpoint (this run's, or a stale one of
+ * an earlier interrupted run to the same path) has served. */
+void sb_run_remove_partial(run_state *R)
+{
+    char x[1200];
+    if (!R->partial_path[0]) return;
+    unlink(R->partial_path);
+    if (sb_record_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
+}
+
+/* Write the record so far (steps done, the iteration history including the
+ * current step's, x and the sample positions now) as a checkpoint with
+ * status SB_STATUS_UNFINISHED.  A failed write is a warning, once, and ends
+ * the checkpoints; it never stops the run. */
+void sb_run_write_checkpoint(run_state *R)
+{
+    sb_run *rec = &R->rec;
+    sb_stats *stats = &R->ctx.stats;
+    const int F = sb_problem_finest(R->prob);
+    double t0 = sb_now();
+    const int status = rec->status, reason = rec->reason;
+    rec->status = SB_STATUS_UNFINISHED;
+    rec->reason = SB_REASON_CHECKPOINT;
+    rec->resume = &R->bp;
+    if (R->mt->eval_points)
+        R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
+    sb_run_record_material(R);
+    stats->seconds_total = t0 - R->t_start;
+    char msg[2048];
+    if (sb_record_write(rec, R->partial_path, msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: warning: no more checkpoints: %s\n", msg);
+        R->checkpoint_failed = 1;
+    }
+    rec->status = status;
+    rec->reason = reason;
+    rec->resume = NULL;
+    sb_stats_event(stats, F, SB_EV_RECORD, t0);
+    R->checkpoint_last = sb_now();
+}
+
+/* The end of step `step` (0: the start) as the resume point: x, v and a
+ * snapshot of the statistics (history pointers left out: the boundary is
+ * n_iters / n_steps records into the live history). */
+void sb_run_mark_boundary(run_state *R, int step)
+{
+    sb_resume_point *b = &R->bp;
+    b->step = step;
+    b->n_x = R->rec.n_x;
+    sb_copy(b->n_x, R->x, b->x);
+    sb_copy(b->n_x, R->v, b->v);
+    b->stats = R->ctx.stats;
+    b->stats.iters = NULL;
+    b->stats.steps = NULL;
+    b->stats.cap_iters = b->stats.cap_steps = 0;
+    b->seconds = sb_now() - R->t_start;
+}
+
+/* "a,b" + ",c" into a fixed buffer (kept whole or left as it was) */
+static void list_append(char *buf, size_t len, const char *item)
+{
+    size_t u = strlen(buf);
+    if (u + strlen(item) + 2 <= len) snprintf(buf + u, len - u, "%s%s", u ? "," : "", item);
+}
+
+/* --resume: continue from the resume point of OUT.partial.  No checkpoint:
+ * the run starts at step 1 (0).  A checkpoint of another run, or an
+ * unreadable one, is an input error (-1) and stays untouched.  Statistics
+ * become the checkpoint's at its boundary (set-up of this process is in
+ * the resume log, not in the event counts, so the counts equal those of an
+ * uninterrupted run); seconds_total goes on from the boundary. */
+int sb_run_resume(run_state *R, int quiet)
+{
+    sb_run *rec = &R->rec;
+    if (access(R->partial_path, F_OK) != 0) {
+        if (!quiet) fprintf(R->err, "shellbench: no checkpoint %s: starting at step 1\n", R->partial_path);
+        return 0;
+    }
+    sb_resume_point rp;
+    sb_resume_log log;
+    double ck_seconds = 0, setup = sb_now() - R->t_start;
+    char ck_build[64] = "", msg[2048];
+    if (sb_record_read_resume(R->partial_path, rec, &rp, &ck_seconds, ck_build, sizeof ck_build, &log, rec->probe_traj,
+                              msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: %s\n", msg);
+        return -1;
+    }
+    sb_stats *st = &R->ctx.stats;
+    memcpy(st->ev, rp.stats.ev, sizeof st->ev);
+    st->work_assembly = rp.stats.work_assembly;
+    st->work_qp = rp.stats.work_qp;
+    st->not_posdef = rp.stats.not_posdef;
+    st->n_iters = st->n_steps = 0;
+    int bad = 0;
+    for (size_t i = 0; i < rp.stats.n_iters && !bad; i++) bad = sb_stats_push_iter(st, &rp.stats.iters[i]);
+    for (size_t i = 0; i < rp.stats.n_steps && !bad; i++) bad = sb_stats_push_step(st, &rp.stats.steps[i]);
+    if (bad) {
+        sb_resume_point_free(&rp);
+        fprintf(R->err, "shellbench: out of memory\n");
+        return -1;
+    }
+    sb_copy(rp.n_x, rp.x, R->x);
+    sb_copy(rp.n_x, rp.v, R->v);
+    rec->steps_done = rp.step;
+    rec->reason = rp.step > 0 ? rp.stats.steps[rp.step - 1].reason : SB_REASON_NONE;
+    char item[32];
+    snprintf(item, sizeof item, "%d", rp.step);
+    rec->resumed = log;
+    rec->resumed.count++;
+    list_append(rec->resumed.steps, sizeof rec->resumed.steps, item);
+    rec->resumed.setup_seconds += setup;
+    rec->resumed.lost_seconds += fmax(ck_seconds - rp.seconds, 0.0);
+    if (strcmp(ck_build, rec->build_id) && !strstr(rec->resumed.builds, ck_build)) {
+        list_append(rec->resumed.builds, sizeof rec->resumed.builds, ck_build);
+        fprintf(R->err, "shellbench: warning: resuming a checkpoint of build %s with build %s (recorded in resume_builds)\n",
+                ck_build, rec->build_id);
+    }
+    R->t_start -= rp.seconds;   /* seconds_total: the boundary's, then this process's */
+    if (!quiet)
+        fprintf(R->err, "shellbench: resuming %s after step %d of %d (%ld iterations recorded)\n", R->partial_path,
+                rp.step, rec->steps_planned, (long)rp.stats.n_iters);
+    sb_resume_point_free(&rp);
+    sb_run_mark_boundary(R, rec->steps_done);
+    return rec->steps_done;
+}
+
+/* sb_context.monitor: after every iteration of the outer loop */
+void sb_run_checkpoint_monitor(void *data, const sb_iter_record *r)
+{
+    (void)r;
+    run_state *R = data;
+    if (!R->checkpoint_failed && sb_now() - R->checkpoint_last >= R->checkpoint_every) sb_run_write_checkpoint(R);
+}
+

@@ -1,0 +1,240 @@
+/* sb_run_results.c — what a run reports besides its iterations: the sample
+ * grid, probes, the error against the scene's reference, the material state
+ * and the JSON summary (sb_run_state.h). */
+#include "sb_run_state.h"
+#include "sb_geometry.h"
+
+#include <jansson.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Sample grid (n x n in (s,t), points inside the domain) and its triangles. */
+int sb_run_build_samples(run_state *R)
+{
+    const int n = R->n_grid;
+    int *idx = malloc((size_t)n * n * sizeof *idx);
+    R->rec.sample_st = malloc((size_t)n * n * 2 * sizeof(double));
+    R->rec.tris = malloc((size_t)(n - 1) * (n - 1) * 6 * sizeof(int));
+    if (!idx || !R->rec.sample_st || !R->rec.tris) { free(idx); return SB_ERR_NOMEM; }
+    int m = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double s = (double)i / (n - 1), t = (double)j / (n - 1);
+            idx[j * n + i] = -1;
+            if (!sb_domain_contains_st(&R->scene.domain, s, t)) continue;
+            R->rec.sample_st[2 * m] = s;
+            R->rec.sample_st[2 * m + 1] = t;
+            idx[j * n + i] = m++;
+        }
+    int nt = 0;
+    for (int j = 0; j + 1 < n; j++)
+        for (int i = 0; i + 1 < n; i++) {
+            int a = idx[j * n + i], b = idx[j * n + i + 1], c = idx[(j + 1) * n + i], d = idx[(j + 1) * n + i + 1];
+            if (a < 0 || b < 0 || c < 0 || d < 0) continue;
+            /* skip cells whose centre is outside (L-shape notch) */
+            if (!sb_domain_contains_st(&R->scene.domain, (i + 0.5) / (n - 1), (j + 0.5) / (n - 1))) continue;
+            int *T = R->rec.tris + 3 * nt;
+            T[0] = a; T[1] = b; T[2] = d; T[3] = a; T[4] = d; T[5] = c;
+            nt += 2;
+        }
+    free(idx);
+    R->rec.n_samples = m;
+    R->rec.n_tris = nt;
+    R->rec.sample_ref = malloc((size_t)(m ? m : 1) * 3 * sizeof(double));
+    R->rec.sample_pos = malloc((size_t)(m ? m : 1) * 3 * sizeof(double));
+    return R->rec.sample_ref && R->rec.sample_pos ? SB_OK : SB_ERR_NOMEM;
+}
+
+void sb_run_step_info(const sb_scene *sc, int step, sb_step_info *si)
+{
+    memset(si, 0, sizeof *si);
+    si->step = step;
+    si->n_steps = sc->time.steps;
+    si->dt = sc->time.mode == SB_TIME_DYNAMIC ? sc->time.dt : 0.0;
+    si->t = sc->time.mode == SB_TIME_DYNAMIC ? step * sc->time.dt : (double)step;
+    for (int i = 0; i < sc->n_loads; i++) si->load_factor[i] = sb_load_factor(sc, &sc->loads[i], step);
+    for (int i = 0; i < sc->n_bcs; i++) si->motion_factor[i] = sb_bc_motion_factor(sc, &sc->bcs[i], step);
+}
+
+double sb_run_probe_rel_error(const sb_probe *p, const double u[3])
+{
+    if (!p->has_expected) return NAN;
+    if (p->expected_component < 0) {
+        double num = 0, den = 0;
+        for (int k = 0; k < 3; k++) {
+            num += (u[k] - p->expected[k]) * (u[k] - p->expected[k]);
+            den += p->expected[k] * p->expected[k];
+        }
+        return sqrt(num) / fmax(sqrt(den), 1e-300);
+    }
+    double val = p->expected_component == 3 ? sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) : u[p->expected_component];
+    return fabs(val - p->expected[0]) / fmax(fabs(p->expected[0]), 1e-300);
+}
+
+int sb_run_record_probes(run_state *R, int step_slot)
+{
+    const sb_scene *sc = &R->scene;
+    if (!sc->n_probes || !R->mt->eval_points) return SB_OK;
+    double st[2 * SB_SCENE_MAX_PROBES];
+    for (int p = 0; p < sc->n_probes; p++) { st[2 * p] = sc->probes[p].st[0]; st[2 * p + 1] = sc->probes[p].st[1]; }
+    int F = sb_problem_finest(R->prob);
+    return R->mt->eval_points(R->ms, F, R->x, sc->n_probes, st, R->rec.probe_traj + (size_t)step_slot * sc->n_probes * 3);
+}
+
+static void json_set_num(json_t *o, const char *k, double v)
+{
+    json_object_set_new(o, k, isfinite(v) ? json_real(v) : json_null());
+}
+
+char *sb_run_summary_json(run_state *R, const char *out_path)
+{
+    const sb_stats *st = &R->ctx.stats;
+    json_t *o = json_object();
+    json_object_set_new(o, "scene", json_string(R->scene.name));
+    json_object_set_new(o, "method", json_string(R->mt->name));
+    json_object_set_new(o, "solver", json_string(R->stype->name));
+    json_object_set_new(o, "method_info", json_string(R->rec.method_info));
+    if (R->rec.solver_info[0]) json_object_set_new(o, "solver_info", json_string(R->rec.solver_info));
+    json_object_set_new(o, "dofs", json_integer(R->rec.n_dofs));
+    json_object_set_new(o, "levels", json_integer(R->rec.levels));
+    json_object_set_new(o, "res", json_integer(R->rec.res));
+    json_object_set_new(o, "steps", json_integer(R->rec.steps_done));
+    json_object_set_new(o, "steps_planned", json_integer(R->rec.steps_planned));
+    json_object_set_new(o, "status", json_string(R->rec.status == 0 ? "converged" : "not_converged"));
+    json_object_set_new(o, "reason", json_string(sb_reason_name((sb_reason)R->rec.reason)));
+    long iters = 0;
+    for (size_t i = 0; i < st->n_steps; i++) iters += st->steps[i].iterations;
+    json_object_set_new(o, "iterations", json_integer(iters));
+    if (st->n_steps) {
+        json_set_num(o, "f", st->steps[st->n_steps - 1].f);
+        json_set_num(o, "gnorm", st->steps[st->n_steps - 1].gnorm);
+    }
+    json_t *wu = json_object();
+    json_set_num(wu, "assembly", st->work_assembly);
+    json_set_num(wu, "qp", st->work_qp);
+    json_object_set_new(o, "work_units", wu);
+    json_t *sec = json_object();
+    json_set_num(sec, "total", st->seconds_total);
+    for (int e = 0; e < SB_EV_COUNT; e++) json_set_num(sec, sb_event_name((sb_event)e), sb_stats_event_total(st, (sb_event)e).seconds);
+    json_object_set_new(o, "seconds", sec);
+    json_t *cnt = json_object();
+    for (int e = 0; e < SB_EV_COUNT; e++) json_object_set_new(cnt, sb_event_name((sb_event)e), json_integer(sb_stats_event_total(st, (sb_event)e).count));
+    json_object_set_new(o, "counts", cnt);
+    json_t *lin = json_object();
+    int F = R->rec.levels - 1;
+    json_set_num(lin, "matrix_nnz", (double)st->matrix_nnz[F]);
+    json_set_num(lin, "factor_nnz", st->chol_nnz_l[F]);
+    json_set_num(lin, "factor_flops", st->chol_flops[F]);
+    json_object_set_new(lin, "not_posdef", json_integer(st->not_posdef));
+    json_object_set_new(o, "linear_algebra", lin);
+    json_t *pr = json_object();
+    int last = R->rec.steps_done;
+    for (int p = 0; p < R->rec.n_probes; p++) {
+        json_t *q = json_object();
+        const double *pos = R->rec.probe_traj + ((size_t)last * R->rec.n_probes + p) * 3;
+        const double *ref = R->rec.probe_traj + (size_t)p * 3;
+        json_object_set_new(q, "position", json_pack("[fff]", pos[0], pos[1], pos[2]));
+        json_object_set_new(q, "displacement", json_pack("[fff]", pos[0] - ref[0], pos[1] - ref[1], pos[2] - ref[2]));
+        const sb_probe *sp = &R->scene.probes[p];
+        if (sp->has_expected) {
+            if (sp->expected_component < 0)
+                json_object_set_new(q, "expected", json_pack("[fff]", sp->expected[0], sp->expected[1], sp->expected[2]));
+            else
+                json_set_num(q, "expected", sp->expected[0]);
+            static const char *const comp[] = { "x", "y", "z", "norm" };
+            json_object_set_new(q, "component", json_string(sp->expected_component < 0 ? "vector" : comp[sp->expected_component]));
+            json_set_num(q, "rel_error", R->rec.probe_rel_error[p]);
+            json_set_num(q, "tol", sp->tol);
+        }
+        json_object_set_new(pr, sp->name, q);
+    }
+    json_object_set_new(o, "probes", pr);
+    if (R->rec.has_material) {
+        const sb_material_state *m = &R->rec.material;
+        json_t *ma = json_object();
+        json_object_set_new(ma, "points", json_integer(m->points));
+        json_object_set_new(ma, "soft_membrane", json_integer(m->soft_membrane));
+        json_object_set_new(ma, "soft_section", json_integer(m->soft_section));
+        json_set_num(ma, "soft_area_fraction", m->area > 0 ? m->soft_area / m->area : 0.0);
+        json_object_set_new(ma, "max_strain", json_pack("[fff]", m->max_strain[0], m->max_strain[1], m->max_strain[2]));
+        json_set_num(ma, "min_rel_eig", m->min_rel_eig);
+        json_object_set_new(o, "material", ma);
+    } else {
+        json_object_set_new(o, "material", json_null());
+    }
+    if (R->rec.has_error) {
+        json_t *er = json_object();
+        json_object_set_new(er, "kind", json_string(R->rec.error_kind));
+        if (strcmp(R->rec.error_kind, "field") == 0) {
+            json_set_num(er, "rms", R->rec.error_rms);
+            json_set_num(er, "max", R->rec.error_max);
+        } else {
+            json_set_num(er, "max_probe_rel", R->rec.error_probe);
+        }
+        json_object_set_new(o, "error", er);
+    } else {
+        json_object_set_new(o, "error", json_null());
+    }
+    json_t *rs = json_object();
+    json_object_set_new(rs, "count", json_integer(R->rec.resumed.count));
+    json_object_set_new(rs, "after_steps", json_string(R->rec.resumed.steps));
+    json_set_num(rs, "setup_seconds", R->rec.resumed.setup_seconds);
+    json_set_num(rs, "lost_seconds", R->rec.resumed.lost_seconds);
+    json_object_set_new(o, "resumed", rs);
+    json_object_set_new(o, "file", out_path ? json_string(out_path) : json_null());
+    char *s = json_dumps(o, JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(12));
+    json_decref(o);
+    return s;
+}
+
+/* error against the scene's reference (DESIGN.md "Accuracy") */
+void sb_run_compute_error(run_state *R, FILE *err)
+{
+    const sb_scene *sc = &R->scene;
+    sb_run *rec = &R->rec;
+    double worst = 0;
+    int any = 0;
+    for (int p = 0; p < rec->n_probes; p++)
+        if (isfinite(rec->probe_rel_error[p])) { any = 1; worst = fmax(worst, rec->probe_rel_error[p]); }
+    if (sc->reference.kind == SB_REF_PROBES && any) {
+        rec->has_error = 1;
+        rec->error_probe = worst;
+        snprintf(rec->error_kind, sizeof rec->error_kind, "probes");
+    } else if (sc->reference.kind == SB_REF_FILE && rec->n_samples > 0) {
+        int n = 0;
+        double *st = NULL, *pos = NULL;
+        char msg[512];
+        if (sb_record_read_samples(sc->reference.file, &n, &st, &pos, msg, sizeof msg)) {
+            fprintf(err, "shellbench: warning: reference %s unreadable, no error computed: %s\n", sc->reference.file, msg);
+        } else if (n != rec->n_samples) {
+            fprintf(err, "shellbench: warning: reference %s has %d sample points, this run %d: no error computed\n",
+                    sc->reference.file, n, rec->n_samples);
+        } else {
+            double diam = sb_domain_diameter(&sc->domain), s2 = 0, mx = 0;
+            for (int i = 0; i < n; i++) {
+                double d2 = 0;
+                for (int k = 0; k < 3; k++) d2 += (rec->sample_pos[3 * i + k] - pos[3 * i + k]) * (rec->sample_pos[3 * i + k] - pos[3 * i + k]);
+                s2 += d2;
+                mx = fmax(mx, sqrt(d2));
+            }
+            rec->has_error = 1;
+            rec->error_rms = sqrt(s2 / n) / diam;
+            rec->error_max = mx / diam;
+            snprintf(rec->error_kind, sizeof rec->error_kind, "field");
+        }
+        free(st);
+        free(pos);
+    }
+    if (!rec->has_error) snprintf(rec->error_kind, sizeof rec->error_kind, "none");
+}
+
+/* rec->material: where the current state strains the material (methods
+ * with material_state); part of the record's time */
+void sb_run_record_material(run_state *R)
+{
+    sb_run *rec = &R->rec;
+    rec->has_material = R->mt->material_state &&
+        R->mt->material_state(R->ms, sb_problem_finest(R->prob), R->x, &rec->material) == SB_OK;
+}
+

@@ -1,0 +1,65 @@
+/* sb_run_state.h — internal to the run (sb_run*.c): the state of one run
+ * from request to record, and the helpers its phases share.  Not part of
+ * the public interface (sb_run.h is). */
+#ifndef SB_RUN_STATE_H
+#define SB_RUN_STATE_H
+
+#include "sb_context.h"
+#include "sb_problem.h"
+#include "sb_record.h"
+#include "sb_run.h"
+#include "sb_solver.h"
+
+#include <stdio.h>
+
+typedef struct run_state {
+    sb_context ctx;
+    sb_scene scene;
+    int scene_loaded;
+    const sb_method_type *mt;
+    const sb_solver_type *stype;
+    void *ms, *ss;
+    int ms_created, ss_allocated;
+    sb_problem *prob;
+    double *x, *xn, *v, *xref;
+    sb_run rec;
+    char (*probe_names)[SB_NAME_LEN];
+    int n_grid;                        /* sample grid per side */
+    /* checkpoints (run.checkpoint): the record so far, written to
+     * partial_path every checkpoint_every seconds by the loop's monitor */
+    FILE *err;
+    double t_start, checkpoint_every, checkpoint_last;
+    int checkpoint_failed;
+    char partial_path[1100];
+    /* the last completed step: the resume point the checkpoints carry */
+    sb_resume_point bp;
+} run_state;
+
+
+/* ---- results (sb_run_results.c) ----------------------------------------- */
+/* Sample grid (n x n in (s,t), points inside the domain) and its triangles. */
+int    sb_run_build_samples(run_state *R);
+/* Load and motion factors of `step` (1-based). */
+void   sb_run_step_info(const sb_scene *sc, int step, sb_step_info *si);
+/* Relative error of a probe's displacement u against its expected value. */
+double sb_run_probe_rel_error(const sb_probe *p, const double u[3]);
+/* Probe positions of the current state into trajectory slot `step_slot`. */
+int    sb_run_record_probes(run_state *R, int step_slot);
+/* The JSON summary (caller frees). */
+char  *sb_run_summary_json(run_state *R, const char *out_path);
+/* Error against the scene's reference (DESIGN.md "Accuracy"). */
+void   sb_run_compute_error(run_state *R, FILE *err);
+/* rec->material of the current state (methods with material_state). */
+void   sb_run_record_material(run_state *R);
+
+/* ---- checkpoints and resume (sb_run_checkpoint.c) ------------------------ */
+int    sb_run_partial_path(const char *out_path, char *buf, size_t len);
+void   sb_run_remove_partial(run_state *R);
+void   sb_run_write_checkpoint(run_state *R);
+void   sb_run_mark_boundary(run_state *R, int step);
+/* --resume: steps already done (0: no checkpoint), or -1 on an input error. */
+int    sb_run_resume(run_state *R, int quiet);
+/* sb_context.monitor: a checkpoint when run.checkpoint seconds have passed. */
+void   sb_run_checkpoint_monitor(void *data, const sb_iter_record *r);
+
+#endif
