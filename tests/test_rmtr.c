@@ -457,23 +457,35 @@ SB_TEST(stcg_relative_stopping_rule)
     direct_close(&D);
 }
 
-/* A tolerance below the attainable accuracy: both solvers stop as "stalled"
- * (not converged) within a few iterations of reaching round-off, instead of
- * running to the cap while the radius collapses. */
+/* A tolerance below the attainable accuracy.  The paper's rule (run.stop=
+ * paper): both solvers stop as "stalled" (not converged) within a few
+ * iterations of reaching round-off, instead of running to the cap while the
+ * radius collapses.  The scaled rule (the default) recognises the limiting
+ * accuracy itself: a correction below the round-off of x is convergence
+ * (roundoff_limit). */
 SB_TEST(stalled_at_limiting_accuracy)
 {
-    static const char *const sets[] = { "run.gtol=1e-30", "run.gtol_rel=0", "run.max_iter=3000" };
+    static const char *const paper[] = { "run.gtol=1e-30", "run.gtol_rel=0", "run.max_iter=3000", "run.stop=paper" };
+    static const char *const scaled[] = { "run.gtol=1e-30", "run.gtol_rel=0", "run.max_iter=3000" };
     const char *solvers[] = { "tr", "rmtr" };
     for (int k = 0; k < 2; k++) {
-        int ec;
-        json_t *r = run(solvers[k], k == 0 ? 1 : 3, 3, sets, &ec);
-        CHECK(r != NULL);
-        if (!r) continue;
+        int ec, ec2;
+        json_t *r = run(solvers[k], k == 0 ? 1 : 3, 4, paper, &ec);
+        json_t *q = run(solvers[k], k == 0 ? 1 : 3, 3, scaled, &ec2);
+        CHECK(r != NULL && q != NULL);
+        if (!r || !q) { json_decref(r); json_decref(q); continue; }
         CHECK_EQ_INT(ec, 1);
         const char *why = json_string_value(json_object_get(r, "reason"));
         CHECK_MSG(why && !strcmp(why, "stalled"), "%s stopped for %s", solvers[k], why ? why : "(none)");
         CHECK_MSG(num(r, "iterations", NULL) < 1000, "%s: %g iterations", solvers[k], num(r, "iterations", NULL));
+        CHECK_EQ_INT(ec2, 0);
+        why = json_string_value(json_object_get(q, "reason"));
+        CHECK_MSG(why && !strcmp(why, "roundoff_limit"), "%s (scaled) stopped for %s", solvers[k], why ? why : "(none)");
+        printf("    %s: %g iterations to roundoff_limit (scaled), %g to stalled (paper)\n", solvers[k],
+               num(q, "iterations", NULL), num(r, "iterations", NULL));
+        CHECK_MSG(num(q, "iterations", NULL) < 1000, "%s: %g iterations", solvers[k], num(q, "iterations", NULL));
         json_decref(r);
+        json_decref(q);
     }
 }
 

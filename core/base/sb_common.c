@@ -16,6 +16,10 @@ static const char *const reason_names[SB_REASON_COUNT] = {
     [SB_REASON_LINEAR_SOLVER] = "linear_solver_failed",
     [SB_REASON_STALLED] = "stalled",
     [SB_REASON_CHECKPOINT] = "checkpoint",
+    [SB_REASON_ROUNDOFF] = "roundoff_limit",
+    [SB_REASON_PENALTY] = "penalty_violated",
+    [SB_REASON_STRAIN] = "strain_bound",
+    [SB_REASON_SINGLE_STEP_RESIDUAL] = "single_step_residual",
 };
 
 const char *sb_reason_name(sb_reason r)
@@ -27,5 +31,5 @@ const char *sb_reason_name(sb_reason r)
 int sb_reason_converged(sb_reason r)
 {
     return r == SB_REASON_GRAD_TOL || r == SB_REASON_F_TOL || r == SB_REASON_X_TOL ||
-           r == SB_REASON_SINGLE_STEP;
+           r == SB_REASON_SINGLE_STEP || r == SB_REASON_ROUNDOFF;
 }

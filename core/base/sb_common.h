@@ -41,11 +41,22 @@ typedef enum {
                                 below xtol): the limiting accuracy; NOT counted as converged */
     SB_REASON_CHECKPOINT,    /* not an outcome: the run was still going when this checkpoint record
                                 was written (record status SB_STATUS_UNFINISHED) */
+    /* added by issue 27 (appended: the codes above are in committed records) */
+    SB_REASON_ROUNDOFF,      /* run.stop=scaled: a correction not limited by a radius or a line search
+                                was below run.xtol_rel ||x||, the round-off of the state: the limiting
+                                accuracy reached (counted as converged; docs/trust.md) */
+    SB_REASON_PENALTY,       /* constraints imposed by penalty are violated beyond run.penalty_tol
+                                relative to the displacement scale (NOT converged) */
+    SB_REASON_STRAIN,        /* the state strains the material beyond run.strain_max: not a
+                                physical solution (NOT converged) */
+    SB_REASON_SINGLE_STEP_RESIDUAL, /* linearized: the single step left ||g|| above
+                                run.single_step_rtol times the step's force scale (NOT converged) */
     SB_REASON_COUNT
 } sb_reason;
 
 const char *sb_reason_name(sb_reason r);
-/* 1 when the reason counts as convergence (grad/f/x tolerances, single step). */
+/* 1 when the reason counts as convergence (grad/f/x tolerances, round-off
+ * limit, a judged single step). */
 int sb_reason_converged(sb_reason r);
 
 #define SB_MAX_LEVELS 8

@@ -60,6 +60,8 @@ typedef struct sb_step_record {
     double seconds;
     double work_assembly;/* work units spent in this step */
     double work_qp;
+    double force_scale;  /* run.stop=scaled: the step's force scale (sb_solve.h), NaN otherwise */
+    double gstop;        /* the gradient threshold the step's stopping rule used */
 } sb_step_record;
 
 typedef struct sb_stats {

@@ -34,6 +34,7 @@ struct sb_problem {
     level_data lv[SB_MAX_LEVELS];
     int dynamic, damping;
     double dt, ray_a, ray_b;
+    double *scale_x, *scale_g;  /* sb_problem_force_scale (finest level, allocated on first use) */
 };
 
 static void level_free(sb_problem *p, level_data *L)
@@ -57,6 +58,8 @@ void sb_problem_free(sb_problem *p)
 {
     if (!p) return;
     for (int l = 0; l < p->nl; l++) level_free(p, &p->lv[l]);
+    free(p->scale_x);
+    free(p->scale_g);
     free(p);
 }
 
@@ -375,6 +378,31 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
     if (H) st->work_assembly += (double)n / (double)p->lv[p->nl - 1].n;   /* RMTR paper Eq. (7.3) */
     if (rc == SB_NONFINITE || !isfinite(e) || (g && !sb_all_finite(n, g))) return SB_NONFINITE;
     return rc;
+}
+
+int sb_problem_force_scale(sb_problem *p, double *F)
+{
+    const int Fl = p->nl - 1;
+    level_data *L = &p->lv[Fl];
+    const int n = L->n;
+    *F = INFINITY;
+    if (!p->scale_x) {
+        p->scale_x = malloc((size_t)n * sizeof *p->scale_x);
+        p->scale_g = malloc((size_t)n * sizeof *p->scale_g);
+        if (!p->scale_x || !p->scale_g) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (force scale)");
+    }
+    int rc = p->mt->initial(p->ms, Fl, p->scale_x);
+    if (rc < 0) return rc;
+    double t0 = sb_now(), e = 0.0;
+    memset(p->scale_g, 0, (size_t)n * sizeof *p->scale_g);
+    rc = p->mt->energy(p->ms, Fl, p->scale_x, &e, p->scale_g, NULL);
+    sb_stats_event(&p->ctx->stats, Fl, SB_EV_GRADIENT, t0);
+    if (rc < 0) return rc;
+    sb_problem_constrain(p, Fl, p->scale_g);
+    double f = sb_problem_norm(p, Fl, p->scale_g);
+    if (rc == SB_NONFINITE || !isfinite(f)) return SB_NONFINITE;
+    *F = f;
+    return SB_OK;
 }
 
 sb_matrix *sb_problem_hessian(sb_problem *p, int level) { return &p->lv[level].H; }

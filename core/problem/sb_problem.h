@@ -49,6 +49,15 @@ int  sb_problem_begin_step(sb_problem *p, const sb_step_info *si,
  * boundary increment when that is admissible and not worse (sb_problem.c). */
 int  sb_problem_lift(sb_problem *p, const double *x_n, double *x0);
 
+/* The force scale of the current step (run.stop=scaled, docs/trust.md):
+ * ||grad E|| over the free dofs of the method's energy alone (elastic +
+ * external + penalty; no inertia, no damping) at the reference
+ * configuration of the finest level, with the step's loads and boundary
+ * data as set by sb_problem_begin_step.  For dead loads on an elimination
+ * method this is the norm of the applied forces.  One gradient evaluation,
+ * counted.  SB_OK, SB_NONFINITE (F = inf) or an error. */
+int  sb_problem_force_scale(sb_problem *p, double *F);
+
 /* f = Phi(x) at `level`; g and H optional (H: the level's Hessian matrix,
  * sb_problem_hessian()).  Returns SB_OK or SB_NONFINITE. */
 int  sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H);

@@ -327,13 +327,17 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
             return SB_EXIT_INTERNAL;
         }
-        int iters = 0;
-        double f = 0, gn = 0;
-        sb_reason reason = sb_solve_step(R->stype, R->ss, R->prob, ps, step, R->x, &iters, &f, &gn);
+        sb_step_outcome o;
+        sb_reason reason = sb_solve_step_ex(R->stype, R->ss, R->prob, ps, step, R->x, &o);
+        const int iters = o.iterations;
+        const double f = o.f, gn = o.gnorm;
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
         double tr0 = sb_now();
-        sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0 };
+        /* a converged step must also be a physical state (finite, strains within run.strain_max) */
+        reason = sb_run_judge_step(R, reason);
+        sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0,
+                              o.force_scale, o.gstop };
         sr.seconds = tr0 - t0;
         sb_stats_push_step(stats, &sr);
         rec->steps_done = step;

@@ -52,6 +52,12 @@ void   sb_run_compute_error(run_state *R, FILE *err);
 /* rec->material of the current state (methods with material_state). */
 void   sb_run_record_material(run_state *R);
 
+/* ---- verdicts beyond the solver's (sb_run_judge.c, docs/trust.md) -------- */
+/* A step the solver calls converged is a physical state: finite, and within
+ * run.strain_max (methods with material_state; fills rec->material).
+ * Returns the step's reason, or SB_REASON_NONFINITE / SB_REASON_STRAIN. */
+sb_reason sb_run_judge_step(run_state *R, sb_reason reason);
+
 /* ---- checkpoints and resume (sb_run_checkpoint.c) ------------------------ */
 int    sb_run_partial_path(const char *out_path, char *buf, size_t len);
 void   sb_run_remove_partial(run_state *R);

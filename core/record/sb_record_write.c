@@ -168,6 +168,8 @@ const sb_record_column sb_record_step_cols[] = {
     { "seconds", offsetof(sb_step_record, seconds), 0, "s" },
     { "work_assembly", offsetof(sb_step_record, work_assembly), 0, "WU" },
     { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU" },
+    { "force_scale", offsetof(sb_step_record, force_scale), 0, "" },
+    { "gstop", offsetof(sb_step_record, gstop), 0, "" },
 };
 const int sb_record_n_step_cols = (int)(sizeof sb_record_step_cols / sizeof *sb_record_step_cols);
 

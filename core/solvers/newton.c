@@ -4,6 +4,7 @@
  * computation.  RMTR paper §7.4.1 describes all three as comparison solvers. */
 #include "sb_solver.h"
 #include "sb_context.h"
+#include "sb_trs.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -120,6 +121,26 @@ static int direction(newton_state *s, sb_problem *p, sb_iterate_info *info)
     rc = sb_problem_solve(p, s->F, s->xt, s->d);
     if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
     info->linear_iters = 1;
+    if (rc == SB_OK && shift == 0.0) {
+        /* the unshifted Newton correction (limiting-accuracy test, sb_solve.c) */
+        info->has_correction = 1;
+        info->correction = sb_norm2(s->n, s->d);
+    }
+    if (rc == SB_OK && s->kind == KIND_LINEARIZED) {
+        /* the linearized solver's step is judged by its linear solve: the
+         * normwise backward error ||H d + g|| / (||H||_F ||d|| + ||g||)
+         * (Higham, Accuracy and Stability of Numerical Algorithms, Thm. 7.1);
+         * xt is free scratch here */
+        const sb_matrix *H = sb_problem_hessian(p, s->F);
+        sb_problem_hess_mult(p, s->F, s->d, s->xt);
+        double r2 = 0.0, h2 = 0.0;
+        for (int i = 0; i < s->n; i++) r2 += (s->xt[i] + s->g[i]) * (s->xt[i] + s->g[i]);
+        for (int c = 0; c < H->pat->n; c++)
+            for (long q = H->pat->colptr[c]; q < H->pat->colptr[c + 1]; q++)
+                h2 += (H->pat->rowind[q] != c ? 2.0 : 1.0) * H->val[q] * H->val[q];
+        double den = sqrt(h2) * sb_norm2(s->n, s->d) + sb_norm2(s->n, s->g);
+        info->linear_residual = den > 0.0 ? sqrt(r2) / den : 0.0;
+    }
     return rc < 0 ? rc : SB_OK;
 }
 
@@ -151,6 +172,18 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
                 double ft;
                 rc = sb_problem_eval(p, s->F, s->xt, &ft, NULL, NULL);
                 if (rc < 0) return rc;
+                if (rc == SB_OK && isfinite(ft) && !(ft <= s->f + s->c1 * alpha * slope) &&
+                    sb_tr_ared_unreliable(s->f, ft, -alpha * slope)) {
+                    /* the decrease asked for is below the round-off of f: decide
+                     * by the gradients, ared = -(g + g_trial)^T s / 2 (as tr does,
+                     * sb_trs.h; Conn, Gould & Toint §17.4.2) */
+                    rc = sb_problem_eval(p, s->F, s->xt, &ft, s->gt, H);
+                    if (rc < 0) return rc;
+                    if (rc != SB_OK) continue;
+                    double ared = -0.5 * alpha * (sb_dot(n, s->g, s->d) + sb_dot(n, s->gt, s->d));
+                    if (ared >= -s->c1 * alpha * slope) { ok = 1; s->f = ft; break; }
+                    continue;
+                }
                 if (!(rc == SB_OK && isfinite(ft) && ft <= s->f + s->c1 * alpha * slope)) continue;
                 rc = sb_problem_eval(p, s->F, s->xt, &ft, s->gt, H);
                 if (rc < 0) return rc;

@@ -675,7 +675,7 @@ static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *inf
     rmtr_state *R = st;
     const int top = R->L;
     rlevel *V = &R->lv[top];
-    double f_old = V->f;
+    double f_old = V->f, delta_old = V->delta;
     /* the top level keeps f, g, H of x from the previous cycle (h^L = f^L) */
     sb_copy(V->n, V->x, V->x0);
     int lin = 0, acc = 0;
@@ -692,6 +692,11 @@ static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *inf
     info->gnorm = sb_problem_norm(p, top, V->g);
     info->delta = V->delta;
     info->linear_iters = lin;
+    /* a V-cycle correction well inside the cycle's radius was not limited by
+     * it (ASSUMPTION for the limiting-accuracy test, sb_solve.c: the steps of
+     * the cycle are then as the model asked) */
+    info->has_correction = sn > 0 && info->step_norm < 0.5 * delta_old;
+    info->correction = info->step_norm;
     if (top == R->L_fine) {
         if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
         sb_copy(V->n, V->x, x);

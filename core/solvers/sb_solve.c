@@ -7,17 +7,38 @@
 #include <stdlib.h>
 #include <string.h>
 
+static const char *const stop_names[] = { "scaled", "paper", NULL };
+
 const sb_param_def sb_solve_params[] = {
-    { "gtol", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL, "stop when ||g|| < gtol (RMTR paper Eq. 7.1)" },
+    { "stop", SB_PARAM_CHOICE, SB_STOP_SCALED, 0, 0, stop_names,
+      "stopping rule: scaled (||g|| <= gtol_rel times the step's force scale, or a correction below the "
+      "round-off of x; docs/trust.md) or paper (RMTR paper Eq. 7.1: absolute gtol, f/x tests once Delta > "
+      "delta_big; the rule of the committed paper reproductions)" },
+    { "gtol", SB_PARAM_REAL, 1e-7, 0, 1e10, NULL,
+      "stop when ||g|| < gtol (RMTR paper Eq. 7.1; with stop=scaled only when set explicitly)" },
     { "gtol_rel", SB_PARAM_REAL, 1e-9, 0, 1, NULL,
-      "also stop when ||g|| < gtol_rel ||g_0|| (scale-free extension of Eq. 7.1; 0 = paper rule)" },
-    { "ftol", SB_PARAM_REAL, 1e-12, 0, 1e10, NULL, "|f_{i-1} - f_i| < ftol once Delta > delta_big (Eq. 7.1)" },
-    { "xtol", SB_PARAM_REAL, 1e-12, 0, 1e10, NULL, "||x_{i-1} - x_i|| < xtol once Delta > delta_big (Eq. 7.1)" },
+      "stop when ||g|| <= gtol_rel F; stop=scaled: F = min(||g_0||, force scale of the step), stop=paper: "
+      "F = ||g_0|| (scale-free extension of Eq. 7.1; 0 = off)" },
+    { "xtol_rel", SB_PARAM_REAL, 1e-13, 0, 1e-3, NULL,
+      "stop=scaled: the limiting accuracy, a correction not limited by a radius or line search below "
+      "xtol_rel ||x|| (converged, roundoff_limit); also the size of a stalled step" },
+    { "ftol", SB_PARAM_REAL, 1e-12, 0, 1e10, NULL, "stop=paper: |f_{i-1} - f_i| < ftol once Delta > delta_big (Eq. 7.1)" },
+    { "xtol", SB_PARAM_REAL, 1e-12, 0, 1e10, NULL, "stop=paper: ||x_{i-1} - x_i|| < xtol once Delta > delta_big (Eq. 7.1)" },
     { "delta_big", SB_PARAM_REAL, 1e15, 0, 1e300, NULL,
-      "radius above which the f/x tests of Eq. 7.1 apply (Newton solvers: after full unshifted steps)" },
+      "stop=paper: radius above which the f/x tests of Eq. 7.1 apply (Newton solvers: after full unshifted steps)" },
     { "stall_iter", SB_PARAM_INT, 10, 0, 1e9, NULL,
-      "stop (reason stalled, not converged) after this many iterations in a row that accepted a step below xtol "
-      "changing f by less than ftol, or rejected one with a radius below xtol (0 = never)" },
+      "stop (reason stalled, not converged) after this many iterations in a row whose accepted steps (or, when "
+      "rejected, radii) are at round-off (stop=scaled: below xtol_rel ||x||; stop=paper: steps below xtol "
+      "changing f by less than ftol, radii below xtol) (0 = never)" },
+    { "single_step_rtol", SB_PARAM_REAL, 0.5, 0, 1e300, NULL,
+      "single-step solvers (linearized): the step counts as converged only when it leaves ||g|| <= "
+      "single_step_rtol max(||g_0||, force scale) (else single_step_residual)" },
+    { "strain_max", SB_PARAM_REAL, 1.0, 0, 1e300, NULL,
+      "a step whose state strains the material beyond this Green-Lagrange strain (max |E_ij| at the "
+      "midsurface) is not converged (reason strain_bound; methods with material_state; 0 = no bound)" },
+    { "penalty_tol", SB_PARAM_REAL, 1e-2, 0, 1e300, NULL,
+      "a run whose penalty-imposed constraints are violated by more than penalty_tol times the displacement "
+      "scale at its end is not converged (reason penalty_violated; methods with penalty constraints)" },
     { "max_iter", SB_PARAM_INT, 10000, 1, 1e9, NULL, "iteration cap per step" },
     { "diverge", SB_PARAM_REAL, 1e6, 1, 1e300, NULL,
       "diverged when max|x - x_0| exceeds diverge * (1 + max|x_0|)" },
@@ -43,34 +64,92 @@ static double max_abs_diff(int n, const double *a, const double *b)
     return m;
 }
 
+/* Whether the user set a parameter on the command line (an explicit gtol
+ * is honoured by the scaled rule as an absolute tolerance). */
+static int overridden(const sb_paramset *ps, const char *key)
+{
+    for (int i = 0; i < ps->n; i++)
+        if (strcmp(ps->v[i].key, key) == 0) return ps->v[i].overridden;
+    return 0;
+}
+
 sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, const sb_paramset *ps,
                         int step, double *x, int *iterations, double *f_out, double *gnorm_out)
 {
+    sb_step_outcome o;
+    sb_reason r = sb_solve_step_ex(type, state, p, ps, step, x, &o);
+    *iterations = o.iterations;
+    *f_out = o.f;
+    *gnorm_out = o.gnorm;
+    return r;
+}
+
+/* The stopping rules (docs/trust.md):
+ *   paper   RMTR paper Eq. (7.1): ||g|| < max(gtol, gtol_rel ||g_0||), or, once
+ *           Delta > delta_big (Newton: an unshifted step), |df| < ftol or
+ *           ||s|| < xtol; the committed paper reproductions ran with it.
+ *   scaled  ||g|| <= gtol_rel F with F = min(||g_0||, force scale of the step
+ *           (sb_problem_force_scale)), so that the relative test is bounded by
+ *           the applied forces and accepts no state whose own imbalance is
+ *           huge; or the limiting accuracy: a correction the solver's model
+ *           asked for without a radius or line search limiting it, below
+ *           xtol_rel ||x|| (roundoff_limit).  gtol applies only when set.
+ * Both: stalled (not converged) after stall_iter round-off steps in a row,
+ * diverged, the iteration cap; a single-step solver's step is judged by its
+ * linear residual and by ||g|| after it (single_step_rtol). */
+sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *p, const sb_paramset *ps,
+                           int step, double *x, sb_step_outcome *out)
+{
     sb_context *ctx = sb_problem_context(p);
     const int F = sb_problem_finest(p), n = sb_problem_n(p, F);
+    const int scaled = sb_param_int(ps, "run.stop") == SB_STOP_SCALED;
     const double gtol = sb_param(ps, "run.gtol"), gtol_rel = sb_param(ps, "run.gtol_rel");
     const double ftol = sb_param(ps, "run.ftol"), xtol = sb_param(ps, "run.xtol");
+    const double xtol_rel = sb_param(ps, "run.xtol_rel");
     const double delta_big = sb_param(ps, "run.delta_big"), diverge = sb_param(ps, "run.diverge");
     const int max_iter = sb_param_int(ps, "run.max_iter"), stall_iter = sb_param_int(ps, "run.stall_iter");
+    const double single_rtol = sb_param(ps, "run.single_step_rtol");
+    const int single = (type->flags & SB_SOLVER_SINGLE_STEP) != 0;
     int stalled = 0;
 
+    memset(out, 0, sizeof *out);
+    out->force_scale = NAN;
     double *x0 = malloc((size_t)n * sizeof *x0);
-    if (!x0) return SB_REASON_LINEAR_SOLVER;
+    if (!x0) return out->reason = SB_REASON_LINEAR_SOLVER;
     sb_copy(n, x, x0);
     const double x0max = max_abs_diff(n, x0, NULL);
 
+    sb_reason reason = SB_REASON_NONE;
+    double fscale = INFINITY;
+    if (scaled) {
+        int rc = sb_problem_force_scale(p, &fscale);
+        if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
+        out->force_scale = rc == SB_OK ? fscale : INFINITY;
+        if (rc != SB_OK) fscale = INFINITY;
+    }
     sb_iterate_info info;
     memset(&info, 0, sizeof info);
     info.level = F;
-    sb_reason reason = SB_REASON_NONE;
     int it = 0;
-    int rc = type->set(state, p, x, &info);
-    if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
+    int rc = reason ? SB_OK : type->set(state, p, x, &info);
+    if (reason) {
+        /* the force scale failed beyond a non-finite value */
+    } else if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
     else if (info.fail) reason = info.fail;
-    else if (rc == SB_NONFINITE || !isfinite(info.f)) reason = SB_REASON_NONFINITE;
+    else if (rc == SB_NONFINITE || !isfinite(info.f) || !isfinite(info.gnorm)) reason = SB_REASON_NONFINITE;
     const double g0 = info.gnorm;
-    const double gstop = fmax(gtol, gtol_rel * g0);
-    if (!reason && info.gnorm < gstop) reason = SB_REASON_GRAD_TOL;
+    double gstop;
+    if (scaled) {
+        gstop = gtol_rel * fmin(g0, fscale);
+        if (overridden(ps, "run.gtol")) gstop = fmax(gstop, gtol);
+    } else {
+        gstop = fmax(gtol, gtol_rel * g0);
+    }
+    out->g0 = g0;
+    out->gstop = gstop;
+    /* scaled: <= so that a step with nothing to do (g = F = 0) is solved */
+#define GRAD_OK(g) (scaled ? (g) <= gstop : (g) < gstop)
+    if (!reason && GRAD_OK(info.gnorm)) reason = SB_REASON_GRAD_TOL;
     {
         sb_iter_record r0 = { step, 0, F, info.f, info.gnorm, info.delta, 0, 0, 0, 1, 0, reason };
         sb_stats_push_iter(&ctx->stats, &r0);
@@ -81,17 +160,29 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
         info.level = F;
         rc = type->iterate(state, p, x, &info);
         it++;
+        const int finite = isfinite(info.f) && isfinite(info.gnorm);
+        const double xnorm = scaled ? sb_norm2(n, x) : 0.0;
         if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
-        else if (info.fail) reason = info.fail;
-        else if (rc == SB_NONFINITE || !isfinite(info.f) || !isfinite(info.gnorm)) reason = SB_REASON_NONFINITE;
+        /* a failure at a non-finite state is that state's (pressure 1e308: ||g|| = inf) */
+        else if (info.fail) reason = !finite && info.fail != SB_REASON_LINEAR_SOLVER ? SB_REASON_NONFINITE : info.fail;
+        else if (rc == SB_NONFINITE || !finite) reason = SB_REASON_NONFINITE;
         else if (info.level != F) {
             /* an iteration on a coarser level (RMTR's nested start): x moves only
              * when the start reaches the finest level; only a failure or the cap
              * ends the step, convergence is tested on the finest level */
         }
-        else if (info.gnorm < gstop) reason = SB_REASON_GRAD_TOL;
-        else if (type->flags & SB_SOLVER_SINGLE_STEP) reason = SB_REASON_SINGLE_STEP;
+        else if (GRAD_OK(info.gnorm)) reason = SB_REASON_GRAD_TOL;
+        else if (single) {
+            /* one Newton step by design: judged, not assumed (docs/trust.md) */
+            double scale = scaled && isfinite(fscale) ? fmax(g0, fscale) : g0;
+            if (!(info.linear_residual <= 1e-8)) reason = SB_REASON_LINEAR_SOLVER;
+            else if (info.gnorm > single_rtol * scale) reason = SB_REASON_SINGLE_STEP_RESIDUAL;
+            else reason = SB_REASON_SINGLE_STEP;
+        }
         else if (max_abs_diff(n, x, x0) > diverge * (1.0 + x0max)) reason = SB_REASON_DIVERGED;
+        else if (scaled) {
+            if (info.has_correction && info.correction <= xtol_rel * xnorm) reason = SB_REASON_ROUNDOFF;
+        }
         else if (info.accepted && info.delta > delta_big) {
             /* Newton solvers report delta = inf for a full unshifted Newton step */
             if (fabs(info.df) < ftol) reason = SB_REASON_F_TOL;
@@ -100,7 +191,9 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
         if (!reason && info.level == F) {
             /* the limiting accuracy: steps and changes of f at round-off while the
              * radius shrinks (Eq. 7.1's f/x tests need a big radius) */
-            const int tiny = info.accepted ? info.step_norm < xtol && fabs(info.df) < ftol : info.delta < xtol;
+            int tiny;
+            if (scaled) tiny = (info.accepted ? info.step_norm : info.delta) <= xtol_rel * xnorm;
+            else tiny = info.accepted ? info.step_norm < xtol && fabs(info.df) < ftol : info.delta < xtol;
             stalled = tiny ? stalled + 1 : 0;
             if (stall_iter > 0 && stalled >= stall_iter) reason = SB_REASON_STALLED;
         }
@@ -109,9 +202,11 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
         sb_stats_push_iter(&ctx->stats, &r);
         if (ctx->monitor) ctx->monitor(ctx->monitor_data, &r);
     }
+#undef GRAD_OK
     free(x0);
-    *iterations = it;
-    *f_out = info.f;
-    *gnorm_out = info.gnorm;
+    out->reason = reason;
+    out->iterations = it;
+    out->f = info.f;
+    out->gnorm = info.gnorm;
     return reason;
 }

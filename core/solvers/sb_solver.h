@@ -26,6 +26,17 @@ typedef struct sb_iterate_info {
     int linear_iters;
     int level;           /* level of the reported quantities */
     sb_reason fail;      /* set by the solver on a failure it cannot recover from */
+    /* the correction the solver's model asked for at the iterate, when no
+     * trust-region radius or line search limited it: the norm of the
+     * unshifted Newton direction (Newton family), of an interior dogleg
+     * Newton point or Steihaug–Toint step (tr), of a V-cycle correction
+     * inside its radius (rmtr).  run.stop=scaled stops (roundoff_limit) when
+     * it is below run.xtol_rel ||x||: no representable change is left. */
+    int has_correction;
+    double correction;
+    /* single-step solvers: normwise backward error of the linear solve,
+     * ||H d + g|| / (||H||_F ||d|| + ||g||) (0 when not computed) */
+    double linear_residual;
 } sb_iterate_info;
 
 typedef struct sb_solver_type {
@@ -57,5 +68,23 @@ extern const sb_param_def sb_solve_params[];
 sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p,
                         const sb_paramset *ps, int step, double *x, int *iterations,
                         double *f_out, double *gnorm_out);
+
+/* What a step's loop found, with the scales it judged by (docs/trust.md). */
+typedef struct sb_step_outcome {
+    sb_reason reason;
+    int iterations;
+    double f, gnorm;      /* at the end of the step */
+    double g0;            /* ||g|| at the step's start */
+    double force_scale;   /* run.stop=scaled: ||grad E|| of the method's energy at the reference
+                             configuration with this step's loads and boundary data (NaN otherwise) */
+    double gstop;         /* the gradient threshold the step used */
+} sb_step_outcome;
+
+/* sb_solve_step with the outcome's scales. */
+sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *p,
+                           const sb_paramset *ps, int step, double *x, sb_step_outcome *out);
+
+/* The stopping rules of run.stop (sb_solve_params). */
+enum { SB_STOP_SCALED = 0, SB_STOP_PAPER = 1 };
 
 #endif

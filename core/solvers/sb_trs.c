@@ -177,6 +177,7 @@ static int dogleg_solve(void *st, sb_problem *p, int level, const double *g, dou
     double snn = d->have_newton ? sb_norm2(n, d->sn) : INFINITY;
     if (d->have_newton && snn <= delta) {
         sb_copy(n, d->sn, s);
+        r->newton = 1;
     } else {
         double scn = d->gHg > 0.0 ? sb_norm2(n, d->sc) : INFINITY;
         if (scn >= delta || !d->have_newton) {
@@ -435,6 +436,7 @@ static int stcg_solve(void *st, sb_problem *p, int level, const double *g, doubl
         for (int i = 0; i < n; i++) d[i] = -z[i] + beta * d[i];
     }
     sb_problem_count_cg(p, level, it);
+    res->newton = !res->boundary;
     res->iters = it;
     res->snorm = sb_norm2(n, s);
     sb_problem_hess_mult(p, level, s, Hd);

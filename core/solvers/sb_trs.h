@@ -12,6 +12,9 @@ typedef struct sb_trs_result {
     int iters;          /* CG iterations, or 1 for a direct solve */
     int boundary;       /* 1 when the step lies on the trust-region boundary */
     int posdef;         /* dogleg: 1 when H factored (Newton point available) */
+    int newton;         /* 1 when s is the (possibly truncated) Newton step, not limited by the
+                           radius: dogleg's interior Newton point, ST-CG's interior end on its
+                           residual or iteration cap (the limiting-accuracy test, docs/trust.md) */
 } sb_trs_result;
 
 enum { SB_TRS_SAME_H = 1 << 1 };

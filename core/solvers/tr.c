@@ -112,6 +112,8 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     }
     info->linear_iters = r.iters;
     info->rho = rho;
+    info->has_correction = r.newton;     /* the Newton step at x, not cut by the radius */
+    info->correction = r.snorm;
     if (rho > t->eta1) {
         /* line 5: accept; derivatives are recomputed only here */
         double fnew;
