@@ -51,6 +51,15 @@ typedef struct sb_dirichlet {
 } sb_dirichlet;
 
 
+/* How far a state violates the constraints a method imposes by penalty
+ * (optional op penalty_violation; run.penalty_tol, docs/trust.md). */
+typedef struct sb_penalty_report {
+    int points;                 /* penalty points evaluated (0: the scene has none) */
+    double beta;                /* penalty factor of the level (the method's units) */
+    double position_max;        /* max |x - b| over position constraints (m) */
+    double rotation_max;        /* max |theta| over rotation (slope) constraints (rad) */
+} sb_penalty_report;
+
 typedef struct sb_method_type {
     const char *name;
     const char *description;
@@ -97,6 +106,10 @@ typedef struct sb_method_type {
     /* optional: the material state of x on `level` (sb_material_state);
      * SB_OK, or SB_NONFINITE when some point could not be evaluated */
     int  (*material_state)(void *state, int level, const double *x, sb_material_state *ms);
+
+    /* optional: the violation of the penalty-imposed constraints at x on
+     * `level` (NULL: the method eliminates its constraints) */
+    int  (*penalty_violation)(void *state, int level, const double *x, sb_penalty_report *r);
 
     /* optional: one line describing the discretization ("8x8 Hermite patches") */
     void (*describe)(const void *state, char *buf, size_t len);

@@ -388,6 +388,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
             double u[3] = { pos[0] - ref[0], pos[1] - ref[1], pos[2] - ref[2] };
             rec->probe_rel_error[p] = sb_run_probe_rel_error(&sc->probes[p], u);
         }
+        sb_run_judge_penalty(R);
     }
     sb_run_compute_error(R, err);
     sb_run_record_material(R);

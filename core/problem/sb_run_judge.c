@@ -4,6 +4,8 @@
  * or the step is recorded with the reason that says why it is not. */
 #include "sb_run_state.h"
 
+#include "sb_geometry.h"
+
 #include <math.h>
 
 sb_reason sb_run_judge_step(run_state *R, sb_reason reason)
@@ -20,4 +22,37 @@ sb_reason sb_run_judge_step(run_state *R, sb_reason reason)
     for (int k = 0; k < 3; k++)
         if (!(m->max_strain[k] <= strain_max)) return SB_REASON_STRAIN;
     return reason;
+}
+
+/* The relative violation of penalty constraints: position errors and
+ * rotation errors converted to a displacement over the domain's diameter
+ * (ASSUMPTION: the lever arm of a clamp's rotation error is at most the
+ * diameter), over the displacement scale max |x - X| of the sample grid.
+ * A zero scale with a zero violation is 0; with a violation, infinite. */
+void sb_run_judge_penalty(run_state *R)
+{
+    sb_run *rec = &R->rec;
+    rec->has_penalty = 0;
+    if (!R->mt->penalty_violation) return;
+    sb_penalty_report pr;
+    const int F = sb_problem_finest(R->prob);
+    int rc = R->mt->penalty_violation(R->ms, F, R->x, &pr);
+    if (rc < 0 || pr.points == 0) return;
+    double u = 0.0;
+    for (int i = 0; i < rec->n_samples; i++) {
+        const double *a = rec->sample_pos + 3 * i, *b = rec->sample_ref + 3 * i;
+        u = fmax(u, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+    }
+    const double v = fmax(pr.position_max, pr.rotation_max * sb_domain_diameter(&R->scene.domain));
+    rec->has_penalty = 1;
+    rec->penalty_beta = pr.beta;
+    rec->penalty_position = pr.position_max;
+    rec->penalty_rotation = pr.rotation_max;
+    rec->penalty_scale = u;
+    rec->penalty_relative = rc == SB_NONFINITE ? INFINITY : v == 0.0 ? 0.0 : u > 0.0 ? v / u : INFINITY;
+    rec->penalty_tol = sb_param(&R->ctx.params, "run.penalty_tol");
+    if (rec->status == 0 && !(rec->penalty_relative <= rec->penalty_tol)) {
+        rec->status = 1;
+        rec->reason = SB_REASON_PENALTY;
+    }
 }

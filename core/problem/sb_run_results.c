@@ -163,6 +163,19 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     } else {
         json_object_set_new(o, "material", json_null());
     }
+    if (R->rec.has_penalty) {
+        /* the constraints imposed by penalty at the final state (docs/trust.md) */
+        json_t *pe = json_object();
+        json_set_num(pe, "beta", R->rec.penalty_beta);
+        json_set_num(pe, "position_max", R->rec.penalty_position);
+        json_set_num(pe, "rotation_max", R->rec.penalty_rotation);
+        json_set_num(pe, "displacement_scale", R->rec.penalty_scale);
+        json_set_num(pe, "relative", R->rec.penalty_relative);
+        json_set_num(pe, "tol", R->rec.penalty_tol);
+        json_object_set_new(o, "penalty", pe);
+    } else {
+        json_object_set_new(o, "penalty", json_null());
+    }
     if (R->rec.has_error) {
         json_t *er = json_object();
         json_object_set_new(er, "kind", json_string(R->rec.error_kind));

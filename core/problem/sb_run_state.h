@@ -57,6 +57,11 @@ void   sb_run_record_material(run_state *R);
  * run.strain_max (methods with material_state; fills rec->material).
  * Returns the step's reason, or SB_REASON_NONFINITE / SB_REASON_STRAIN. */
 sb_reason sb_run_judge_step(run_state *R, sb_reason reason);
+/* The final state's penalty-imposed constraints (methods with
+ * penalty_violation): recorded, and a converged run whose violation exceeds
+ * run.penalty_tol times the displacement scale becomes not converged
+ * (SB_REASON_PENALTY).  Needs rec->sample_pos of the final state. */
+void sb_run_judge_penalty(run_state *R);
 
 /* ---- checkpoints and resume (sb_run_checkpoint.c) ------------------------ */
 int    sb_run_partial_path(const char *out_path, char *buf, size_t len);

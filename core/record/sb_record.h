@@ -79,6 +79,13 @@ typedef struct sb_run {
     double error_rms, error_max;   /* relative to the domain diameter (field) */
     double error_probe;            /* max probe relative error (probes) */
     char error_kind[16];           /* "none", "probes", "field" */
+    /* constraints imposed by penalty at the final state (methods with
+     * penalty_violation; docs/trust.md): the report, the displacement scale
+     * max |x - X| over the sample grid, the relative violation
+     * max(position, rotation * diameter) / scale and the tolerance */
+    int has_penalty;
+    double penalty_beta, penalty_position, penalty_rotation;
+    double penalty_scale, penalty_relative, penalty_tol;
     sb_resume_log resumed;
     /* checkpoints only: the last step boundary, written as /resume (NULL in
      * a final record); its stats' history pointers are not used, the

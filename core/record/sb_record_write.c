@@ -258,6 +258,22 @@ static int write_material(sb_h5w *w, hid_t final, const sb_material_state *m)
     return bad ? -1 : 0;
 }
 
+/* /final/penalty: the penalty-imposed constraints at the final state (docs/trust.md) */
+static int write_penalty(sb_h5w *w, hid_t final, const sb_run *r)
+{
+    hid_t g = sb_h5w_group(w, final, "penalty");
+    if (g < 0) return -1;
+    int bad = 0;
+    bad |= sb_h5w_attr_dbl(w, g, "beta", r->penalty_beta);
+    bad |= sb_h5w_attr_dbl(w, g, "position_max", r->penalty_position);
+    bad |= sb_h5w_attr_dbl(w, g, "rotation_max", r->penalty_rotation);
+    bad |= sb_h5w_attr_dbl(w, g, "displacement_scale", r->penalty_scale);
+    bad |= sb_h5w_attr_dbl(w, g, "relative", r->penalty_relative);
+    bad |= sb_h5w_attr_dbl(w, g, "tol", r->penalty_tol);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
 static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
 {
     hid_t g = sb_h5w_group(w, f, "/final");
@@ -279,6 +295,7 @@ static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_dset_int(w, g, "triangles", 2, dt, r->tris, NULL);
     free(disp);
     if (!bad && r->has_material) bad |= write_material(w, g, &r->material);
+    if (!bad && r->has_penalty) bad |= write_penalty(w, g, r);
     H5Gclose(g);
     return bad ? -1 : 0;
 }

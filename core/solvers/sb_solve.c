@@ -36,7 +36,7 @@ const sb_param_def sb_solve_params[] = {
     { "strain_max", SB_PARAM_REAL, 1.0, 0, 1e300, NULL,
       "a step whose state strains the material beyond this Green-Lagrange strain (max |E_ij| at the "
       "midsurface) is not converged (reason strain_bound; methods with material_state; 0 = no bound)" },
-    { "penalty_tol", SB_PARAM_REAL, 1e-2, 0, 1e300, NULL,
+    { "penalty_tol", SB_PARAM_REAL, 5e-2, 0, 1e300, NULL,
       "a run whose penalty-imposed constraints are violated by more than penalty_tol times the displacement "
       "scale at its end is not converged (reason penalty_violated; methods with penalty constraints)" },
     { "max_iter", SB_PARAM_INT, 10000, 1, 1e9, NULL, "iteration cap per step" },

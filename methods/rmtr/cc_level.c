@@ -180,9 +180,10 @@ int cc_level_build(cc_state *S, int l, cc_err *e)
         }
     }
     if (!(L->h > 0)) return cc_fail(e, SB_ERR_INPUT, "level %d has zero mesh size", l);
-    /* beta = h^-sigma (§3.1); the paper's levels each use their own h (default) */
+    /* beta = h^-sigma (§3.1) times the scene's factor (cc_beta.c: exactly 1
+     * for the paper's cloth, so its beta is bit for bit the paper's) */
     double h = S->beta_finest ? S->lv[S->nlev - 1].h : L->h;
-    L->beta = S->beta_scale * pow(h, -S->sigma);
+    L->beta = S->beta_scale * S->beta_factor * pow(h, -S->sigma);
     if (m->grid && (st = build_lookup(L))) return cc_fail(e, st, "out of memory (level %d lookup)", l);
     if (l + 1 < S->nlev) {
         if (S->proj == CC_PROJ_REVERSE) st = cc_reverse_build(m, &S->hier.mesh[l + 1], S->hier.vmap[l], &L->P, e);

@@ -35,13 +35,18 @@ static const char *const hess_choices[] = { "exact", "pseudo", "psd", NULL };
 static const char *const mass_choices[] = { "consistent", "lumped", NULL };
 static const char *const subdiv_choices[] = { "osd", "rules", NULL };
 static const char *const penh_choices[] = { "finest", "level", NULL };
+static const char *const beta_rule_choices[] = { "scaled", "paper", NULL };
 
 const sb_param_def cc_params[] = {
     { "projection", SB_PARAM_CHOICE, 0, 0, 0, proj_choices,
       "fine-to-coarse iterate transfer: reverse subdivision (RMTR §5.3.2, App. B/C), lsq = (S^T S)^-1 S^T "
       "(5.18), restrict = row-normalized S^T (keeps constants only)" },
-    { "sigma", SB_PARAM_REAL, 5.0, 0.0, 20.0, NULL, "penalty exponent: beta = beta_scale h^-sigma (RMTR §3.1, §7.1)" },
-    { "beta_scale", SB_PARAM_REAL, 1.0, 0.0, 1e30, NULL, "penalty factor: beta = beta_scale h^-sigma (h in m)" },
+    { "sigma", SB_PARAM_REAL, 5.0, 0.0, 20.0, NULL, "penalty exponent: beta ~ h^-sigma (RMTR §3.1, §7.1)" },
+    { "beta_scale", SB_PARAM_REAL, 1.0, 0.0, 1e30, NULL, "factor on the penalty beta of method.beta_rule" },
+    { "beta_rule", SB_PARAM_CHOICE, 0, 0, 0, beta_rule_choices,
+      "penalty beta: scaled = beta_scale (S / S_p) (l / l_p)^sigma h^-sigma with S = k_m / l + D / l^3 the scene's "
+      "membrane and bending stiffness over its diameter l, S_p, l_p those of the paper's 1 m denim cloth (there "
+      "exactly the paper's beta; docs/trust.md), or paper = beta_scale h^-sigma (h in m, RMTR §3.1)" },
     { "penalty_h", SB_PARAM_CHOICE, 0, 0, 0, penh_choices,
       "h in beta = h^-sigma: the finest level's on every level (finest: coarse models are Galerkin, "
       "S^T H S = H_c) or each level's own mesh size (level); with Galerkin coarse models only the nested start's "
@@ -127,6 +132,7 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     S->lumped = (int)param(cfg, "mass") == 1;
     S->use_osd = (int)param(cfg, "subdiv") == 0;
     S->beta_finest = (int)param(cfg, "penalty_h") == 0;
+    S->beta_paper = (int)param(cfg, "beta_rule") == 1;
     char msg[256];
     if (sb_material_init_msg(&S->mat, &scene->material, (int)param(cfg, "n_thick"), msg, sizeof msg) != SB_OK)
         return cc_state_fail(S, SB_ERR_INPUT, "material: %s", msg);
@@ -140,6 +146,8 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     S->n_fine = n;
     S->n_coarse = n >> (levels - 1);
     cc_err e = { "" };
+    int rc = cc_beta_factor(S, &S->beta_factor, &e);
+    if (rc) return cc_state_fail(S, rc, "%s", e.msg);
     cc_mesh cage;
     int st = coarse_cage(scene, S->n_coarse, &cage, &e);
     if (!st) st = cc_hier_build(&S->hier, &cage, levels, S->use_osd, &e);
@@ -300,6 +308,11 @@ static void cc_describe(const void *state, char *buf, size_t len)
              S->nlev, S->n_coarse, S->n_coarse, S->n_fine, S->n_fine, 3 * L->nv, proj_choices[S->proj]);
 }
 
+static int cc_penalty_violation_op(void *state, int level, const double *x, sb_penalty_report *r)
+{
+    return cc_penalty_violation(state, level, x, r);
+}
+
 const sb_method_type sb_method_subdiv = {
     .name = "rmtr",
     .description = "Catmull-Clark subdivision shell elements with level hierarchy, penalty BCs (RMTR paper §3, §5)",
@@ -323,5 +336,6 @@ const sb_method_type sb_method_subdiv = {
     .restrict_adj = cc_restrict,
     .project = cc_project,
     .prolong_matrix = cc_prolong_matrix,
+    .penalty_violation = cc_penalty_violation_op,
     .describe = cc_describe,
 };

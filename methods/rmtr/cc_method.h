@@ -40,6 +40,7 @@ typedef struct cc_pt {
     double X[3];                /* reference position x(xi) */
     double b[3];                /* penalty target b, or force density / force, at this step */
     double n[3];                /* slope penalty: reference unit normal N */
+    double inv_len;             /* slope penalty: 1 / |dX/dc| (theta = dx/dc . N / |dX/dc|) */
     long off;                   /* basis values N_I (k of the element) at ptN[off] */
 } cc_pt;
 
@@ -79,7 +80,9 @@ typedef struct cc_state {
     cc_proj_kind proj;
     sb_hess_kind hess;
     int lumped, ng, use_osd, beta_finest;
+    int beta_paper;             /* method.beta_rule = paper: beta = beta_scale h^-sigma */
     double sigma, beta_scale;
+    double beta_factor;         /* cc_beta_factor(): 1 for the paper's cloth (and the paper rule) */
     /* step data */
     double load_factor[SB_SCENE_MAX_LOADS];
     double motion_factor[SB_SCENE_MAX_BCS];
@@ -103,6 +106,9 @@ int  cc_points_build(cc_state *S, int l, cc_err *e);
 void cc_points_update(cc_state *S, int l);
 /* Energy of the points of element e (penalty (3.6), line/point loads). */
 double cc_points_energy(const cc_state *S, const cc_level *L, int e, const double *qe, double *ge, double *Ke);
+/* cc_beta.c: the scale-aware penalty factor (docs/trust.md) */
+int  cc_beta_factor(const cc_state *S, double *factor, cc_err *e);
+int  cc_penalty_violation(const cc_state *S, int l, const double *x, sb_penalty_report *r);
 /* cc_energy.c */
 int  cc_energy(cc_state *S, int l, const double *x, double *f, double *g, sb_matrix *H);
 int  cc_mass(cc_state *S, int l, sb_matrix *M);

@@ -118,6 +118,7 @@ static int add_edge_part(const cc_state *S, const cc_level *L, const sb_part *pa
                 cc_pt q = p;
                 q.kind = CC_PT_SLOPE;
                 q.w = p.w / cc;
+                q.inv_len = 1.0 / sqrt(cc);
                 for (int c = 0; c < 3; c++) q.n[c] = Nr[c] / nn;
                 if ((st = push(B, &q, kk, Wc))) return cc_fail(e, st, "out of memory (boundary points)");
             }
