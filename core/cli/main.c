@@ -7,7 +7,8 @@
  *                  [--set key=value]... [--dir DIR]
  *   shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...
  *   shellbench inspect [--format md|csv] FILE.h5...
- * Exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error, 3 internal error. */
+ * Exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error, 3 internal error,
+ * 4 stopped by --stop-after-steps, 5 converged but validation failed (--strict). */
 #include "sb_context.h"
 #include "sb_inspect.h"
 #include "sb_method.h"
@@ -29,15 +30,16 @@ static void usage(FILE *f)
             "  shellbench check SCENE.json...\n"
             "  shellbench run --scene NAME|PATH --method NAME --solver NAME [--res N] [--levels L]\n"
             "                 [--set key=value]... [--out FILE.h5|none] [--summary json] [--samples N] [--quiet]\n"
-            "                 [--resume] [--stop-after-steps K]\n"
+            "                 [--resume] [--stop-after-steps K] [--strict]\n"
             "  shellbench sweep --scenes A,B --methods M,.. --solvers S,.. [--res N,..] [--levels L,..]\n"
-            "                 [--set key=value]... [--dir DIR] [--resume]\n"
+            "                 [--set key=value]... [--dir DIR] [--resume] [--strict]\n"
             "  --resume: skip a run whose record exists, continue one from the last completed step of\n"
             "            its checkpoint OUT.partial (same scene, method, solver, sizes and parameters)\n"
             "  shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...\n"
             "  shellbench inspect [--format md|csv] FILE.h5...   (material state of the recorded final state)\n"
+            "  --strict: a converged run whose expected probe values are out of tolerance exits 5\n"
             "exit codes: 0 converged, 1 did not converge, 2 usage or input error, 3 internal error,\n"
-            "            4 stopped by --stop-after-steps (resumable)\n");
+            "            4 stopped by --stop-after-steps (resumable), 5 validation failed (--strict)\n");
 }
 
 static int parse_int(const char *s, int *out)
@@ -124,6 +126,7 @@ static int parse_run_args(int argc, char **argv, cli_run *c, int sweep)
 #define NEED_VALUE() do { if (!v) { fprintf(stderr, "shellbench: %s needs a value\n", a); return 2; } i++; } while (0)
         if (!strcmp(a, "--quiet")) { c->req.quiet = 1; continue; }
         if (!strcmp(a, "--resume")) { c->req.resume = 1; continue; }
+        if (!strcmp(a, "--strict")) { c->req.strict = 1; continue; }
         if (!sweep && !strcmp(a, "--scene")) { NEED_VALUE(); c->req.scene = v; }
         else if (!sweep && !strcmp(a, "--method")) { NEED_VALUE(); c->req.method = v; }
         else if (!sweep && !strcmp(a, "--solver")) { NEED_VALUE(); c->req.solver = v; }
@@ -233,7 +236,7 @@ static int cmd_sweep(int argc, char **argv)
                         r.quiet = 1;
                         int x = sb_run_execute(&r, stdout, stderr, NULL);
                         runs++;
-                        printf("%-40s %s\n", out, x == 0 ? "converged" : x == 1 ? "NOT converged" : x == 2 ? "input error" : x == 4 ? "stopped" : "internal error");
+                        printf("%-40s %s\n", out, x == 0 ? "converged" : x == 1 ? "NOT converged" : x == 2 ? "input error" : x == 4 ? "stopped" : x == 5 ? "validation failed" : "internal error");
                         fflush(stdout);
                         if (x > worst) worst = x;
                     }

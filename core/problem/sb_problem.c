@@ -405,6 +405,17 @@ int sb_problem_force_scale(sb_problem *p, double *F)
     return SB_OK;
 }
 
+int sb_problem_method_energy(sb_problem *p, const double *x, double *e)
+{
+    const int Fl = p->nl - 1;
+    double t0 = sb_now();
+    *e = 0.0;
+    int rc = p->mt->energy(p->ms, Fl, x, e, NULL, NULL);
+    sb_stats_event(&p->ctx->stats, Fl, SB_EV_ENERGY, t0);
+    if (rc < 0) return rc;
+    return rc == SB_NONFINITE || !isfinite(*e) ? SB_NONFINITE : SB_OK;
+}
+
 sb_matrix *sb_problem_hessian(sb_problem *p, int level) { return &p->lv[level].H; }
 
 int sb_problem_factor(sb_problem *p, int level, double shift)

@@ -58,6 +58,12 @@ int  sb_problem_lift(sb_problem *p, const double *x_n, double *x0);
  * counted.  SB_OK, SB_NONFINITE (F = inf) or an error. */
 int  sb_problem_force_scale(sb_problem *p, double *F);
 
+/* E(x) of the method alone on the finest level (elastic + external +
+ * penalty: no inertia, no damping, constrained dofs as in x), with the
+ * current step's data; one energy evaluation, counted.  SB_OK, SB_NONFINITE
+ * or an error. */
+int  sb_problem_method_energy(sb_problem *p, const double *x, double *e);
+
 /* f = Phi(x) at `level`; g and H optional (H: the level's Hessian matrix,
  * sb_problem_hessian()).  Returns SB_OK or SB_NONFINITE. */
 int  sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H);

@@ -34,6 +34,7 @@ static void run_cleanup(run_state *R)
     sb_resume_point_free(&R->bp);
     free(R->rec.probe_traj); free(R->rec.probe_expected); free(R->rec.probe_rel_error);
     free(R->rec.sample_st); free(R->rec.sample_ref); free(R->rec.sample_pos); free(R->rec.tris);
+    free(R->rec.checks);
     free(R->probe_names);
     if (R->scene_loaded) sb_scene_free(&R->scene);
     sb_context_free(&R->ctx);
@@ -382,14 +383,13 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     double tr0 = sb_now();
     if (R->mt->eval_points) {
         R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
-        for (int p = 0; p < rec->n_probes; p++) {
-            const double *pos = rec->probe_traj + ((size_t)rec->steps_done * rec->n_probes + p) * 3;
-            const double *ref = rec->probe_traj + (size_t)p * 3;
-            double u[3] = { pos[0] - ref[0], pos[1] - ref[1], pos[2] - ref[2] };
-            rec->probe_rel_error[p] = sb_run_probe_rel_error(&sc->probes[p], u);
+        if (sb_run_validate(R)) {
+            fprintf(err, "shellbench: out of memory\n");
+            return SB_EXIT_INTERNAL;
         }
         sb_run_judge_penalty(R);
     }
+    sb_run_potential_change(R);
     sb_run_compute_error(R, err);
     sb_run_record_material(R);
     if (out_path) {
@@ -413,10 +413,16 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     if (summary) *summary = js;
     else free(js);
     if (!req->quiet && !req->summary_json)
-        fprintf(err, "%s/%s/%s: %s (%s), %ld dofs, %d of %d steps, %.3f s%s%s\n", sc->name, R->mt->name, R->stype->name,
-                rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason), rec->n_dofs,
-                rec->steps_done, rec->steps_planned, stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
-    return rec->status ? SB_EXIT_NOT_CONVERGED : SB_EXIT_CONVERGED;
+        fprintf(err, "%s/%s/%s: %s (%s), validation %s, %ld dofs, %d of %d steps, %.3f s%s%s\n", sc->name, R->mt->name,
+                R->stype->name, rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason),
+                sb_validation_name(rec->validation), rec->n_dofs, rec->steps_done, rec->steps_planned,
+                stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
+    if (rec->status) return SB_EXIT_NOT_CONVERGED;
+    if (req->strict && rec->validation == SB_VALIDATION_FAILED) {
+        if (!req->quiet) fprintf(err, "shellbench: --strict: validation failed (an expected probe value is out of tolerance)\n");
+        return SB_EXIT_VALIDATION;
+    }
+    return SB_EXIT_CONVERGED;
 }
 
 int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summary)

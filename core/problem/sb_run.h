@@ -20,11 +20,13 @@ typedef struct sb_run_request {
     int sample_n;             /* sample grid per side (0 = 21) */
     int resume;               /* continue from the last step boundary of OUT.partial */
     int stop_after_steps;     /* > 0: stop after this step with a checkpoint (exit SB_EXIT_STOPPED) */
+    int strict;               /* --strict: a converged run whose validation failed exits SB_EXIT_VALIDATION */
 } sb_run_request;
 
 /* Exit codes of the CLI contract. */
 enum { SB_EXIT_CONVERGED = 0, SB_EXIT_NOT_CONVERGED = 1, SB_EXIT_INPUT = 2, SB_EXIT_INTERNAL = 3,
-       SB_EXIT_STOPPED = 4 /* --stop-after-steps: stopped with a resumable checkpoint */ };
+       SB_EXIT_STOPPED = 4, /* --stop-after-steps: stopped with a resumable checkpoint */
+       SB_EXIT_VALIDATION = 5 /* --strict: converged, but an expected probe value is out of tolerance */ };
 
 /* Executes the run; returns the exit code.  Messages go to err_stream,
  * the JSON summary (if asked) to out_stream.  When summary is non-NULL it

@@ -56,3 +56,19 @@ void sb_run_judge_penalty(run_state *R)
         rec->reason = SB_REASON_PENALTY;
     }
 }
+
+/* Phi_E(x_final) - Phi_E(X) (sb_record.h): the method's energy at the final
+ * state and at the reference configuration, both with the last step's loads
+ * and boundary data (the problem's current step).  Two energy evaluations,
+ * counted. */
+void sb_run_potential_change(run_state *R)
+{
+    sb_run *rec = &R->rec;
+    rec->has_potential = 0;
+    if (rec->steps_done < 1) return;
+    double e1, e0;
+    if (sb_problem_method_energy(R->prob, R->x, &e1) != SB_OK) return;
+    if (sb_problem_method_energy(R->prob, R->xref, &e0) != SB_OK) return;
+    rec->has_potential = 1;
+    rec->potential_change = e1 - e0;
+}

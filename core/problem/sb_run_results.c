@@ -107,9 +107,14 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     for (size_t i = 0; i < st->n_steps; i++) iters += st->steps[i].iterations;
     json_object_set_new(o, "iterations", json_integer(iters));
     if (st->n_steps) {
+        /* f: Phi of the last step at the final state (inertia included, and the
+         * constant -F.X of dead loads at the reference position); the potential
+         * change Phi_E(x) - Phi_E(X) is comparable across methods (docs/trust.md) */
         json_set_num(o, "f", st->steps[st->n_steps - 1].f);
         json_set_num(o, "gnorm", st->steps[st->n_steps - 1].gnorm);
     }
+    if (R->rec.has_potential) json_set_num(o, "potential_change", R->rec.potential_change);
+    else json_object_set_new(o, "potential_change", json_null());
     json_t *wu = json_object();
     json_set_num(wu, "assembly", st->work_assembly);
     json_set_num(wu, "qp", st->work_qp);
@@ -138,18 +143,45 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
         json_object_set_new(q, "displacement", json_pack("[fff]", pos[0] - ref[0], pos[1] - ref[1], pos[2] - ref[2]));
         const sb_probe *sp = &R->scene.probes[p];
         if (sp->has_expected) {
+            /* the first expected value as before; every one under "checks" */
+            static const char *const comp[] = { "x", "y", "z", "norm" };
             if (sp->expected_component < 0)
                 json_object_set_new(q, "expected", json_pack("[fff]", sp->expected[0], sp->expected[1], sp->expected[2]));
             else
                 json_set_num(q, "expected", sp->expected[0]);
-            static const char *const comp[] = { "x", "y", "z", "norm" };
             json_object_set_new(q, "component", json_string(sp->expected_component < 0 ? "vector" : comp[sp->expected_component]));
             json_set_num(q, "rel_error", R->rec.probe_rel_error[p]);
             json_set_num(q, "tol", sp->tol);
+            json_t *checks = json_array();
+            int passed = 1, any = 0;
+            for (int c = 0; c < R->rec.n_checks; c++) {
+                const sb_check_row *row = &R->rec.checks[c];
+                if (row->probe != p) continue;
+                json_t *ck = json_object();
+                json_object_set_new(ck, "component", json_string(row->component < 0 ? "vector" : comp[row->component]));
+                if (row->component < 0) {
+                    json_object_set_new(ck, "expected", json_pack("[fff]", row->expected[0], row->expected[1], row->expected[2]));
+                    json_object_set_new(ck, "measured", json_pack("[fff]", row->measured[0], row->measured[1], row->measured[2]));
+                } else {
+                    json_set_num(ck, "expected", row->expected[0]);
+                    json_set_num(ck, "measured", row->measured[0]);
+                }
+                json_set_num(ck, "rel_error", row->rel_error);
+                json_set_num(ck, "signed_error", row->signed_error);
+                json_set_num(ck, "tol", row->tol);
+                json_object_set_new(ck, "passed", json_boolean(row->passed));
+                json_array_append_new(checks, ck);
+                if (!any) json_set_num(q, "signed_error", row->signed_error);
+                any = 1;
+                passed &= row->passed;
+            }
+            if (any) json_object_set_new(q, "passed", json_boolean(passed));
+            json_object_set_new(q, "checks", checks);
         }
         json_object_set_new(pr, sp->name, q);
     }
     json_object_set_new(o, "probes", pr);
+    json_object_set_new(o, "validation", json_string(sb_validation_name(R->rec.validation)));
     if (R->rec.has_material) {
         const sb_material_state *m = &R->rec.material;
         json_t *ma = json_object();

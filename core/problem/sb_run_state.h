@@ -62,6 +62,11 @@ sb_reason sb_run_judge_step(run_state *R, sb_reason reason);
  * run.penalty_tol times the displacement scale becomes not converged
  * (SB_REASON_PENALTY).  Needs rec->sample_pos of the final state. */
 void sb_run_judge_penalty(run_state *R);
+/* The expected probe values judged (sb_validation.c): rec->checks,
+ * rec->validation, probe_rel_error.  SB_OK or SB_ERR_NOMEM. */
+int  sb_run_validate(run_state *R);
+/* rec->potential_change: Phi_E(x) - Phi_E(X) with the last step's data. */
+void sb_run_potential_change(run_state *R);
 
 /* ---- checkpoints and resume (sb_run_checkpoint.c) ------------------------ */
 int    sb_run_partial_path(const char *out_path, char *buf, size_t len);

@@ -32,6 +32,26 @@ typedef struct sb_resume_point {
     sb_stats stats;
 } sb_resume_point;
 
+/* Validation of a run against its scene's expected probe values, separate
+ * from solver convergence (docs/trust.md "Validation"). */
+enum { SB_VALIDATION_NONE = 0,     /* nothing to check, or the run stopped before the final step */
+       SB_VALIDATION_PASSED = 1,   /* every expected value within its tolerance */
+       SB_VALIDATION_FAILED = 2 };
+const char *sb_validation_name(int v);   /* "none", "passed", "failed" */
+
+/* One expected value of one probe, judged (/probes/checks). */
+typedef struct sb_check_row {
+    int probe;                 /* probe index */
+    int component;             /* 0,1,2 = x,y,z; 3 = norm; -1 = vector (sb_probe_check) */
+    double expected[3];        /* in [0] unless component -1 */
+    double measured[3];        /* the displacement component(s) at the final step, alike */
+    double rel_error;          /* |measured - expected| / |expected| (vector: Euclidean norms) */
+    double signed_error;       /* measured / expected - 1 (vector: along the expected vector):
+                                  < 0 smaller than expected (too stiff), > 0 larger (too soft) */
+    double tol;
+    int passed;                /* rel_error <= tol */
+} sb_check_row;
+
 typedef struct sb_run {
     /* identity */
     char scene_name[SB_NAME_LEN];
@@ -86,6 +106,16 @@ typedef struct sb_run {
     int has_penalty;
     double penalty_beta, penalty_position, penalty_rotation;
     double penalty_scale, penalty_relative, penalty_tol;
+    /* validation (docs/trust.md): every expected value of every probe */
+    int validation;            /* SB_VALIDATION_* */
+    int n_checks;
+    sb_check_row *checks;
+    /* Phi_E(x_final) - Phi_E(X): the method's energy (elastic + external +
+     * penalty; no inertia) at the final state minus at the reference
+     * configuration, both with the last step's loads: comparable across
+     * methods, unlike f, which carries the constant -F.X of dead loads */
+    int has_potential;
+    double potential_change;
     sb_resume_log resumed;
     /* checkpoints only: the last step boundary, written as /resume (NULL in
      * a final record); its stats' history pointers are not used, the
@@ -138,6 +168,8 @@ typedef struct sb_record_summary {
     int resumes;               /* times the run was resumed (0 in records written before resumes existed) */
     char resume_steps[256];    /* after which completed steps, "2,3" */
     int resume_point;          /* a checkpoint: the completed step --resume continues after; -1 otherwise */
+    char validation[16];       /* "passed", "failed", "none"; "" in records written before validation */
+    double potential_change;   /* NaN when not recorded */
 } sb_record_summary;
 
 int  sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen);

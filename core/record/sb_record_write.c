@@ -29,6 +29,11 @@ void sb_run_init(sb_run *run)
     snprintf(run->error_kind, sizeof run->error_kind, "none");
 }
 
+const char *sb_validation_name(int v)
+{
+    return v == SB_VALIDATION_PASSED ? "passed" : v == SB_VALIDATION_FAILED ? "failed" : "none";
+}
+
 /* ---- the layout ---------------------------------------------------------- */
 
 static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
@@ -66,6 +71,8 @@ static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_attr_long(w, f, "reason_code", r->reason);
     bad |= sb_h5w_attr_long(w, f, "steps_planned", r->steps_planned);
     bad |= sb_h5w_attr_long(w, f, "steps_done", r->steps_done);
+    bad |= sb_h5w_attr_str(w, f, "validation", sb_validation_name(r->validation));
+    bad |= sb_h5w_attr_dbl(w, f, "potential_change", r->has_potential ? r->potential_change : NAN);
     return bad ? -1 : 0;
 }
 
@@ -216,6 +223,44 @@ static int write_history(sb_h5w *w, hid_t f, const sb_stats *s)
     return bad ? -1 : 0;
 }
 
+/* /probes/checks: every expected value of every probe, judged (docs/trust.md) */
+static int write_checks(sb_h5w *w, hid_t probes, const sb_run *r)
+{
+    hid_t g = sb_h5w_group(w, probes, "checks");
+    if (g < 0) return -1;
+    const size_t n = (size_t)(r->n_checks > 0 ? r->n_checks : 0);
+    int *ib = malloc((n ? n : 1) * 3 * sizeof *ib);
+    double *db = malloc((n ? n : 1) * 6 * sizeof *db);
+    int bad = !ib || !db ? sb_h5w_fail(w, g, "checks (out of memory)") : 0;
+    if (!bad) {
+        int *probe = ib, *comp = ib + n, *passed = ib + 2 * n;
+        double *exp = db, *meas = db + 3 * n;
+        hsize_t d1 = n, d2[2] = { n, 3 };
+        for (size_t i = 0; i < n; i++) {
+            probe[i] = r->checks[i].probe;
+            comp[i] = r->checks[i].component;
+            passed[i] = r->checks[i].passed;
+            memcpy(exp + 3 * i, r->checks[i].expected, 3 * sizeof(double));
+            memcpy(meas + 3 * i, r->checks[i].measured, 3 * sizeof(double));
+        }
+        bad |= sb_h5w_dset_int(w, g, "probe", 1, &d1, probe, NULL);
+        bad |= sb_h5w_dset_int(w, g, "component", 1, &d1, comp, NULL);
+        bad |= sb_h5w_dset_int(w, g, "passed", 1, &d1, passed, NULL);
+        bad |= sb_h5w_dset_dbl(w, g, "expected", 2, d2, exp, "m");
+        bad |= sb_h5w_dset_dbl(w, g, "measured", 2, d2, meas, "m");
+        for (size_t i = 0; i < n; i++) db[i] = r->checks[i].rel_error;
+        bad |= sb_h5w_dset_dbl(w, g, "rel_error", 1, &d1, db, NULL);
+        for (size_t i = 0; i < n; i++) db[i] = r->checks[i].signed_error;
+        bad |= sb_h5w_dset_dbl(w, g, "signed_error", 1, &d1, db, NULL);
+        for (size_t i = 0; i < n; i++) db[i] = r->checks[i].tol;
+        bad |= sb_h5w_dset_dbl(w, g, "tol", 1, &d1, db, NULL);
+    }
+    free(ib);
+    free(db);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
 static int write_probes(sb_h5w *w, hid_t f, const sb_run *r)
 {
     hid_t g = sb_h5w_group(w, f, "/probes");
@@ -234,6 +279,7 @@ static int write_probes(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_dset_dbl(w, g, "trajectory", 3, dt, r->probe_traj, "m");
     bad |= sb_h5w_dset_dbl(w, g, "expected", 2, de, r->probe_expected, "m");
     bad |= sb_h5w_dset_dbl(w, g, "rel_error", 1, &d1, r->probe_rel_error, NULL);
+    if (!bad) bad |= write_checks(w, g, r);
     H5Gclose(g);
     return bad ? -1 : 0;
 }
@@ -350,6 +396,8 @@ static int validate(const sb_run *r, const char *path, char *err, size_t errlen)
     if (r->n_probes < 0 || r->n_x < 0 || r->n_samples < 0 || r->n_tris < 0 || r->steps_done < 0)
         BAD("cannot record %s: negative count (probes %d, x %d, samples %d, triangles %d, steps %d)",
             path, r->n_probes, r->n_x, r->n_samples, r->n_tris, r->steps_done);
+    if (r->n_checks < 0 || (r->n_checks > 0 && !r->checks))
+        BAD("cannot record %s: %d probe checks but no check array", path, r->n_checks);
     if (r->n_probes > 0 && (!r->probe_names || !r->probe_traj || !r->probe_expected || !r->probe_rel_error))
         BAD("cannot record %s: %d probes but their names/trajectory/expected/rel_error arrays are missing",
             path, r->n_probes);

@@ -66,8 +66,8 @@ static double error_value(const sb_record_summary *s, const char **label)
 static void md_header(FILE *out)
 {
     fputs("| scene | method | solver | dofs | levels | steps | iterations | assembly WU | QP WU "
-          "| seconds | error | status |\n", out);
-    fputs("|---|---|---|--:|--:|--:|--:|--:|--:|--:|---|---|\n", out);
+          "| seconds | error | status | validation |\n", out);
+    fputs("|---|---|---|--:|--:|--:|--:|--:|--:|--:|---|---|---|\n", out);
 }
 
 static void md_row(FILE *out, const sb_record_summary *s)
@@ -90,6 +90,8 @@ static void md_row(FILE *out, const sb_record_summary *s)
     md_cell(out, buf);
     status_text(s, buf, sizeof buf);
     md_cell(out, buf);
+    /* expected probe values judged, apart from convergence (docs/trust.md) */
+    md_cell(out, s->validation[0] ? s->validation : "\xE2\x80\x94");
     fputs("|\n", out);
 }
 
@@ -102,7 +104,8 @@ static void csv_header(FILE *out)
     };
     for (size_t i = 0; i < sizeof cols / sizeof *cols; i++) csv_field(out, cols[i], i == 0);
     for (int e = 0; e < SB_EV_COUNT; e++) fprintf(out, ",seconds_%s", sb_event_name((sb_event)e));
-    fputs(",build_id,cpu_model,n_cores,blas_core,started,file,resumes,resume_steps,resume_point\n", out);
+    fputs(",build_id,cpu_model,n_cores,blas_core,started,file,resumes,resume_steps,resume_point,validation,"
+          "potential_change\n", out);
 }
 
 /* Numbers in CSV: %.9g; non-finite values as an empty field. */
@@ -144,6 +147,8 @@ static void csv_row(FILE *out, const sb_record_summary *s, const char *file)
     csv_field(out, s->resume_steps, 0);
     if (s->resume_point >= 0) fprintf(out, ",%d", s->resume_point);
     else fputs(",", out);
+    csv_field(out, s->validation, 0);
+    csv_num(out, s->potential_change);
     fputc('\n', out);
 }
 

@@ -157,16 +157,29 @@ typedef struct sb_time_spec {
 } sb_time_spec;
 
 /* ---- probes and reference --------------------------------------------- */
+#define SB_PROBE_MAX_CHECKS 4
+
+/* One expected value of a probe: a component of the displacement x - X at
+ * the FINAL step with a relative tolerance (docs/trust.md "Validation"). */
+typedef struct sb_probe_check {
+    int component;           /* 0,1,2 = x,y,z displacement; 3 = norm; -1 = full vector */
+    double value[3];         /* expected value (in [0] unless component -1) */
+    double tol;              /* relative tolerance, in (0, 1] */
+} sb_probe_check;
+
 typedef struct sb_probe {
     char name[SB_NAME_LEN];
     double xi[2];            /* material point */
     double st[2];            /* its grid parameter */
+    int n_checks;            /* expected values ("expected": an object or an array of them) */
+    sb_probe_check checks[SB_PROBE_MAX_CHECKS];
+    /* the first check, as the fields readers of one expected value use */
     int has_expected;
     int expected_component;  /* 0,1,2 = x,y,z displacement; 3 = norm of displacement;
                                 -1 = full displacement vector */
     double expected[3];      /* expected displacement x - X at the FINAL step
                                 (component in [0] unless -1) */
-    double tol;              /* relative tolerance for "expected" (reported, asserted by tests) */
+    double tol;              /* relative tolerance for "expected" (checked: docs/trust.md) */
 } sb_probe;
 
 typedef enum { SB_REF_NONE, SB_REF_PROBES, SB_REF_FILE } sb_reference_kind;

@@ -6,6 +6,7 @@
  *               "expected": {"component": "x"|"y"|"z"|"norm"|"vector",
  *                            "value": m (or [ux, uy, uz] for "vector"),
  *                            "tol": relative}}]
+ *             ("expected" may also be an array of such objects, one per component)
  *   "reference": {"type": "none"|"probes"|"file", "file": path, "note": text}
  *
  * Expected values are displacements (x - X) at the final step. */
@@ -52,30 +53,70 @@ out:
     return r;
 }
 
-static int parse_expected(sbj_ctx *c, const json_t *o, sb_probe *p)
+static const char *const check_components[] = { "x", "y", "z", "norm", "vector", NULL };
+
+/* One {"component", "value", "tol"} object into check k of p. */
+static int parse_check(sbj_ctx *c, const json_t *e, sb_probe *p, int k)
 {
     static const char *const keys[] = { "component", "value", "tol", NULL };
-    static const char *const comps[] = { "x", "y", "z", "norm", "vector", NULL };
-    json_t *e;
-    int comp = 0, r = sbj_get_object(c, o, "expected", 0, &e);
-    if (r || !e) return r;
-    size_t mark = sbj_push(c, "expected");
-    if ((r = sbj_check_keys(c, e, keys)) || (r = sbj_get_choice(c, e, "component", 1, comps, &comp)))
-        goto out;
-    p->expected_component = comp == 4 ? -1 : comp;
+    sb_probe_check *ck = &p->checks[k];
+    int comp = 0, r;
+    if (!json_is_object(e)) return sbj_fail(c, NULL, 0, "must be an object, got %s", sbj_type_name(e));
+    if ((r = sbj_check_keys(c, e, keys)) || (r = sbj_get_choice(c, e, "component", 1, check_components, &comp)))
+        return r;
+    ck->component = comp == 4 ? -1 : comp;
+    for (int j = 0; j < k; j++)
+        if (p->checks[j].component == ck->component)
+            return sbj_fail(c, "component", 0, "component \"%s\" is expected twice for this probe (also check %d)",
+                            check_components[comp], j);
     if (comp == 4) {
-        if ((r = sbj_get_vec(c, e, "value", 1, 3, p->expected, NULL))) goto out;
+        if ((r = sbj_get_vec(c, e, "value", 1, 3, ck->value, NULL))) return r;
+        if (ck->value[0] == 0 && ck->value[1] == 0 && ck->value[2] == 0)
+            return sbj_fail(c, "value", 0, "a relative tolerance needs a non-zero expected vector");
     } else {
-        if ((r = sbj_get_number(c, e, "value", 1, &p->expected[0], NULL))) goto out;
-        if (comp == 3 && (r = sbj_require_nonneg(c, "value", p->expected[0]))) goto out;
+        if ((r = sbj_get_number(c, e, "value", 1, &ck->value[0], NULL))) return r;
+        if (comp == 3 && (r = sbj_require_nonneg(c, "value", ck->value[0]))) return r;
+        if (ck->value[0] == 0)
+            return sbj_fail(c, "value", 0, "a relative tolerance needs a non-zero expected value "
+                            "(expect the vector, or another component)");
     }
-    if ((r = sbj_get_number(c, e, "tol", 1, &p->tol, NULL))) goto out;
-    if (!(p->tol > 0 && p->tol <= 1)) {
-        r = sbj_fail(c, "tol", 0, "relative tolerance must be in (0, 1], got %g", p->tol);
-        goto out;
+    if ((r = sbj_get_number(c, e, "tol", 1, &ck->tol, NULL))) return r;
+    if (!(ck->tol > 0 && ck->tol <= 1))
+        return sbj_fail(c, "tol", 0, "relative tolerance must be in (0, 1], got %g", ck->tol);
+    return SB_OK;
+}
+
+/* "expected": one check object, or an array of 1..SB_PROBE_MAX_CHECKS of them
+ * (several components of one probe) */
+static int parse_expected(sbj_ctx *c, const json_t *o, sb_probe *p)
+{
+    json_t *e = json_object_get(o, "expected");
+    if (!e) return SB_OK;
+    size_t mark = sbj_push(c, "expected");
+    int r = SB_OK;
+    if (json_is_array(e)) {
+        size_t n = json_array_size(e);
+        if (n < 1 || n > SB_PROBE_MAX_CHECKS)
+            r = sbj_fail(c, NULL, 0, "must hold 1 to %d expected values, got %zu", SB_PROBE_MAX_CHECKS, n);
+        for (size_t k = 0; k < n && !r; k++) {
+            size_t m2 = sbj_push_index(c, k);
+            r = parse_check(c, json_array_get(e, k), p, (int)k);
+            sbj_pop(c, m2);
+            if (!r) p->n_checks = (int)k + 1;
+        }
+    } else if (json_is_object(e)) {
+        r = parse_check(c, e, p, 0);
+        if (!r) p->n_checks = 1;
+    } else {
+        r = sbj_fail(c, NULL, 0, "must be an object or an array of objects, got %s", sbj_type_name(e));
     }
-    p->has_expected = 1;
-out:
+    if (!r) {
+        const sb_probe_check *first = &p->checks[0];
+        p->has_expected = 1;
+        p->expected_component = first->component;
+        for (int k = 0; k < 3; k++) p->expected[k] = first->value[k];
+        p->tol = first->tol;
+    }
     sbj_pop(c, mark);
     return r;
 }
