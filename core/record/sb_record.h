@@ -130,7 +130,7 @@ void sb_run_init(sb_run *run);
 /* Layout version written as the root attribute "format_version"; a reader
  * refuses files with a newer version.  The layout is documented in
  * docs/recorded_figures.md. */
-#define SB_RECORD_FORMAT_VERSION 1
+#define SB_RECORD_FORMAT_VERSION 2   /* 2: root attribute "checksum" (docs/trust.md) */
 #define SB_RECORD_FORMAT_NAME "shellbench-run"
 /* Record status of a checkpoint (run.checkpoint): the run was still going. */
 #define SB_STATUS_UNFINISHED 2

@@ -136,11 +136,18 @@ int sb_h5r_open(sb_h5r *r, hid_t *file)
         snprintf(r->err, r->errlen, "cannot read record %s: not a regular file", r->path);
         return SB_ERR_INPUT;
     }
+    /* the checksum first, from the raw bytes: HDF5 never parses an altered file (sb_checksum.c) */
+    int sealed = 0, vrc = sb_record_verify(r->path, &sealed, r->err, r->errlen);
+    if (vrc) return vrc;
     if (H5Fis_hdf5(r->path) <= 0) {
         snprintf(r->err, r->errlen, "%s is not an HDF5 file, so not a shellbench record", r->path);
         return SB_ERR_INPUT;
     }
-    hid_t f = H5Fopen(r->path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    /* closing the file closes whatever a failed read left open */
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    if (fapl >= 0) H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+    hid_t f = H5Fopen(r->path, H5F_ACC_RDONLY, fapl >= 0 ? fapl : H5P_DEFAULT);
+    if (fapl >= 0) H5Pclose(fapl);
     if (f < 0) {
         snprintf(r->err, r->errlen, "cannot open record %s: HDF5 cannot open it (truncated or corrupt file?)", r->path);
         return SB_ERR_IO;
@@ -158,6 +165,11 @@ int sb_h5r_open(sb_h5r *r, hid_t *file)
     if (rc == SB_OK && (version < 1 || version > SB_RECORD_FORMAT_VERSION)) {
         snprintf(r->err, r->errlen, "%s has record format version %d; this build reads versions 1 to %d",
                  r->path, version, SB_RECORD_FORMAT_VERSION);
+        rc = SB_ERR_INPUT;
+    }
+    if (!rc && version >= 2 && !sealed) {
+        snprintf(r->err, r->errlen, "cannot read record %s: it has no checksum, which its format version %d requires "
+                 "(the file was altered or damaged after it was written)", r->path, version);
         rc = SB_ERR_INPUT;
     }
     if (rc) {

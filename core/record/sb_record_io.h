@@ -7,6 +7,7 @@
 #include "sb_record.h"
 
 #include <hdf5.h>
+#include <stdint.h>
 
 /* fsync a file by path; 0 or -1 with errno set. */
 int sb_record_fsync_path(const char *path);
@@ -54,6 +55,19 @@ extern const int sb_record_n_iter_cols, sb_record_n_step_cols;
 int   sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp);
 /* The resume log as root attributes (every record). */
 int   sb_record_write_resume_log(sb_h5w *w, hid_t f, const sb_resume_log *log);
+
+/* ---- checksums (sb_checksum.c, docs/trust.md) ---------------------------
+ * Records begin with a user block of SB_RECORD_USERBLOCK bytes holding the
+ * CRC-64 of the rest of the file. */
+#define SB_RECORD_USERBLOCK 512
+/* CRC-64/XZ of n bytes continuing crc (0 to start) */
+uint64_t sb_crc64(uint64_t crc, const void *data, size_t n);
+/* Fill the user block of the closed file PATH with the checksum of the rest. */
+int  sb_record_seal(const char *path, char *err, size_t errlen);
+/* SB_OK with *sealed = 1 when PATH carries a checksum that matches, or with
+ * *sealed = 0 when it carries none; SB_ERR_INPUT (mismatch, damaged header)
+ * or SB_ERR_IO with a sentence. */
+int  sb_record_verify(const char *path, int *sealed, char *err, size_t errlen);
 
 /* ---- HDF5 readers (sb_record_h5r.c): SB_OK, or a status with one sentence
  * in r->err naming the file and the object ---- */

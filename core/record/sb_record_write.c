@@ -366,7 +366,9 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
 {
     hid_t fcpl = H5Pcreate(H5P_FILE_CREATE), fapl = H5Pcreate(H5P_FILE_ACCESS);
     hid_t f = -1;
+    /* the user block holds the checksum, written once the file is closed (sb_checksum.c) */
     if (fcpl >= 0 && fapl >= 0 && H5Pset_attr_phase_change(fcpl, 0, 0) >= 0 &&
+        H5Pset_userblock(fcpl, SB_RECORD_USERBLOCK) >= 0 &&
         H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18) >= 0)
         f = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, fapl);
     if (fcpl >= 0) H5Pclose(fcpl);
@@ -465,6 +467,10 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
         unlink(tmp);
         snprintf(err, errlen, "cannot write record %s: HDF5 failed writing %s", path, w.failed);
         return SB_ERR_IO;
+    }
+    if ((rc = sb_record_seal(tmp, err, errlen)) != SB_OK) {
+        unlink(tmp);
+        return rc;
     }
     if (sb_record_fsync_path(tmp) != 0) {
         snprintf(err, errlen, "cannot write record %s: fsync of %s failed: %s", path, tmp, strerror(errno));
