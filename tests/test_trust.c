@@ -401,6 +401,110 @@ SB_TEST(altered_checkpoint_refused)
     outcome_free(&q);
 }
 
+/* ---- item 2: a closed annulus whose seam edges carry conditions -------- */
+
+/* A clamp on `start` and a load on `end` of a 360-degree annulus: main
+ * merged the two edges, put the load on the clamp and reported converged
+ * with zero displacement.  The seam now stays open (a slit): the result is
+ * the limit of a 359.9-degree sector's. */
+SB_TEST(slit_annulus_keeps_its_slit)
+{
+    outcome a = run1("tests/scenes/annulus_slit.json", "bhem", "lsnewton", 8, NULL);
+    outcome b = run1("tests/scenes/annulus_open.json", "bhem", "lsnewton", 8, NULL);
+    CHECK(a.code == 0 && b.code == 0 && a.summary && b.summary);
+    if (a.summary && b.summary) {
+        CHECK_MSG(disp(a.summary, "end_mid", 2) > 0.01, "slit annulus: w = %g", disp(a.summary, "end_mid", 2));
+        CHECK_REL(disp(a.summary, "end_mid", 2), disp(b.summary, "end_mid", 2), 1e-3);
+        CHECK(strstr(str(a.summary, "method_info"), "slit") != NULL);
+    }
+    outcome_free(&a);
+    outcome_free(&b);
+}
+
+/* ---- item 8: reference files --------------------------------------------- */
+
+/* a copy of bench/scenes/plate_clamped.json with reference {type: file, file: FILE} */
+static void ref_scene(const char *scene_path, const char *file)
+{
+    char src[1024], err[1024];
+    snprintf(src, sizeof src, "%s/bench/scenes/plate_clamped.json", sb_test_root());
+    json_error_t e;
+    json_t *o = json_load_file(src, 0, &e);
+    json_object_set_new(o, "reference", json_pack("{s:s, s:s}", "type", "file", "file", file));
+    json_dump_file(o, scene_path, JSON_INDENT(1));
+    json_decref(o);
+    (void)err;
+}
+
+/* `check` and the run refuse, before any work, a reference that is missing,
+ * a directory, /dev/zero, a JSON file, a record of another scene or of
+ * another sample grid, an unfinished checkpoint or a run that did not
+ * converge; main accepted them (check) and only warned at the end. */
+SB_TEST(reference_file_validated)
+{
+    char good[256], other[256], grid[256], notconv[256], part[256], cmd[2048];
+    snprintf(good, sizeof good, "%s/ref_good.h5", tmpdir);
+    snprintf(other, sizeof other, "%s/ref_other.h5", tmpdir);
+    snprintf(grid, sizeof grid, "%s/ref_grid.h5", tmpdir);
+    snprintf(notconv, sizeof notconv, "%s/ref_notconv.h5", tmpdir);
+    snprintf(part, sizeof part, "%s/ref_part.h5", tmpdir);
+    static const char *const one_iter[] = { "run.max_iter=1", NULL };
+    outcome o = run_full("bench/scenes/plate_clamped.json", "bhem", "lsnewton", 4, 1, good, 0, 0, NULL);
+    CHECK_EQ_INT(o.code, 0);
+    outcome_free(&o);
+    o = run_full("bench/scenes/plate_simply_supported.json", "bhem", "lsnewton", 2, 1, other, 0, 0, NULL);
+    outcome_free(&o);
+    o = run_full("bench/scenes/plate_clamped.json", "bhem", "lsnewton", 2, 1, notconv, 0, 0, one_iter);
+    CHECK_EQ_INT(o.code, 1);
+    outcome_free(&o);
+    snprintf(cmd, sizeof cmd, "cd %s && %s run --scene bench/scenes/plate_clamped.json --method bhem --solver lsnewton "
+             "--res 4 --samples 11 --out %s --quiet 2>/dev/null && %s run --scene tests/scenes/membrane_dynamic.json "
+             "--method fixture_membrane --solver tr --res 4 --out %s --stop-after-steps 1 --quiet 2>/dev/null",
+             sb_test_root(), sb_test_bin(), grid, sb_test_bin(), part);
+    CHECK_EQ_INT(WEXITSTATUS(system(cmd)), 4);
+    char partial[300];
+    snprintf(partial, sizeof partial, "%s.partial", part);
+    const struct { const char *file, *says; } bad[] = {
+        { "missing.h5", "No such file" },
+        { "/tmp", "not a regular file" },
+        { "/dev/zero", "not a regular file" },
+        { "PLATE_JSON", "not an HDF5 file" },
+        { other, "another scene" },
+        { grid, "sample grid" },
+        { partial, "unfinished" },
+        { notconv, "did not converge" },
+    };
+    char plate_json[1024];
+    snprintf(plate_json, sizeof plate_json, "%s/bench/scenes/plate_clamped.json", sb_test_root());
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        char scene[256];
+        snprintf(scene, sizeof scene, "%s/refscene%zu.json", tmpdir, k);
+        ref_scene(scene, strcmp(bad[k].file, "PLATE_JSON") ? bad[k].file : plate_json);
+        /* check: exit 2 with a sentence (the grid is only known at run time) */
+        static char text[4096];
+        snprintf(cmd, sizeof cmd, "%s check %s 2>&1", sb_test_bin(), scene);
+        FILE *pp = popen(cmd, "r");
+        size_t got = pp ? fread(text, 1, sizeof text - 1, pp) : 0;
+        text[got] = 0;
+        int rc = pp ? WEXITSTATUS(pclose(pp)) : -1;
+        if (strcmp(bad[k].says, "sample grid") != 0)
+            CHECK_MSG(rc == 2 && strstr(text, bad[k].says), "check of reference %s: exit %d, %s", bad[k].file, rc, text);
+        /* the run: exit 2 before any work, the sentence on stderr */
+        o = run1(scene, "bhem", "lsnewton", 4, NULL);
+        CHECK_MSG(o.code == 2 && o.summary == NULL && strstr(o.err, bad[k].says), "run against reference %s: exit %d, %s",
+                  bad[k].file, o.code, o.err);
+        outcome_free(&o);
+    }
+    /* a good reference: accepted, and the error computed against it */
+    char scene[256];
+    snprintf(scene, sizeof scene, "%s/refgood.json", tmpdir);
+    ref_scene(scene, good);
+    o = run1(scene, "bhem", "lsnewton", 2, NULL);
+    CHECK_MSG(o.code == 0 && !strcmp(str(json_object_get(o.summary, "error"), "kind"), "field"), "good reference: %d %s",
+              o.code, o.err);
+    outcome_free(&o);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_trust_XXXXXX");
@@ -415,6 +519,8 @@ int main(int argc, char **argv)
         SB_CASE(validation_recorded_and_strict),
         SB_CASE(crc64_check_value),
         SB_CASE(altered_checkpoint_refused),
+        SB_CASE(slit_annulus_keeps_its_slit),
+        SB_CASE(reference_file_validated),
         SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);

@@ -104,6 +104,10 @@ static int cmd_check(int argc, char **argv)
         if (sb_scene_load(argv[i], &sc, err, sizeof err)) {
             printf("%s\n", err);
             bad = 1;
+        } else if (sb_reference_check(&sc, NULL, 0, err, sizeof err)) {   /* a reference file must be usable */
+            printf("%s: %s\n", argv[i], err);
+            sb_scene_free(&sc);
+            bad = 1;
         } else {
             printf("%s: ok (%s)\n", argv[i], sc.name);
             sb_scene_free(&sc);

@@ -273,6 +273,22 @@ static int prepare_output(run_state *R, const sb_run_request *req, const char **
     return RUN_GO_ON;
 }
 
+/* The scene's reference file, if any, must be usable before any work
+ * (sb_reference_check): a record of this scene's finished, converged run
+ * on this run's sample grid.  Not checked when this run writes that very
+ * file (the run that makes the reference). */
+static int check_reference(run_state *R, const char *out_path)
+{
+    char msg[2048], a[4096], b[4096];
+    if (R->scene.reference.kind != SB_REF_FILE) return RUN_GO_ON;
+    if (out_path && sb_run_same_path(out_path, R->scene.reference.file, a, b, sizeof a)) return RUN_GO_ON;
+    if (sb_reference_check(&R->scene, R->rec.sample_st, R->rec.n_samples, msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: %s\n", msg);
+        return SB_EXIT_INPUT;
+    }
+    return RUN_GO_ON;
+}
+
 /* The first step to run: 1, or (--resume) the one after the checkpoint's
  * last completed step.  A finished record means nothing to do: its status
  * is the exit code. */
@@ -441,6 +457,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     if ((code = resolve_request(R, req, &levels)) == RUN_GO_ON &&
         (code = prepare_run(R, req, levels)) == RUN_GO_ON &&
         (code = prepare_output(R, req, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
+        (code = check_reference(R, out_path)) == RUN_GO_ON &&
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)
         code = finish_run(R, req, out_path, out, summary);

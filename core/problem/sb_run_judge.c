@@ -6,7 +6,11 @@
 
 #include "sb_geometry.h"
 
+#include <libgen.h>
+#include <limits.h>
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 sb_reason sb_run_judge_step(run_state *R, sb_reason reason)
 {
@@ -71,4 +75,22 @@ void sb_run_potential_change(run_state *R)
     if (sb_problem_method_energy(R->prob, R->xref, &e0) != SB_OK) return;
     rec->has_potential = 1;
     rec->potential_change = e1 - e0;
+}
+
+/* "dir/name" with dir made absolute (realpath) when it exists */
+static void normalize(const char *path, char *out, size_t len)
+{
+    char tmp[4096], tmp2[4096], dir[PATH_MAX];
+    snprintf(tmp, sizeof tmp, "%s", path);
+    snprintf(tmp2, sizeof tmp2, "%s", path);
+    const char *base = basename(tmp2);
+    if (realpath(dirname(tmp), dir)) snprintf(out, len, "%s/%s", dir, base);
+    else snprintf(out, len, "%s", path);
+}
+
+int sb_run_same_path(const char *p, const char *q, char *a, char *b, size_t len)
+{
+    normalize(p, a, len);
+    normalize(q, b, len);
+    return strcmp(a, b) == 0;
 }

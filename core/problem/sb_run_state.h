@@ -65,6 +65,9 @@ void sb_run_judge_penalty(run_state *R);
 /* The expected probe values judged (sb_validation.c): rec->checks,
  * rec->validation, probe_rel_error.  SB_OK or SB_ERR_NOMEM. */
 int  sb_run_validate(run_state *R);
+/* 1 when paths p and q name the same file (directories resolved); a and b
+ * (len bytes each) receive the normalized paths. */
+int  sb_run_same_path(const char *p, const char *q, char *a, char *b, size_t len);
 /* rec->potential_change: Phi_E(x) - Phi_E(X) with the last step's data. */
 void sb_run_potential_change(run_state *R);
 

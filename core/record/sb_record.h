@@ -209,6 +209,15 @@ int  sb_record_read_resume(const char *path, const sb_run *expect, sb_resume_poi
 void sb_resume_point_free(sb_resume_point *rp);
 
 int  sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen);
+
+/* A scene's `reference: {type: file}` (sb_reference_check.c, docs/trust.md):
+ * SB_OK when the scene has none, or when the file is a readable record of a
+ * finished, converged run of the same scene (physics compared section by
+ * section) on a sample grid of the scene's domain (sample_st NULL: any
+ * number of points per side; else exactly the n_samples points given).
+ * Otherwise SB_ERR_INPUT with one sentence naming the scene, the file and
+ * what is wrong. */
+int  sb_reference_check(const sb_scene *sc, const double *sample_st, int n_samples, char *err, size_t errlen);
 void sb_record_setup_free(sb_record_setup *s);
 
 /* Report: Markdown (format "md") or CSV table of the files, and, when

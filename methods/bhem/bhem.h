@@ -116,6 +116,7 @@ typedef struct bhem_state {
     double imperfection;      /* m, amplitude of the out-of-plane reference noise */
     int n_levels;
     int periodic_s, periodic_t;
+    int slit_s, slit_t;         /* a closed surface whose seam edges carry conditions: kept open */
     bhem_level lv[SB_MAX_LEVELS];
     /* step data */
     double load_factor[SB_SCENE_MAX_LOADS];

@@ -32,9 +32,30 @@ static void cross3(const double *a, const double *b, double *c)
     c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Whether a boundary condition (other than free) or a load names an edge
+ * on either side of the seam in direction dir (s = 0 / 1 when dir = 0,
+ * t = 0 / 1 when dir = 1). */
+static int part_on_seam(const sb_part *p, int dir)
+{
+    return p->kind == SB_PART_EDGE && p->st0[dir] == p->st1[dir] && (p->st0[dir] == 0.0 || p->st0[dir] == 1.0);
+}
+
+static int seam_named(const sb_scene *sc, int dir)
+{
+    for (int b = 0; b < sc->n_bcs; b++)
+        for (int k = 0; k < sc->bcs[b].n_parts && sc->bcs[b].kind != SB_BC_FREE; k++)
+            if (part_on_seam(&sc->bcs[b].parts[k], dir)) return 1;
+    for (int l = 0; l < sc->n_loads; l++)
+        for (int k = 0; k < sc->loads[l].n_parts; k++)
+            if (part_on_seam(&sc->loads[l].parts[k], dir)) return 1;
+    return 0;
+}
+
 /* BHEM §4.2 "Periodic boundary conditions": a seam is identified when the
  * chart maps s = 0 and s = 1 (resp. t) onto the same curve with the same
- * first derivatives, i.e. the surface closes C1 (cylinder, full annulus). */
+ * first derivatives, i.e. the surface closes C1 (cylinder, full annulus),
+ * and no boundary condition or load names either edge (then the seam stays
+ * open: a slit). */
 int bhem_detect_periodic(bhem_state *S)
 {
     enum { NS = 33 };
@@ -64,8 +85,13 @@ int bhem_detect_periodic(bhem_state *S)
             }
             if (dist3(A.x, B.x) > tol || dist3(A.d1, B.d1) > tol || dist3(A.d2, B.d2) > tol) match = 0;
         }
-        if (dir == 0) S->periodic_s = match;
-        else S->periodic_t = match;
+        /* never merge two edges that carry conditions: a full annulus with a
+         * load on `end` and a clamp on `start` is a slit annulus, and merging
+         * would put the load on the clamp (docs/scene_format.md) */
+        int slit = match && seam_named(S->scene, dir);
+        if (slit) match = 0;
+        if (dir == 0) S->periodic_s = match, S->slit_s = slit;
+        else S->periodic_t = match, S->slit_t = slit;
     }
     if (S->scene->domain.kind == SB_DOMAIN_L_SHAPE && (S->periodic_s || S->periodic_t))
         return bhem_fail(S, SB_ERR_INPUT, "periodic seams on an L-shaped domain are not supported");

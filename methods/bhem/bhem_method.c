@@ -184,9 +184,11 @@ static void bhem_describe(const void *state, char *buf, size_t len)
 {
     const bhem_state *S = state;
     const bhem_level *L = &S->lv[S->n_levels - 1];
-    snprintf(buf, len, "%dx%d bicubic Hermite patches (%d active), %d dofs, %d level%s, %s Hessian%s%s",
+    snprintf(buf, len, "%dx%d bicubic Hermite patches (%d active), %d dofs, %d level%s, %s Hessian%s%s%s%s",
              L->n1, L->n2, L->n_elems, L->n_dofs, S->n_levels, S->n_levels > 1 ? "s" : "", hess_choices[S->hess],
-             S->periodic_s ? ", periodic in s" : "", S->periodic_t ? ", periodic in t" : "");
+             S->periodic_s ? ", periodic in s" : "", S->periodic_t ? ", periodic in t" : "",
+             S->slit_s ? ", closed in s but slit (conditions on its seam edges)" : "",
+             S->slit_t ? ", closed in t but slit (conditions on its seam edges)" : "");
 }
 
 const sb_method_type sb_method_bhem = {
