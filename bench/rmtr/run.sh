@@ -63,10 +63,18 @@ run() {   # run FILE SCENE SOLVER RES LEVELS [--set ...]
   local resume=()
   h5ls "$OUT/$f.h5.partial/resume" >/dev/null 2>&1 && resume=(--resume)
   "$BIN" run --scene "$scene" --method rmtr --solver "$solver" --res "$res" --levels "$lev" \
-    --out "$OUT/$f.h5" --quiet --set run.max_iter=$CAP "${resume[@]}" "$@"
+    --out "$OUT/$f.h5" --quiet --set run.max_iter=$CAP $KEEP "${resume[@]}" "$@"
   echo "exit $?  $f"
 }
 
+# The committed records ran with the paper's stopping rule (Eq. 7.1 with the
+# relative extension) and without a verdict on the penalty's violation;
+# since issue 27 the defaults are the scaled rule (docs/trust.md), which
+# stops these scenes differently, and a penalty_violated verdict (the
+# paper's beta leaves 8 % at 4 x 4): every run here keeps the records' rule.
+# (method.beta_rule=scaled, the default, gives the paper's beta bit for bit
+# on these scenes.)
+KEEP="--set run.stop=paper --set run.penalty_tol=0"
 # The paper's configuration: dogleg takes the Cauchy point on an indefinite
 # Hessian (solver.indefinite=cauchy); our default (shift) is run beside it.
 PAPER="--set solver.indefinite=cauchy"

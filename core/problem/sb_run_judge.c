@@ -55,7 +55,7 @@ void sb_run_judge_penalty(run_state *R)
     rec->penalty_scale = u;
     rec->penalty_relative = rc == SB_NONFINITE ? INFINITY : v == 0.0 ? 0.0 : u > 0.0 ? v / u : INFINITY;
     rec->penalty_tol = sb_param(&R->ctx.params, "run.penalty_tol");
-    if (rec->status == 0 && !(rec->penalty_relative <= rec->penalty_tol)) {
+    if (rec->status == 0 && rec->penalty_tol > 0 && !(rec->penalty_relative <= rec->penalty_tol)) {
         rec->status = 1;
         rec->reason = SB_REASON_PENALTY;
     }

@@ -38,7 +38,8 @@ const sb_param_def sb_solve_params[] = {
       "midsurface) is not converged (reason strain_bound; methods with material_state; 0 = no bound)" },
     { "penalty_tol", SB_PARAM_REAL, 5e-2, 0, 1e300, NULL,
       "a run whose penalty-imposed constraints are violated by more than penalty_tol times the displacement "
-      "scale at its end is not converged (reason penalty_violated; methods with penalty constraints)" },
+      "scale at its end is not converged (reason penalty_violated; methods with penalty constraints; 0 = recorded, "
+      "not judged)" },
     { "max_iter", SB_PARAM_INT, 10000, 1, 1e9, NULL, "iteration cap per step" },
     { "diverge", SB_PARAM_REAL, 1e6, 1, 1e300, NULL,
       "diverged when max|x - x_0| exceeds diverge * (1 + max|x_0|)" },
