@@ -63,7 +63,7 @@ static int measure(const char *scene_name, int res, double sigma, int *n_out, do
         return 2;
     }
     void *ms = calloc(1, mt->state_size), *ss = calloc(1, st->state_size);
-    sb_method_config cfg = { res, 1, &ctx.params, &ctx };
+    sb_method_config cfg = { res, 1, &ctx.params, &ctx, 0 };
     sb_problem *p = NULL;
     if (mt->create(ms, &sc, &cfg) || sb_problem_create(&ctx, mt, ms, &sc, &p) || st->alloc(ss, p, &ctx.params)) {
         fprintf(stderr, "bench_cond: set-up failed: %s\n", ctx.err);

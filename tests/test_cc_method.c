@@ -61,7 +61,7 @@ static void make_scene(sb_scene *sc, int kind, int gravity)
 static void *create_ps(const sb_scene *sc, int res, int levels, int *rc, const sb_paramset *ps)
 {
     void *st = calloc(1, sb_method_subdiv.state_size);
-    sb_method_config cfg = { res, levels, ps, NULL };
+    sb_method_config cfg = { res, levels, ps, NULL, 0 };
     *rc = sb_method_subdiv.create(st, sc, &cfg);
     if (*rc) {
         free(st);

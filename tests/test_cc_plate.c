@@ -37,7 +37,7 @@ static double center_deflection(sb_test_state *T, int res, sb_bc_kind edge_bc)
     static const char *edges[4] = { "left", "right", "bottom", "top" };
     for (int i = 0; i < 4; i++) sb_domain_edge_part(&sc.domain, edges[i], &sc.bcs[0].parts[i]);
     void *st = calloc(1, sb_method_subdiv.state_size);
-    sb_method_config cfg = { res, 1, NULL, NULL };
+    sb_method_config cfg = { res, 1, NULL, NULL, 0 };
     int rc = sb_method_subdiv.create(st, &sc, &cfg);
     CHECK(rc == SB_OK);
     if (rc) {

@@ -29,7 +29,7 @@ static int make(setup *S, const char *scene, int res, int levels)
         return -1;
     }
     S->ms = calloc(1, sb_fixture_membrane.state_size);
-    sb_method_config cfg = { res, levels, &S->ctx.params, &S->ctx };
+    sb_method_config cfg = { res, levels, &S->ctx.params, &S->ctx, 0 };
     if (sb_fixture_membrane.create(S->ms, &S->scene, &cfg)) return -1;
     if (sb_problem_create(&S->ctx, &sb_fixture_membrane, S->ms, &S->scene, &S->p)) return -1;
     int n = sb_problem_n(S->p, levels - 1);

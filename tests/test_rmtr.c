@@ -196,7 +196,7 @@ static int direct_open(sb_test_state *T, direct_problem *D, const char *scene_fi
     if (mt->params) sb_paramset_add(&D->ctx.params, "method", mt->params);
     D->mt = mt;
     D->ms = calloc(1, mt->state_size);
-    sb_method_config cfg = { res, levels, &D->ctx.params, &D->ctx };
+    sb_method_config cfg = { res, levels, &D->ctx.params, &D->ctx, 0 };
     CHECK_EQ_INT(mt->create(D->ms, &D->sc, &cfg), 0);
     CHECK_EQ_INT(sb_problem_create(&D->ctx, mt, D->ms, &D->sc, &D->p), 0);
     if (!D->p) return -1;

@@ -110,7 +110,7 @@ static void stretched_plate(sb_test_state *T, const char *method, int res, doubl
     CHECK(mt != NULL && mt->material_state != NULL);
     if (!mt || !mt->material_state) return;
     void *st = calloc(1, mt->state_size);
-    sb_method_config cfg = { res, 1, NULL, NULL };
+    sb_method_config cfg = { res, 1, NULL, NULL, 0 };
     int rc = mt->create(st, &sc, &cfg);
     CHECK_MSG(rc == SB_OK, "%s create: %d", method, rc);
     if (rc == SB_OK) {

@@ -207,7 +207,7 @@ SB_TEST(penalty_beta_is_the_papers_on_its_cloth)
             CHECK(sb_paramset_set(&ctx.params, rule ? "method.beta_rule=paper" : "method.beta_rule=scaled", err,
                                   sizeof err) == SB_OK);
             cc_state *S = calloc(1, mt->state_size);
-            sb_method_config cfg = { 16, 3, &ctx.params, &ctx };
+            sb_method_config cfg = { 16, 3, &ctx.params, &ctx, 0 };
             CHECK_MSG(mt->create(S, &sc, &cfg) == SB_OK, "%s: %s", scenes[s], ctx.err);
             for (int l = 0; l < 3; l++) beta[rule][l] = S->lv[l].beta;
             CHECK(rule == 1 || S->beta_factor == 1.0);
@@ -505,6 +505,68 @@ SB_TEST(reference_file_validated)
     outcome_free(&o);
 }
 
+/* ---- --res NxM ----------------------------------------------------------- */
+
+/* rmtr took square resolutions only; a strip needs N x M for every method,
+ * recorded in the record and summary, and a scene may say "resolution": [N, M]. */
+SB_TEST(res_n_by_m_for_every_method)
+{
+    const char *methods[] = { "bhem", "rmtr" };
+    char rec[256];
+    for (int m = 0; m < 2; m++) {
+        snprintf(rec, sizeof rec, "%s/res_%s.h5", tmpdir, methods[m]);
+        sb_run_request req;
+        memset(&req, 0, sizeof req);
+        char scene[1024];
+        snprintf(scene, sizeof scene, "%s/tests/scenes/cantilever_10m.json", sb_test_root());
+        req.scene = scene;
+        req.method = methods[m];
+        req.solver = "lsnewton";
+        CHECK(sb_run_parse_res("16x4", &req.res, &req.res_t) == 0 && req.res == 16 && req.res_t == 4);
+        req.out = rec;
+        req.quiet = 1;
+        int code;
+        json_t *o = sb_test_run_json(&req, &code);
+        CHECK_MSG(code == 0 && o && num(o, "res") == 16 && num(o, "res_t") == 4 &&
+                  strstr(str(o, "method_info"), "16x4") && !strcmp(str(o, "validation"), "passed"),
+                  "%s: exit %d, %s", methods[m], code, str(o, "method_info"));
+        json_decref(o);
+        sb_record_setup su;
+        char err[1024];
+        CHECK_MSG(sb_record_read_setup(rec, &su, err, sizeof err) == SB_OK, "%s", err);
+        CHECK(su.res == 16 && su.res_t == 4);
+        sb_record_setup_free(&su);
+    }
+    int r, t;
+    CHECK(sb_run_parse_res("8", &r, &t) == 0 && r == 8 && t == 0);
+    CHECK(sb_run_parse_res("8x8", &r, &t) == 0 && r == 8 && t == 0);
+    CHECK(sb_run_parse_res("32\xC3\x97" "2", &r, &t) == 0 && r == 32 && t == 2);
+    CHECK(sb_run_parse_res("8x0", &r, &t) != 0 && sb_run_parse_res("x4", &r, &t) != 0 &&
+          sb_run_parse_res("8x4x2", &r, &t) != 0 && sb_run_parse_res("-8", &r, &t) != 0);
+    /* a method that cannot: refused before any work */
+    static const char *const none[] = { NULL };
+    sb_run_request req;
+    memset(&req, 0, sizeof req);
+    char scene[1024];
+    snprintf(scene, sizeof scene, "%s/tests/scenes/membrane_dynamic.json", sb_test_root());
+    req.scene = scene;
+    req.method = "fixture_membrane";
+    req.solver = "tr";
+    req.res = 8;
+    req.res_t = 4;
+    req.out = "none";
+    req.quiet = 1;
+    req.sets = none;
+    int code;
+    json_t *o = sb_test_run_json(&req, &code);
+    CHECK(code == 2 && o == NULL);
+    json_decref(o);
+    /* the scene's [N, M]: strip_end_moment's [32, 2] */
+    outcome q = run1("bench/scenes/strip_end_moment.json", "bhem", "lsnewton", 0, (const char *const[]){ "run.max_iter=1", NULL });
+    CHECK_MSG(q.summary && strstr(str(q.summary, "method_info"), "32x2"), "%s", str(q.summary, "method_info"));
+    outcome_free(&q);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_trust_XXXXXX");
@@ -521,6 +583,7 @@ int main(int argc, char **argv)
         SB_CASE(altered_checkpoint_refused),
         SB_CASE(slit_annulus_keeps_its_slit),
         SB_CASE(reference_file_validated),
+        SB_CASE(res_n_by_m_for_every_method),
         SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);

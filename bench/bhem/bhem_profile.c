@@ -56,7 +56,7 @@ int main(int argc, char **argv)
     snprintf(set, sizeof set, "method.cells_t=%d", cells_t);
     sb_paramset_set(ps, set, err, sizeof err);
     bhem_state *S = calloc(1, sb_method_bhem.state_size);
-    sb_method_config cfg = { res, 1, ps, &ctx };
+    sb_method_config cfg = { res, 1, ps, &ctx, 0 };
     int rc = S ? sb_method_bhem.create(S, &scene, &cfg) : SB_ERR_NOMEM;
     if (rc) { fprintf(stderr, "bhem_profile: %s\n", ctx.err); return 2; }
     long n = 0;

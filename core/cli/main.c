@@ -28,10 +28,10 @@ static void usage(FILE *f)
             "usage:\n"
             "  shellbench list [scenes|methods|solvers]\n"
             "  shellbench check SCENE.json...\n"
-            "  shellbench run --scene NAME|PATH --method NAME --solver NAME [--res N] [--levels L]\n"
+            "  shellbench run --scene NAME|PATH --method NAME --solver NAME [--res N|NxM] [--levels L]\n"
             "                 [--set key=value]... [--out FILE.h5|none] [--summary json] [--samples N] [--quiet]\n"
             "                 [--resume] [--stop-after-steps K] [--strict]\n"
-            "  shellbench sweep --scenes A,B --methods M,.. --solvers S,.. [--res N,..] [--levels L,..]\n"
+            "  shellbench sweep --scenes A,B --methods M,.. --solvers S,.. [--res N|NxM,..] [--levels L,..]\n"
             "                 [--set key=value]... [--dir DIR] [--resume] [--strict]\n"
             "  --resume: skip a run whose record exists, continue one from the last completed step of\n"
             "            its checkpoint OUT.partial (same scene, method, solver, sizes and parameters)\n"
@@ -136,7 +136,10 @@ static int parse_run_args(int argc, char **argv, cli_run *c, int sweep)
         else if (!sweep && !strcmp(a, "--solver")) { NEED_VALUE(); c->req.solver = v; }
         else if (!sweep && !strcmp(a, "--res")) {
             NEED_VALUE();
-            if (parse_int(v, &c->req.res)) { fprintf(stderr, "shellbench: --res: \"%s\" is not a non-negative integer\n", v); return 2; }
+            if (sb_run_parse_res(v, &c->req.res, &c->req.res_t)) {
+                fprintf(stderr, "shellbench: --res: \"%s\" is neither N nor NxM (positive integers)\n", v);
+                return 2;
+            }
         } else if (!sweep && !strcmp(a, "--levels")) {
             NEED_VALUE();
             if (parse_int(v, &c->req.levels) || c->req.levels < 1) { fprintf(stderr, "shellbench: --levels: \"%s\" is not a positive integer\n", v); return 2; }
@@ -229,13 +232,16 @@ static int cmd_sweep(int argc, char **argv)
                         r.scene = sc[a];
                         r.method = me[b];
                         r.solver = so[d];
-                        if (parse_int(re[e], &r.res) || parse_int(le[f], &r.levels) || r.levels < 1) {
+                        if (sb_run_parse_res(re[e], &r.res, &r.res_t) || parse_int(le[f], &r.levels) || r.levels < 1) {
                             fprintf(stderr, "shellbench sweep: bad --res/--levels entry \"%s\"/\"%s\"\n", re[e], le[f]);
                             return 2;
                         }
                         char out[1024];
                         /* one file per run: an interrupted sweep keeps every finished run */
-                        snprintf(out, sizeof out, "%s/%s-%s-%s-r%d-l%d.h5", dir, sc[a], me[b], so[d], r.res, r.levels);
+                        char rs[32];
+                        if (r.res_t > 0) snprintf(rs, sizeof rs, "%dx%d", r.res, r.res_t);
+                        else snprintf(rs, sizeof rs, "%d", r.res);
+                        snprintf(out, sizeof out, "%s/%s-%s-%s-r%s-l%d.h5", dir, sc[a], me[b], so[d], rs, r.levels);
                         r.out = out;
                         r.quiet = 1;
                         int x = sb_run_execute(&r, stdout, stderr, NULL);

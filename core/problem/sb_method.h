@@ -24,7 +24,8 @@ struct sb_csr;
 enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
     SB_METHOD_POTENTIAL = 1u << 1,    /* energy is a true potential (all solvers apply) */
-    SB_METHOD_TEST_FIXTURE = 1u << 2  /* test fixture, not a real discretization */
+    SB_METHOD_TEST_FIXTURE = 1u << 2, /* test fixture, not a real discretization */
+    SB_METHOD_RES_ST = 1u << 3        /* honours sb_method_config.res_t (--res NxM) */
 };
 
 typedef struct sb_method_config {
@@ -32,6 +33,8 @@ typedef struct sb_method_config {
     int levels;                 /* levels in the hierarchy (>= 1) */
     const sb_paramset *params;  /* resolved "method.*" parameters */
     struct sb_context *ctx;     /* for error messages */
+    int res_t;                  /* elements along t when they differ from res (--res NxM); 0 = res;
+                                   only for methods with SB_METHOD_RES_ST */
 } sb_method_config;
 
 /* What the current step prescribes.  Ramps are computed once by the core. */

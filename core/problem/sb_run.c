@@ -113,8 +113,13 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
         fprintf(err, "shellbench: --levels %d asks for a hierarchy, but method %s has none\n", *levels, R->mt->name);
         return SB_EXIT_INPUT;
     }
-    if (*levels > SB_MAX_LEVELS || req->res < 0) {
+    if (*levels > SB_MAX_LEVELS || req->res < 0 || req->res_t < 0) {
         fprintf(err, "shellbench: --levels must be in [1, %d] and --res >= 0\n", SB_MAX_LEVELS);
+        return SB_EXIT_INPUT;
+    }
+    if (req->res_t > 0 && !(R->mt->flags & SB_METHOD_RES_ST)) {
+        fprintf(err, "shellbench: --res %dx%d: method %s takes the same number of elements along s and t\n",
+                req->res, req->res_t, R->mt->name);
         return SB_EXIT_INPUT;
     }
     if (!(R->mt->flags & SB_METHOD_POTENTIAL) && !(R->stype->flags & SB_SOLVER_SINGLE_STEP)) {
@@ -151,6 +156,7 @@ static void record_identity(run_state *R, const sb_run_request *req)
     if (R->mt->describe) R->mt->describe(R->ms, rec->method_info, sizeof rec->method_info);
     if (R->stype->describe) R->stype->describe(R->ss, rec->solver_info, sizeof rec->solver_info);
     rec->res = req->res;
+    rec->res_t = req->res_t;
     rec->levels = sb_problem_levels(R->prob);
     rec->n_dofs = R->rec.n_x;
     rec->params = &R->ctx.params;
@@ -181,7 +187,7 @@ static int prepare_run(run_state *R, const sb_run_request *req, int levels)
     int rc;
     R->ms = calloc(1, R->mt->state_size);
     if (!R->ms) goto nomem;
-    sb_method_config cfg = { req->res, levels, ps, &R->ctx };
+    sb_method_config cfg = { req->res, levels, ps, &R->ctx, req->res_t };
     rc = R->mt->create(R->ms, &R->scene, &cfg);
     R->ms_created = 1;
     if (rc) {
@@ -252,8 +258,11 @@ static int prepare_output(run_state *R, const sb_run_request *req, const char **
     const sb_scene *sc = &R->scene;
     *out_path = NULL;
     if (!req->out) {
-        snprintf(auto_path, len, "results/runs/%s-%s-%s-r%d-l%d.h5", sc->name, R->mt->name, R->stype->name,
-                 req->res, R->rec.levels);
+        char res[32];
+        if (req->res_t > 0) snprintf(res, sizeof res, "%dx%d", req->res, req->res_t);
+        else snprintf(res, sizeof res, "%d", req->res);
+        snprintf(auto_path, len, "results/runs/%s-%s-%s-r%s-l%d.h5", sc->name, R->mt->name, R->stype->name,
+                 res, R->rec.levels);
         *out_path = auto_path;
     } else if (strcmp(req->out, "none") != 0) {
         *out_path = req->out;

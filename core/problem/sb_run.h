@@ -10,7 +10,8 @@ typedef struct sb_run_request {
     const char *scene;        /* name or path */
     const char *method;
     const char *solver;
-    int res;                  /* 0 = scene/method default */
+    int res;                  /* 0 = scene/method default; elements along s (or both) */
+    int res_t;                /* elements along t (--res NxM); 0 = as res */
     int levels;               /* 0 = 1 */
     const char *out;          /* HDF5 path; NULL = results/runs/<auto>.h5; "none" = no file */
     int summary_json;         /* print the JSON summary on `out_stream` */
@@ -32,5 +33,10 @@ enum { SB_EXIT_CONVERGED = 0, SB_EXIT_NOT_CONVERGED = 1, SB_EXIT_INPUT = 2, SB_E
  * the JSON summary (if asked) to out_stream.  When summary is non-NULL it
  * receives the JSON text (caller frees). */
 int sb_run_execute(const sb_run_request *req, FILE *out_stream, FILE *err_stream, char **summary);
+
+/* --res: "N" (N x N elements) or "NxM" (N along s, M along t; 'x', 'X' or
+ * the UTF-8 multiplication sign), each a positive integer at most 1000000
+ * ("0" alone: the scene's default).  0 or -1 for a malformed value. */
+int sb_run_parse_res(const char *text, int *res, int *res_t);
 
 #endif

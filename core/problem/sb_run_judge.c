@@ -64,12 +64,16 @@ void sb_run_judge_penalty(run_state *R)
 /* Phi_E(x_final) - Phi_E(X) (sb_record.h): the method's energy at the final
  * state and at the reference configuration, both with the last step's loads
  * and boundary data (the problem's current step).  Two energy evaluations,
- * counted. */
+ * counted.  Not for scenes with end moments: their potential -m theta is
+ * multivalued (theta counts turns, and a method tracks it along the run's
+ * path), so at X it is not defined by the final step's data alone. */
 void sb_run_potential_change(run_state *R)
 {
     sb_run *rec = &R->rec;
     rec->has_potential = 0;
     if (rec->steps_done < 1) return;
+    for (int i = 0; i < R->scene.n_loads; i++)
+        if (R->scene.loads[i].kind == SB_LOAD_END_MOMENT) return;
     double e1, e0;
     if (sb_problem_method_energy(R->prob, R->x, &e1) != SB_OK) return;
     if (sb_problem_method_energy(R->prob, R->xref, &e0) != SB_OK) return;

@@ -99,6 +99,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     json_object_set_new(o, "dofs", json_integer(R->rec.n_dofs));
     json_object_set_new(o, "levels", json_integer(R->rec.levels));
     json_object_set_new(o, "res", json_integer(R->rec.res));
+    json_object_set_new(o, "res_t", json_integer(R->rec.res_t > 0 ? R->rec.res_t : R->rec.res));
     json_object_set_new(o, "steps", json_integer(R->rec.steps_done));
     json_object_set_new(o, "steps_planned", json_integer(R->rec.steps_planned));
     json_object_set_new(o, "status", json_string(R->rec.status == 0 ? "converged" : "not_converged"));

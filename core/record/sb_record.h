@@ -62,6 +62,7 @@ typedef struct sb_run {
     char method_info[256];     /* method describe() */
     char solver_info[256];     /* solver describe() (empty when the solver has none) */
     int res, levels;
+    int res_t;                 /* elements along t when --res NxM gave them (0: as res) */
     long n_dofs;               /* finest level */
     const sb_paramset *params;
     char build_id[64];         /* git describe */
@@ -188,6 +189,7 @@ typedef struct sb_record_setup {
     char scene_path[512];
     char *scene_json;          /* owned */
     int res, levels, status, steps_done;
+    int res_t;                 /* 0 in records without --res NxM */
     int n_sets;
     char sets[SB_RECORD_MAX_SETS][320];
     int n_x;

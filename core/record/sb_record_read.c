@@ -241,6 +241,7 @@ int sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t
     if (!rc) rc = sb_h5r_attr_str(&r, f, "method", s->method, sizeof s->method);
     if (!rc) rc = sb_h5r_attr_str(&r, f, "solver", s->solver, sizeof s->solver);
     if (!rc) rc = sb_h5r_attr_int(&r, f, "res", &s->res);
+    if (!rc && H5Aexists(f, "res_t") > 0) rc = sb_h5r_attr_int(&r, f, "res_t", &s->res_t);
     if (!rc) rc = sb_h5r_attr_int(&r, f, "levels", &s->levels);
     if (!rc) rc = sb_h5r_attr_int(&r, f, "status", &s->status);
     if (!rc) rc = sb_h5r_attr_int(&r, f, "steps_done", &s->steps_done);

@@ -79,6 +79,13 @@ static int check_identity(sb_h5r *r, hid_t f, const sb_run *e)
     if (!rc) rc = sb_h5r_attr_str(r, f, "solver", buf, sizeof buf);
     if (!rc && strcmp(buf, e->solver)) return mismatch(r, "solver", buf, e->solver);
     if (!rc) rc = sb_h5r_attr_int(r, f, "res", &res);
+    int res_t = 0;
+    if (!rc && H5Aexists(f, "res_t") > 0) rc = sb_h5r_attr_int(r, f, "res_t", &res_t);
+    if (!rc && res_t != e->res_t) {
+        snprintf(a, sizeof a, "%d", res_t);
+        snprintf(b, sizeof b, "%d", e->res_t);
+        return mismatch(r, "res_t (elements along t)", a, b);
+    }
     if (!rc && res != e->res) {
         snprintf(a, sizeof a, "%d", res);
         snprintf(b, sizeof b, "%d", e->res);

@@ -55,6 +55,7 @@ static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_attr_str(w, f, "method_info", r->method_info);
     bad |= sb_h5w_attr_str(w, f, "solver_info", r->solver_info);
     bad |= sb_h5w_attr_long(w, f, "res", r->res);
+    bad |= sb_h5w_attr_long(w, f, "res_t", r->res_t);
     bad |= sb_h5w_attr_long(w, f, "levels", r->levels);
     bad |= sb_h5w_attr_long(w, f, "n_dofs", r->n_dofs);
     bad |= sb_h5w_attr_str(w, f, "build_id", r->build_id);

@@ -54,7 +54,7 @@ static int material_of(const char *path, const sb_record_setup *su, sb_material_
         snprintf(err, errlen, "%s: out of memory", path);
         goto done;
     }
-    sb_method_config cfg = { su->res, su->levels > 0 ? su->levels : 1, &ctx.params, &ctx };
+    sb_method_config cfg = { su->res, su->levels > 0 ? su->levels : 1, &ctx.params, &ctx, su->res_t };
     rc = mt->create(state, &scene, &cfg);
     created = 1;
     if (rc) {

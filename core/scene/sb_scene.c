@@ -80,7 +80,23 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
                         SB_NAME_LEN - 1, sc->name);
     if ((r = sbj_get_string(c, root, "description", 0, sc->description, sizeof sc->description, NULL)))
         return r;
-    if ((r = sbj_get_int(c, root, "resolution", 0, 1, MAX_RESOLUTION, &res))) return r;
+    json_t *rv = json_object_get(root, "resolution");
+    if (rv && json_is_array(rv)) {
+        /* [N, M]: N elements along s, M along t (strips, annuli; --res NxM) */
+        double nm[2];
+        size_t mark = sbj_push(c, "resolution");
+        r = sbj_vec_value(c, rv, 2, nm);
+        for (int k = 0; k < 2 && !r; k++)
+            if (!(nm[k] >= 1 && nm[k] <= MAX_RESOLUTION && nm[k] == (long)nm[k]))
+                r = sbj_fail(c, NULL, 0, "[N, M] must hold two integers in [1, %ld], got [%g, %g]", MAX_RESOLUTION,
+                             nm[0], nm[1]);
+        sbj_pop(c, mark);
+        if (r) return r;
+        res = (long)nm[0];
+        sc->default_res_t = nm[1] != nm[0] ? (int)nm[1] : 0;
+    } else if ((r = sbj_get_int(c, root, "resolution", 0, 1, MAX_RESOLUTION, &res))) {
+        return r;
+    }
     sc->default_res = (int)res;
     if ((r = sbj_parse_domain(c, root, &sc->domain))) return r;
     if ((r = sbj_parse_geometry(c, root, &sc->domain, &sc->chart))) return r;

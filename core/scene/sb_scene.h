@@ -205,6 +205,7 @@ typedef struct sb_scene {
     int n_probes; sb_probe probes[SB_SCENE_MAX_PROBES];
     sb_reference reference;
     int default_res;         /* suggested resolution (elements per side) when --res is absent */
+    int default_res_t;       /* "resolution": [N, M]: M elements along t (0: as default_res) */
 } sb_scene;
 
 /* Parse and validate.  On error returns SB_ERR_INPUT and writes

@@ -6,6 +6,7 @@
 #include "sb_context.h"
 #include "sb_trs.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -173,10 +174,12 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
                 rc = sb_problem_eval(p, s->F, s->xt, &ft, NULL, NULL);
                 if (rc < 0) return rc;
                 if (rc == SB_OK && isfinite(ft) && !(ft <= s->f + s->c1 * alpha * slope) &&
-                    sb_tr_ared_unreliable(s->f, ft, -alpha * slope)) {
-                    /* the decrease asked for is below the round-off of f: decide
-                     * by the gradients, ared = -(g + g_trial)^T s / 2 (as tr does,
-                     * sb_trs.h; Conn, Gould & Toint §17.4.2) */
+                    sb_tr_ared_unreliable(s->f, ft, -alpha * slope) &&
+                    fabs(ft - s->f) <= 1e4 * DBL_EPSILON * fmax(fabs(s->f), fabs(ft))) {
+                    /* the decrease asked for, and the change of f found, are both
+                     * below the round-off of f: decide by the gradients,
+                     * ared = -(g + g_trial)^T s / 2 (as tr does, sb_trs.h; Conn,
+                     * Gould & Toint §17.4.2) */
                     rc = sb_problem_eval(p, s->F, s->xt, &ft, s->gt, H);
                     if (rc < 0) return rc;
                     if (rc != SB_OK) continue;

@@ -122,20 +122,21 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
 
     sb_reason reason = SB_REASON_NONE;
     double fscale = INFINITY;
-    if (scaled) {
-        int rc = sb_problem_force_scale(p, &fscale);
-        if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
-        out->force_scale = rc == SB_OK ? fscale : INFINITY;
-        if (rc != SB_OK) fscale = INFINITY;
-    }
     sb_iterate_info info;
     memset(&info, 0, sizeof info);
     info.level = F;
     int it = 0;
-    int rc = reason ? SB_OK : type->set(state, p, x, &info);
-    if (reason) {
-        /* the force scale failed beyond a non-finite value */
-    } else if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
+    int rc = type->set(state, p, x, &info);
+    if (scaled && rc >= 0) {
+        /* after set(): a method's first evaluation of a step may set state
+         * from the point it is given (bhem's end-moment angle branch), which
+         * must be the step's start, not the reference configuration */
+        int rs = sb_problem_force_scale(p, &fscale);
+        if (rs < 0) rc = rs;
+        out->force_scale = rs == SB_OK ? fscale : INFINITY;
+        if (rs != SB_OK) fscale = INFINITY;
+    }
+    if (rc < 0) reason = SB_REASON_LINEAR_SOLVER;
     else if (info.fail) reason = info.fail;
     else if (rc == SB_NONFINITE || !isfinite(info.f) || !isfinite(info.gnorm)) reason = SB_REASON_NONFINITE;
     const double g0 = info.gnorm;

@@ -17,7 +17,7 @@ const sb_param_def bhem_params[] = {
       "amplitude (m) of a smooth deterministic out-of-plane imperfection of the reference surface "
       "(symmetry breaking for buckling scenes; 0 = none)" },
     { "cells_t", SB_PARAM_INT, 0, 0, 4096, NULL,
-      "patches along t on the finest level (0 = same as --res)" },
+      "patches along t on the finest level (0 = same as --res; --res NxM says the same)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
 
@@ -56,7 +56,11 @@ static int bhem_create(void *state, const sb_scene *scene, const sb_method_confi
     int cells_t, rc = read_params(S, cfg, &cells_t);
     if (rc) return rc;
     int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 8);
-    int m = cells_t > 0 ? cells_t : n;
+    if (cfg->res_t > 0 && cells_t > 0 && cfg->res_t != cells_t)
+        return bhem_fail(S, SB_ERR_INPUT, "--res %dx%d and method.cells_t=%d say different things about the patches "
+                         "along t", n, cfg->res_t, cells_t);
+    int m = cfg->res_t > 0 ? cfg->res_t : cells_t > 0 ? cells_t
+          : (cfg->res <= 0 && scene->default_res_t > 0) ? scene->default_res_t : n;
     int levels = cfg->levels > 0 ? cfg->levels : 1;
     if (levels > SB_MAX_LEVELS)
         return bhem_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, SB_MAX_LEVELS);
@@ -196,7 +200,7 @@ const sb_method_type sb_method_bhem = {
     .description = "bicubic Hermite element method (Ni, Chen et al.): C1 Hermite patches, 12 dofs per node",
     .state_size = sizeof(bhem_state),
     .params = bhem_params,
-    .flags = SB_METHOD_HIERARCHY | SB_METHOD_POTENTIAL,
+    .flags = SB_METHOD_HIERARCHY | SB_METHOD_POTENTIAL | SB_METHOD_RES_ST,
     .create = bhem_create,
     .destroy = bhem_destroy,
     .n_levels = bhem_n_levels,

@@ -2,7 +2,7 @@
  * sb_method_type: `sb_method_subdiv`, registry name "rmtr" (DESIGN.md).
  *
  * Resolution: --res N = N x N elements (faces) of the domain's grid
- * parameter (s,t) on the finest level, --levels L nested levels; the coarsest
+ * parameter (s,t) on the finest level (--res NxM: N along s, M along t), --levels L nested levels; the coarsest
  * level has N / 2^(L-1) elements per side (N must be divisible by 2^(L-1)),
  * every level carries one ring of ghost faces (§5.2.1).  The RMTR paper's
  * levels 1..6 (147 ... 51,483 dofs) are --res 4, 8, 16, 32, 64, 128; its
@@ -96,25 +96,26 @@ static double param(const sb_method_config *cfg, const char *name)
     return 0;
 }
 
-/* Coarse cage of the scene's domain with n elements per side. */
-static int coarse_cage(const sb_scene *sc, int n, cc_mesh *m, cc_err *e)
+/* Coarse cage of the scene's domain with n x nt elements (s x t). */
+static int coarse_cage(const sb_scene *sc, int n, int nt_, cc_mesh *m, cc_err *e)
 {
     double sl[4097], tl[4097];
-    if (n < 1 || n > 4096) return cc_fail(e, SB_ERR_INPUT, "coarsest level of %d elements per side is out of range", n);
+    if (n < 1 || n > 4096 || nt_ < 1 || nt_ > 4096)
+        return cc_fail(e, SB_ERR_INPUT, "coarsest level of %d x %d elements is out of range", n, nt_);
     const sb_domain *d = &sc->domain;
     if (d->kind == SB_DOMAIN_ANNULUS_SECTOR && (d->theta[1] - d->theta[0] >= 6.283185307 || d->r_in <= 0))
         return cc_fail(e, SB_ERR_UNSUPPORTED, "annulus sectors must be open (angle < 2 pi) with r_in > 0 for rmtr");
     double s01[2], t01[2];
     if (d->kind != SB_DOMAIN_L_SHAPE || !sb_domain_notch_st(d, s01, t01)) {
         cc_cage_lines(n, 0, 0, sl, NULL);
-        cc_cage_lines(n, 0, 0, tl, NULL);
-        return cc_cage_grid(sl, n, tl, n, -1, 0, 0, m, e);
+        cc_cage_lines(nt_, 0, 0, tl, NULL);
+        return cc_cage_grid(sl, n, tl, nt_, -1, 0, 0, m, e);
     }
     int corner = d->notch_corner, hs = corner == SB_CORNER_10 || corner == SB_CORNER_11;
     int ht = corner == SB_CORNER_11 || corner == SB_CORNER_01, ns, nt;
-    if (cc_cage_lines(n, hs ? s01[0] : s01[1], hs, sl, &ns) || cc_cage_lines(n, ht ? t01[0] : t01[1], ht, tl, &nt))
-        return cc_fail(e, SB_ERR_INPUT, "an L-shape needs at least 2 coarse elements per side (got %d)", n);
-    return cc_cage_grid(sl, n, tl, n, corner, ns, nt, m, e);
+    if (cc_cage_lines(n, hs ? s01[0] : s01[1], hs, sl, &ns) || cc_cage_lines(nt_, ht ? t01[0] : t01[1], ht, tl, &nt))
+        return cc_fail(e, SB_ERR_INPUT, "an L-shape needs at least 2 coarse elements per side (got %d x %d)", n, nt_);
+    return cc_cage_grid(sl, n, tl, nt_, corner, ns, nt, m, e);
 }
 
 static int cc_create(void *state, const sb_scene *scene, const sb_method_config *cfg)
@@ -140,16 +141,20 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
     if (levels > CC_MAX_LEVELS)
         return cc_state_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, CC_MAX_LEVELS);
-    if (n % (1 << (levels - 1)))
-        return cc_state_fail(S, SB_ERR_INPUT, "--res %d cannot be coarsened %d times: it must be divisible by 2^(levels-1) = %d",
-                             n, levels - 1, 1 << (levels - 1));
+    /* --res NxM: N along s, M along t; the scene's "resolution": [N, M] without --res */
+    int nt = cfg->res_t > 0 ? cfg->res_t : (cfg->res <= 0 && scene->default_res_t > 0) ? scene->default_res_t : n;
+    if (n % (1 << (levels - 1)) || nt % (1 << (levels - 1)))
+        return cc_state_fail(S, SB_ERR_INPUT, "--res %dx%d cannot be coarsened %d times: both must be divisible by "
+                             "2^(levels-1) = %d", n, nt, levels - 1, 1 << (levels - 1));
     S->n_fine = n;
     S->n_coarse = n >> (levels - 1);
+    S->nt_fine = nt;
+    S->nt_coarse = nt >> (levels - 1);
     cc_err e = { "" };
     int rc = cc_beta_factor(S, &S->beta_factor, &e);
     if (rc) return cc_state_fail(S, rc, "%s", e.msg);
     cc_mesh cage;
-    int st = coarse_cage(scene, S->n_coarse, &cage, &e);
+    int st = coarse_cage(scene, S->n_coarse, S->nt_coarse, &cage, &e);
     if (!st) st = cc_hier_build(&S->hier, &cage, levels, S->use_osd, &e);
     if (!st) S->nlev = levels;
     for (int l = levels - 1; l >= 0 && !st; l--) st = cc_level_build(S, l, &e);   /* finest first (penalty_h) */
@@ -305,7 +310,7 @@ static void cc_describe(const void *state, char *buf, size_t len)
     const cc_state *S = state;
     const cc_level *L = &S->lv[S->nlev - 1];
     snprintf(buf, len, "Catmull-Clark subdivision, %d levels, %dx%d -> %dx%d elements (+ghost ring), %d dofs, %s projection",
-             S->nlev, S->n_coarse, S->n_coarse, S->n_fine, S->n_fine, 3 * L->nv, proj_choices[S->proj]);
+             S->nlev, S->n_coarse, S->nt_coarse, S->n_fine, S->nt_fine, 3 * L->nv, proj_choices[S->proj]);
 }
 
 static int cc_penalty_violation_op(void *state, int level, const double *x, sb_penalty_report *r)
@@ -318,7 +323,7 @@ const sb_method_type sb_method_subdiv = {
     .description = "Catmull-Clark subdivision shell elements with level hierarchy, penalty BCs (RMTR paper §3, §5)",
     .state_size = sizeof(cc_state),
     .params = cc_params,
-    .flags = SB_METHOD_HIERARCHY | SB_METHOD_POTENTIAL,
+    .flags = SB_METHOD_HIERARCHY | SB_METHOD_POTENTIAL | SB_METHOD_RES_ST,
     .create = cc_create,
     .destroy = cc_destroy,
     .n_levels = cc_n_levels,

@@ -75,7 +75,8 @@ typedef struct cc_state {
     cc_hier hier;
     cc_level lv[CC_MAX_LEVELS];
     int nlev;
-    int n_coarse, n_fine;       /* elements per side on the coarsest / finest level */
+    int n_coarse, n_fine;       /* elements along s on the coarsest / finest level */
+    int nt_coarse, nt_fine;     /* elements along t (--res NxM; equal to the above by default) */
     /* parameters */
     cc_proj_kind proj;
     sb_hess_kind hess;
