@@ -35,7 +35,7 @@ static inline int tb_create(tb_method *m, const char *json, int res, int levels,
         }
     m->S = calloc(1, sb_method_bhem.state_size);
     if (!m->S) return SB_ERR_NOMEM;
-    sb_method_config cfg = { res, levels, &m->ps, NULL };
+    sb_method_config cfg = { res, levels, &m->ps, NULL, 0 };
     int rc = sb_method_bhem.create(m->S, &m->scene, &cfg);
     if (rc) { free(m->S); m->S = NULL; }
     return rc;
