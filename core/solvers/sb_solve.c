@@ -90,7 +90,8 @@ sb_reason sb_solve_step(const sb_solver_type *type, void *state, sb_problem *p, 
  *           Delta > delta_big (Newton: an unshifted step), |df| < ftol or
  *           ||s|| < xtol; the committed paper reproductions ran with it.
  *   scaled  ||g|| <= gtol_rel F with F = min(||g_0||, force scale of the step
- *           (sb_problem_force_scale)), so that the relative test is bounded by
+ *           (sb_problem_force_scale); ||g_0|| when that is 0: no applied
+ *           forces, only prescribed motion), so that the relative test is bounded by
  *           the applied forces and accepts no state whose own imbalance is
  *           huge; or the limiting accuracy: a correction the solver's model
  *           asked for without a radius or line search limiting it, below
@@ -142,7 +143,9 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
     const double g0 = info.gnorm;
     double gstop;
     if (scaled) {
-        gstop = gtol_rel * fmin(g0, fscale);
+        /* no applied forces at all (only prescribed motion): the step's own
+         * imbalance is the scale (physical states: run.strain_max guards) */
+        gstop = gtol_rel * (fscale > 0 ? fmin(g0, fscale) : g0);
         if (overridden(ps, "run.gtol")) gstop = fmax(gstop, gtol);
     } else {
         gstop = fmax(gtol, gtol_rel * g0);
