@@ -38,6 +38,7 @@ void sb_context_free(sb_context *ctx)
 int sb_error(sb_context *ctx, int status, const char *fmt, ...)
 {
     va_list ap;
+    if (!ctx) return status;   /* callers without a context (tests, estimates) get the status alone */
     va_start(ap, fmt);
     vsnprintf(ctx->err, sizeof ctx->err, fmt, ap);
     va_end(ap);

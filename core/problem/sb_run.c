@@ -3,8 +3,11 @@
  * function of its own:
  *
  *   resolve_request   scene, method, solver, parameters; refuse what cannot work
+ *   sb_run_resolve_res, sb_run_check_memory (sb_run_limits.c)
+ *                     the resolution used; refuse what cannot fit in memory
+ *   sb_run_prepare_output (sb_run_output.c)
+ *                     where the record and its checkpoint go: checked, locked
  *   prepare_run       method -> problem -> solver, work vectors, record identity
- *   prepare_output    where the record and its checkpoint go
  *   start_or_resume   step 1, a checkpoint's last completed step, or nothing to do
  *   run_steps         the time / load steps
  *   finish_run        probes, samples, error, material, record, summary
@@ -14,11 +17,9 @@
 #include "sb_run_state.h"
 #include "sb_sysinfo.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 enum { RUN_GO_ON = -1 };
@@ -37,19 +38,7 @@ static void run_cleanup(run_state *R)
     free(R->probe_names);
     if (R->scene_loaded) sb_scene_free(&R->scene);
     sb_context_free(&R->ctx);
-}
-
-static int mkdir_p(const char *path)
-{
-    char tmp[1024];
-    snprintf(tmp, sizeof tmp, "%s", path);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    return 0;
+    sb_output_lock_release(&R->lock);
 }
 
 /* run.perturb: each dof of the start gets an offset uniform in [-a, a], from
@@ -134,7 +123,7 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
 }
 
 /* The record's identity: what ran, where, with which build. */
-static void record_identity(run_state *R, const sb_run_request *req)
+static void record_identity(run_state *R)
 {
     const sb_scene *sc = &R->scene;
     sb_run *rec = &R->rec;
@@ -145,7 +134,7 @@ static void record_identity(run_state *R, const sb_run_request *req)
     snprintf(rec->solver, sizeof rec->solver, "%s", R->stype->name);
     if (R->mt->describe) R->mt->describe(R->ms, rec->method_info, sizeof rec->method_info);
     if (R->stype->describe) R->stype->describe(R->ss, rec->solver_info, sizeof rec->solver_info);
-    rec->res = req->res;
+    rec->res = R->res;   /* the resolution used, also when --res was absent */
     rec->levels = sb_problem_levels(R->prob);
     rec->n_dofs = R->rec.n_x;
     rec->params = &R->ctx.params;
@@ -169,14 +158,14 @@ static void record_identity(run_state *R, const sb_run_request *req)
 
 /* method -> problem -> solver, the work vectors, the record's identity and
  * the reference state (probes, sample grid), then run.perturb's start. */
-static int prepare_run(run_state *R, const sb_run_request *req, int levels)
+static int prepare_run(run_state *R, int levels)
 {
     FILE *err = R->err;
     sb_paramset *ps = &R->ctx.params;
     int rc;
     R->ms = calloc(1, R->mt->state_size);
     if (!R->ms) goto nomem;
-    sb_method_config cfg = { req->res, levels, ps, &R->ctx };
+    sb_method_config cfg = { R->res, levels, ps, &R->ctx };
     rc = R->mt->create(R->ms, &R->scene, &cfg);
     R->ms_created = 1;
     if (rc) {
@@ -184,6 +173,7 @@ static int prepare_run(run_state *R, const sb_run_request *req, int levels)
                 R->ctx.err[0] ? R->ctx.err : "set-up failed");
         return rc == SB_ERR_INPUT || rc == SB_ERR_UNSUPPORTED ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
     }
+    if ((rc = sb_run_check_created(R)) != RUN_GO_ON) return rc;
     rc = sb_problem_create(&R->ctx, R->mt, R->ms, &R->scene, &R->prob);
     if (rc) {
         fprintf(err, "shellbench: %s\n", R->ctx.err);
@@ -217,7 +207,7 @@ static int prepare_run(run_state *R, const sb_run_request *req, int levels)
     R->mt->initial(R->ms, F, R->x);
     sb_copy(n, R->x, R->xref);
     R->rec.n_x = n;
-    record_identity(R, req);
+    record_identity(R);
     sb_run *rec = &R->rec;
     if (R->mt->eval_points) {
         if (sb_run_record_probes(R, 0) ||
@@ -236,40 +226,6 @@ static int prepare_run(run_state *R, const sb_run_request *req, int levels)
 nomem:
     fprintf(err, "shellbench: out of memory\n");
     return SB_EXIT_INTERNAL;
-}
-
-/* Where the record goes (*out_path, NULL for --out none): its directory is
- * made now, so that a run that cannot be recorded fails before it computes
- * anything; the checkpoint monitor is installed when checkpoints are on. */
-static int prepare_output(run_state *R, const sb_run_request *req, const char **out_path, char *auto_path, size_t len)
-{
-    FILE *err = R->err;
-    const sb_scene *sc = &R->scene;
-    *out_path = NULL;
-    if (!req->out) {
-        snprintf(auto_path, len, "results/runs/%s-%s-%s-r%d-l%d.h5", sc->name, R->mt->name, R->stype->name,
-                 req->res, R->rec.levels);
-        *out_path = auto_path;
-    } else if (strcmp(req->out, "none") != 0) {
-        *out_path = req->out;
-    }
-    if (!*out_path && (req->resume || req->stop_after_steps > 0)) {
-        fprintf(err, "shellbench: %s needs a record path (--out), not --out none\n",
-                req->resume ? "--resume" : "--stop-after-steps");
-        return SB_EXIT_INPUT;
-    }
-    if (*out_path && mkdir_p(*out_path)) {
-        fprintf(err, "shellbench: cannot create the directory of %s: %s\n", *out_path, strerror(errno));
-        return SB_EXIT_INPUT;
-    }
-    R->checkpoint_every = sb_param(&R->ctx.params, "run.checkpoint");
-    if (*out_path && sb_run_partial_path(*out_path, R->partial_path, sizeof R->partial_path)) R->partial_path[0] = 0;
-    if (R->partial_path[0] && R->checkpoint_every > 0) {
-        R->checkpoint_last = sb_now();
-        R->ctx.monitor = sb_run_checkpoint_monitor;
-        R->ctx.monitor_data = R;
-    }
-    return RUN_GO_ON;
 }
 
 /* The first step to run: 1, or (--resume) the one after the checkpoint's
@@ -421,6 +377,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     if (!R) { fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
     if (sb_context_init(&R->ctx)) { free(R); fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
     R->err = err;
+    sb_output_lock_init(&R->lock);
     R->t_start = sb_now();
     R->n_grid = req->sample_n > 1 ? req->sample_n : 21;
 
@@ -428,8 +385,10 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     const char *out_path = NULL;
     char auto_path[1024];
     if ((code = resolve_request(R, req, &levels)) == RUN_GO_ON &&
-        (code = prepare_run(R, req, levels)) == RUN_GO_ON &&
-        (code = prepare_output(R, req, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
+        (code = sb_run_resolve_res(R, req)) == RUN_GO_ON &&
+        (code = sb_run_check_memory(R, levels)) == RUN_GO_ON &&
+        (code = sb_run_prepare_output(R, req, levels, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
+        (code = prepare_run(R, levels)) == RUN_GO_ON &&
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)
         code = finish_run(R, req, out_path, out, summary);

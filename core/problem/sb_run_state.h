@@ -5,6 +5,7 @@
 #define SB_RUN_STATE_H
 
 #include "sb_context.h"
+#include "sb_output.h"
 #include "sb_problem.h"
 #include "sb_record.h"
 #include "sb_run.h"
@@ -25,6 +26,9 @@ typedef struct run_state {
     sb_run rec;
     char (*probe_names)[SB_NAME_LEN];
     int n_grid;                        /* sample grid per side */
+    int res;                           /* the resolution used: --res, else the scene's */
+    double mem_estimate;               /* bytes (sb_memory.h), 0 before the estimate */
+    sb_output_lock lock;               /* OUT.lock while the run writes OUT */
     /* checkpoints (run.checkpoint): the record so far, written to
      * partial_path every checkpoint_every seconds by the loop's monitor */
     FILE *err;
@@ -35,6 +39,20 @@ typedef struct run_state {
     sb_resume_point bp;
 } run_state;
 
+
+/* ---- sizes (sb_run_limits.c): -1 to go on, else the exit code ---------- */
+/* R->res from --res or the scene; refuses a resolution out of range. */
+int    sb_run_resolve_res(run_state *R, const sb_run_request *req);
+/* The memory estimate of the method's estimate op against the limit. */
+int    sb_run_check_memory(run_state *R, int levels);
+/* The same for a method without one, after its create(). */
+int    sb_run_check_created(run_state *R);
+
+/* ---- output (sb_run_output.c): -1 to go on, else the exit code ---------- */
+/* The record path (*out_path, NULL for none), checked, its directory made
+ * and locked; installs the checkpoint monitor. */
+int    sb_run_prepare_output(run_state *R, const sb_run_request *req, int levels, const char **out_path,
+                             char *auto_path, size_t len);
 
 /* ---- results (sb_run_results.c) ----------------------------------------- */
 /* Sample grid (n x n in (s,t), points inside the domain) and its triangles. */

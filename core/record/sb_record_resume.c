@@ -79,7 +79,7 @@ static int check_identity(sb_h5r *r, hid_t f, const sb_run *e)
     if (!rc) rc = sb_h5r_attr_str(r, f, "solver", buf, sizeof buf);
     if (!rc && strcmp(buf, e->solver)) return mismatch(r, "solver", buf, e->solver);
     if (!rc) rc = sb_h5r_attr_int(r, f, "res", &res);
-    if (!rc && res != e->res) {
+    if (!rc && res != e->res && res != 0) {   /* 0: an older build's "the scene's resolution"; n_dofs decides */
         snprintf(a, sizeof a, "%d", res);
         snprintf(b, sizeof b, "%d", e->res);
         return mismatch(r, "res", a, b);
@@ -102,8 +102,10 @@ static int check_identity(sb_h5r *r, hid_t f, const sb_run *e)
     return rc;
 }
 
-/* Every resolved parameter of this run has the checkpoint's value
- * (run.checkpoint, the checkpoint interval, may differ). */
+/* Every resolved parameter of this run has the checkpoint's value, but for
+ * those that change where and how a run is kept, not what it computes:
+ * run.checkpoint (the checkpoint interval) and run.max_memory (the memory
+ * limit) may differ, and may be absent from checkpoints of older builds. */
 static int check_params(sb_h5r *r, hid_t f, const sb_paramset *ps)
 {
     hid_t g = H5Gopen2(f, "/params", H5P_DEFAULT);
@@ -111,7 +113,7 @@ static int check_params(sb_h5r *r, hid_t f, const sb_paramset *ps)
     int rc = SB_OK;
     for (int i = 0; ps && i < ps->n && !rc; i++) {
         const sb_param_value *v = &ps->v[i];
-        if (!v->def || strcmp(v->key, "run.checkpoint") == 0) continue;
+        if (!v->def || strcmp(v->key, "run.checkpoint") == 0 || strcmp(v->key, "run.max_memory") == 0) continue;
         char ours[SB_NAME_LEN], theirs[SB_NAME_LEN], field[SB_NAME_LEN + 16];
         snprintf(field, sizeof field, "parameter %s", v->key);
         sb_param_format(v, ours, sizeof ours);

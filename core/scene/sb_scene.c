@@ -19,7 +19,6 @@
 #include "sb_scene_json.h"
 
 #define MAX_FILE_BYTES (16u << 20)
-#define MAX_RESOLUTION 4096L
 #define DEFAULT_RESOLUTION 8
 
 static int fail_at(const char *file, const char *text, size_t len, size_t off, char *err,
@@ -80,7 +79,7 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
                         SB_NAME_LEN - 1, sc->name);
     if ((r = sbj_get_string(c, root, "description", 0, sc->description, sizeof sc->description, NULL)))
         return r;
-    if ((r = sbj_get_int(c, root, "resolution", 0, 1, MAX_RESOLUTION, &res))) return r;
+    if ((r = sbj_get_int(c, root, "resolution", 0, 1, SB_SCENE_MAX_RESOLUTION, &res))) return r;
     sc->default_res = (int)res;
     if ((r = sbj_parse_domain(c, root, &sc->domain))) return r;
     if ((r = sbj_parse_geometry(c, root, &sc->domain, &sc->chart))) return r;

@@ -15,6 +15,8 @@
 #define SB_SCENE_MAX_BCS 32
 #define SB_SCENE_MAX_PROBES 32
 #define SB_SCENE_MAX_PARTS 8
+/* elements per side: the scene's "resolution", --res and method.cells_t */
+#define SB_SCENE_MAX_RESOLUTION 4096
 
 /* ---- domain ---------------------------------------------------------- */
 typedef enum { SB_DOMAIN_RECTANGLE, SB_DOMAIN_L_SHAPE, SB_DOMAIN_ANNULUS_SECTOR } sb_domain_kind;
