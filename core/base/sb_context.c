@@ -42,6 +42,7 @@ int sb_error(sb_context *ctx, int status, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(ctx->err, sizeof ctx->err, fmt, ap);
     va_end(ap);
+    sb_escape_controls(ctx->err, sizeof ctx->err);   /* names from scene files reach a terminal */
     ctx->status = status;
     return status;
 }

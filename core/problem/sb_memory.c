@@ -1,10 +1,12 @@
 /* sb_memory.c — the memory estimate of a run before any allocation, and the
  * refusal of runs that cannot fit or cannot be indexed (sb_memory.h). */
 #include "sb_memory.h"
+#include "sb_context.h"
 
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include <unistd.h>
 
 /* Bytes of the structures of one level of the problem (sb_problem.c,
@@ -103,4 +105,24 @@ int sb_memory_check(const sb_method_size *sz, const sb_memory_estimate *est, dou
         return SB_ERR_INPUT;
     }
     return SB_OK;
+}
+
+int sb_memory_check_method(const sb_method_type *mt, const sb_scene *scene, const sb_method_config *cfg,
+                           const sb_memory_run *r, double limit_bytes, const char *what, double *bytes,
+                           char *err, size_t errlen)
+{
+    sb_method_size sz;
+    sb_memory_estimate est;
+    *bytes = 0;
+    if (!mt->estimate) return SB_OK;
+    memset(&sz, 0, sizeof sz);
+    if (cfg->ctx) cfg->ctx->err[0] = 0;
+    if (mt->estimate(scene, cfg, &sz)) {
+        snprintf(err, errlen, "%s: %s", what,
+                 cfg->ctx && cfg->ctx->err[0] ? cfg->ctx->err : "the discretization cannot be built at this size");
+        return SB_ERR_INPUT;
+    }
+    sb_memory_estimate_run(&sz, r, &est);
+    *bytes = est.bytes;
+    return sb_memory_check(&sz, &est, limit_bytes, what, err, errlen);
 }

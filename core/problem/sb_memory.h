@@ -46,6 +46,13 @@ double sb_memory_physical(void);
  * "bhem at --res 4096") and how to proceed. */
 int    sb_memory_check(const sb_method_size *sz, const sb_memory_estimate *est, double limit_bytes,
                        const char *what, char *err, size_t errlen);
+/* The method's estimate op (when it has one) and sb_memory_check in one:
+ * SB_OK (also for a method without the op: nothing to measure before
+ * create), or SB_ERR_INPUT with a sentence; *bytes gets the estimate (0
+ * when none). */
+int    sb_memory_check_method(const sb_method_type *mt, const sb_scene *scene, const sb_method_config *cfg,
+                              const sb_memory_run *r, double limit_bytes, const char *what, double *bytes,
+                              char *err, size_t errlen);
 /* "1.2 GB", "340 MB", "12 kB" (decimal units) */
 void   sb_memory_format(double bytes, char *buf, size_t len);
 

@@ -65,9 +65,10 @@ static void perturb_start(int n, double *x, double a, unsigned long long seed)
 static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
 {
     FILE *err = R->err;
-    char path[1024], msg[2048];
+    char path[1024], msg[2048], e1[256];
     if (sb_scene_resolve(req->scene, path, sizeof path)) {
-        fprintf(err, "shellbench: scene \"%s\" not found (neither a file nor a name in bench/scenes; try `shellbench list scenes`)\n", req->scene);
+        fprintf(err, "shellbench: scene \"%s\" not found (neither a file nor a name in bench/scenes; try `shellbench list scenes`)\n",
+                sb_escape_copy(req->scene, e1, sizeof e1));
         return SB_EXIT_INPUT;
     }
     if (sb_scene_load(path, &R->scene, msg, sizeof msg)) {
@@ -80,7 +81,7 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
     R->stype = sb_solver_find(req->solver);
     if (!R->mt || !R->stype) {
         fprintf(err, "shellbench: unknown %s \"%s\" (see `shellbench list %s`)\n", !R->mt ? "method" : "solver",
-                !R->mt ? req->method : req->solver, !R->mt ? "methods" : "solvers");
+                sb_escape_copy(!R->mt ? req->method : req->solver, e1, sizeof e1), !R->mt ? "methods" : "solvers");
         return SB_EXIT_INPUT;
     }
     *levels = req->levels > 0 ? req->levels : 1;
@@ -116,6 +117,7 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
     }
     for (int i = 0; i < req->n_sets; i++)
         if (sb_paramset_set(ps, req->sets[i], msg, sizeof msg)) {
+            sb_escape_controls(msg, sizeof msg);
             fprintf(err, "shellbench: %s\n", msg);
             return SB_EXIT_INPUT;
         }
@@ -286,6 +288,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         int iters = 0;
         double f = 0, gn = 0;
         sb_reason reason = sb_solve_step(R->stype, R->ss, R->prob, ps, step, R->x, &iters, &f, &gn);
+        sb_run_progress_clear(R);
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
         double tr0 = sb_now();
@@ -314,7 +317,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
                         step, sc->time.steps, R->partial_path);
             return SB_EXIT_STOPPED;
         }
-        if (R->ctx.monitor && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every)
+        if (R->checkpoints_on && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every)
             sb_run_write_checkpoint(R);
     }
     stats->seconds_total = sb_now() - R->t_start;
@@ -379,7 +382,10 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     R->err = err;
     sb_output_lock_init(&R->lock);
     R->t_start = sb_now();
-    R->n_grid = req->sample_n > 1 ? req->sample_n : 21;
+    sb_run_progress_init(R, req);
+    R->ctx.monitor = sb_run_monitor;
+    R->ctx.monitor_data = R;
+    R->n_grid = req->sample_n > 0 ? req->sample_n : 21;
 
     int levels = 1, first_step = 1, code;
     const char *out_path = NULL;
@@ -392,6 +398,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)
         code = finish_run(R, req, out_path, out, summary);
+    sb_run_progress_clear(R);
     run_cleanup(R);
     free(R);
     return code;

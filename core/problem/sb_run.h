@@ -17,10 +17,19 @@ typedef struct sb_run_request {
     int n_sets;
     const char *const *sets;  /* "key=value" overrides */
     int quiet;                /* no progress lines */
-    int sample_n;             /* sample grid per side (0 = 21) */
+    int sample_n;             /* sample grid per side (0 = 21, else 2..SB_RUN_MAX_SAMPLES) */
     int resume;               /* continue from the last step boundary of OUT.partial */
     int stop_after_steps;     /* > 0: stop after this step with a checkpoint (exit SB_EXIT_STOPPED) */
+    /* a live progress line on err_stream (step, iteration, f, ||g||, radius or
+     * step length, elapsed): 0 = when err_stream is a terminal and the run is
+     * not quiet, 1 = always (--progress; plain lines, one a second, off a
+     * terminal), -1 = never */
+    int progress;
+    const char *progress_prefix;   /* shown before the line (a sweep's "[3/12, ~2 min left]"), or NULL */
 } sb_run_request;
+
+/* --samples: the sample grid per side is 2 to this */
+#define SB_RUN_MAX_SAMPLES 2001
 
 /* Exit codes of the CLI contract. */
 enum { SB_EXIT_CONVERGED = 0, SB_EXIT_NOT_CONVERGED = 1, SB_EXIT_INPUT = 2, SB_EXIT_INTERNAL = 3,

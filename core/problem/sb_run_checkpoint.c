@@ -139,12 +139,3 @@ int sb_run_resume(run_state *R, int quiet)
     sb_run_mark_boundary(R, rec->steps_done);
     return rec->steps_done;
 }
-
-/* sb_context.monitor: after every iteration of the outer loop */
-void sb_run_checkpoint_monitor(void *data, const sb_iter_record *r)
-{
-    (void)r;
-    run_state *R = data;
-    if (!R->checkpoint_failed && sb_now() - R->checkpoint_last >= R->checkpoint_every) sb_run_write_checkpoint(R);
-}
-

@@ -10,7 +10,8 @@
 
 #include <string.h>
 
-/* The resolution the run uses: --res, else the scene's "resolution". */
+/* The resolution the run uses: --res, else the scene's "resolution"; the
+ * sample grid's size. */
 int sb_run_resolve_res(run_state *R, const sb_run_request *req)
 {
     if (req->res < 0 || req->res > SB_SCENE_MAX_RESOLUTION) {
@@ -20,6 +21,11 @@ int sb_run_resolve_res(run_state *R, const sb_run_request *req)
         return SB_EXIT_INPUT;
     }
     R->res = req->res > 0 ? req->res : (R->scene.default_res > 0 ? R->scene.default_res : 8);
+    if (R->n_grid < 2 || R->n_grid > SB_RUN_MAX_SAMPLES) {
+        fprintf(R->err, "shellbench: --samples %d is out of range: the sample grid has 2 to %d points per side\n",
+                R->n_grid, SB_RUN_MAX_SAMPLES);
+        return SB_EXIT_INPUT;
+    }
     return -1;
 }
 
@@ -55,15 +61,17 @@ int sb_run_check_memory(run_state *R, int levels)
 {
     if (!R->mt->estimate) return -1;   /* measured after create (sb_run_check_created) */
     sb_method_config cfg = { R->res, levels, &R->ctx.params, &R->ctx };
-    sb_method_size sz;
-    memset(&sz, 0, sizeof sz);
-    R->ctx.err[0] = 0;
-    if (R->mt->estimate(&R->scene, &cfg, &sz)) {
-        fprintf(R->err, "shellbench: method %s on scene %s: %s\n", R->mt->name, R->scene.name,
-                R->ctx.err[0] ? R->ctx.err : "the discretization cannot be built at this size");
+    sb_memory_run mr;
+    char what[160], msg[1400];
+    run_size(R, &mr);
+    snprintf(what, sizeof what, "method %s on scene %s at --res %d with %d level%s", R->mt->name, R->scene.name,
+             R->res, levels, levels > 1 ? "s" : "");
+    if (sb_memory_check_method(R->mt, &R->scene, &cfg, &mr, sb_param(&R->ctx.params, "run.max_memory") * 1e9, what,
+                               &R->mem_estimate, msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: %s\n", msg);
         return SB_EXIT_INPUT;
     }
-    return check(R, &sz);
+    return -1;
 }
 
 /* After create() of a method without an estimate op: its dof counts, with

@@ -39,6 +39,7 @@ static int check_paths(run_state *R, const char *out_path)
         sb_output_kind kind;
         if (!paths[i]) continue;
         if (sb_output_check(paths[i], what[i], &kind, msg, sizeof msg)) {
+            sb_escape_controls(msg, sizeof msg);
             fprintf(R->err, "shellbench: %s\n", msg);
             return SB_EXIT_INPUT;
         }
@@ -82,14 +83,14 @@ int sb_run_prepare_output(run_state *R, const sb_run_request *req, int levels, c
     }
     char msg[8600];
     if (sb_output_lock_take(&R->lock, *out_path, msg, sizeof msg)) {
+        sb_escape_controls(msg, sizeof msg);
         fprintf(err, "shellbench: %s\n", msg);
         return SB_EXIT_INPUT;
     }
     R->checkpoint_every = sb_param(&R->ctx.params, "run.checkpoint");
     if (R->checkpoint_every > 0) {
         R->checkpoint_last = sb_now();
-        R->ctx.monitor = sb_run_checkpoint_monitor;
-        R->ctx.monitor_data = R;
+        R->checkpoints_on = 1;   /* written by the run's monitor (sb_run_progress.c) */
     }
     return -1;
 }

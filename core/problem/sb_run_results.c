@@ -14,6 +14,7 @@
 int sb_run_build_samples(run_state *R)
 {
     const int n = R->n_grid;
+    if (n < 2 || n > SB_RUN_MAX_SAMPLES) return SB_ERR_INPUT;   /* n * n * 6 stays far inside int */
     int *idx = malloc((size_t)n * n * sizeof *idx);
     R->rec.sample_st = malloc((size_t)n * n * 2 * sizeof(double));
     R->rec.tris = malloc((size_t)(n - 1) * (n - 1) * 6 * sizeof(int));

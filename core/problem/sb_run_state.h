@@ -13,6 +13,14 @@
 
 #include <stdio.h>
 
+/* the live progress line (sb_run_progress.c) */
+typedef struct sb_run_progress {
+    int on, tty, shown;                /* shown: a line is on the terminal now */
+    double interval, last;             /* seconds between updates, time of the last */
+    long iterations;                   /* iteration records so far in this process */
+    const char *prefix;
+} sb_run_progress;
+
 typedef struct run_state {
     sb_context ctx;
     sb_scene scene;
@@ -34,6 +42,8 @@ typedef struct run_state {
     FILE *err;
     double t_start, checkpoint_every, checkpoint_last;
     int checkpoint_failed;
+    int checkpoints_on;                /* run.checkpoint > 0 and a record path */
+    sb_run_progress progress;
     char partial_path[1100];
     /* the last completed step: the resume point the checkpoints carry */
     sb_resume_point bp;
@@ -50,7 +60,7 @@ int    sb_run_check_created(run_state *R);
 
 /* ---- output (sb_run_output.c): -1 to go on, else the exit code ---------- */
 /* The record path (*out_path, NULL for none), checked, its directory made
- * and locked; installs the checkpoint monitor. */
+ * and locked; checkpoints on when run.checkpoint > 0. */
 int    sb_run_prepare_output(run_state *R, const sb_run_request *req, int levels, const char **out_path,
                              char *auto_path, size_t len);
 
@@ -77,7 +87,13 @@ void   sb_run_write_checkpoint(run_state *R);
 void   sb_run_mark_boundary(run_state *R, int step);
 /* --resume: steps already done (0: no checkpoint), or -1 on an input error. */
 int    sb_run_resume(run_state *R, int quiet);
-/* sb_context.monitor: a checkpoint when run.checkpoint seconds have passed. */
-void   sb_run_checkpoint_monitor(void *data, const sb_iter_record *r);
+
+/* ---- the monitor (sb_run_progress.c) ------------------------------------- */
+void   sb_run_progress_init(run_state *R, const sb_run_request *req);
+/* Erase the progress line (before any other message on err). */
+void   sb_run_progress_clear(run_state *R);
+/* sb_context.monitor, after every iteration: a checkpoint when run.checkpoint
+ * seconds have passed, then the progress line. */
+void   sb_run_monitor(void *data, const sb_iter_record *r);
 
 #endif

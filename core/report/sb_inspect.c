@@ -3,6 +3,7 @@
  * scene -> method -> material state -> table. */
 #include "sb_inspect.h"
 #include "sb_context.h"
+#include "sb_memory.h"
 #include "sb_record.h"
 
 #include <math.h>
@@ -55,6 +56,12 @@ static int material_of(const char *path, const sb_record_setup *su, sb_material_
         goto done;
     }
     sb_method_config cfg = { su->res, su->levels > 0 ? su->levels : 1, &ctx.params, &ctx };
+    /* a record's sizes are input like any other: what cannot fit is refused before create() */
+    sb_memory_run mr = { 0, 0, 0, 2, 0 };
+    double bytes;
+    char what[600];
+    snprintf(what, sizeof what, "%s: method %s at res %d with %d levels", path, mt->name, su->res, cfg.levels);
+    if ((rc = sb_memory_check_method(mt, &scene, &cfg, &mr, 0, what, &bytes, err, errlen))) goto done;
     rc = mt->create(state, &scene, &cfg);
     created = 1;
     if (rc) {
