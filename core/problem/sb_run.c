@@ -85,42 +85,12 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
         return SB_EXIT_INPUT;
     }
     *levels = req->levels > 0 ? req->levels : 1;
-    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
-        fprintf(err, "shellbench: solver %s needs a level hierarchy (prolongation, restriction, projection), "
-                     "but method %s provides none\n", R->stype->name, R->mt->name);
-        return SB_EXIT_INPUT;
+    int rc = sb_run_combination_check(R->mt, R->stype, *levels, msg, sizeof msg);
+    if (!rc) rc = sb_run_paramset(&R->ctx.params, R->mt, R->stype, req->n_sets, req->sets, msg, sizeof msg);
+    if (rc) {
+        fprintf(err, "shellbench: %s\n", msg);
+        return rc == SB_ERR_INTERNAL ? SB_EXIT_INTERNAL : SB_EXIT_INPUT;
     }
-    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && *levels < 2) {
-        fprintf(err, "shellbench: solver %s needs at least 2 levels, but --levels is %d\n", R->stype->name, *levels);
-        return SB_EXIT_INPUT;
-    }
-    if (*levels > 1 && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
-        fprintf(err, "shellbench: --levels %d asks for a hierarchy, but method %s has none\n", *levels, R->mt->name);
-        return SB_EXIT_INPUT;
-    }
-    if (*levels > SB_MAX_LEVELS || req->res < 0) {
-        fprintf(err, "shellbench: --levels must be in [1, %d] and --res >= 0\n", SB_MAX_LEVELS);
-        return SB_EXIT_INPUT;
-    }
-    if (!(R->mt->flags & SB_METHOD_POTENTIAL) && !(R->stype->flags & SB_SOLVER_SINGLE_STEP)) {
-        fprintf(err, "shellbench: method %s has no energy potential (lagged forces); solver %s needs one: use linearized\n",
-                R->mt->name, R->stype->name);
-        return SB_EXIT_INPUT;
-    }
-
-    /* parameters: declared tables, then overrides */
-    sb_paramset *ps = &R->ctx.params;
-    if (sb_paramset_add(ps, "run", sb_solve_params) || sb_paramset_add(ps, "solver", R->stype->params) ||
-        sb_paramset_add(ps, "method", R->mt->params)) {
-        fprintf(err, "shellbench: internal error: too many parameters\n");
-        return SB_EXIT_INTERNAL;
-    }
-    for (int i = 0; i < req->n_sets; i++)
-        if (sb_paramset_set(ps, req->sets[i], msg, sizeof msg)) {
-            sb_escape_controls(msg, sizeof msg);
-            fprintf(err, "shellbench: %s\n", msg);
-            return SB_EXIT_INPUT;
-        }
     return RUN_GO_ON;
 }
 
