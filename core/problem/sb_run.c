@@ -272,6 +272,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             fprintf(err, "step %d/%d: %s after %d iterations, f = %.10g, |g| = %.3g (%.3f s)\n", step, sc->time.steps,
                     sb_reason_name(reason), iters, f, gn, sr.seconds);
         rec->reason = reason;
+        sb_run_fold_resume_setup(R);
         if (!sb_reason_converged(reason)) {
             rec->status = 1;
             break;

@@ -47,6 +47,11 @@ typedef struct run_state {
     char partial_path[1100];
     /* the last completed step: the resume point the checkpoints carry */
     sb_resume_point bp;
+    /* --resume: the analyze events of the checkpoint's boundary; this
+     * process's repeat of a symbolic factorization done before is set-up
+     * (sb_run_fold_resume_setup) */
+    int resumed;
+    sb_event_stat analyze_at_resume[SB_MAX_LEVELS];
 } run_state;
 
 
@@ -85,6 +90,11 @@ int    sb_run_partial_path(const char *out_path, char *buf, size_t len);
 void   sb_run_remove_partial(run_state *R);
 void   sb_run_write_checkpoint(run_state *R);
 void   sb_run_mark_boundary(run_state *R, int step);
+/* After a resume: a level's symbolic factorization (analyze) repeated in
+ * this process, although the interrupted one had done it, moves from the
+ * event counts to the resume log's set-up time, so that every count but
+ * checkpoint equals the uninterrupted run's.  Idempotent; called after each step. */
+void   sb_run_fold_resume_setup(run_state *R);
 /* --resume: steps already done (0: no checkpoint), or -1 on an input error. */
 int    sb_run_resume(run_state *R, int quiet);
 
