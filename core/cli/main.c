@@ -140,6 +140,7 @@ static int cmd_inspect(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    sb_record_library_init();   /* before any HDF5 call */
     if (argc < 2) {
         sb_cli_usage(stderr);
         return 2;

@@ -86,6 +86,15 @@ typedef struct sb_run {
     const sb_resume_point *resume;
 } sb_run;
 
+/* Call first thing in main() of a program that reads records it did not
+ * write: HDF5 (1.10 to at least 1.14, HDFGroup/hdf5#6677) can be left by a
+ * malformed file with internal state its at-exit shutdown cannot release
+ * ("HDF5: infinite loop closing library", a bounded leak LeakSanitizer
+ * reports) although every handle the readers opened is closed.  This turns
+ * that shutdown off (H5dont_atexit): files are always closed explicitly, and
+ * what HDF5 holds stays reachable until the process ends. */
+void sb_record_library_init(void);
+
 /* Zero the run and fill the machine/build fields (build_id, cpu_model,
  * n_cores, started = now) from sb_sysinfo.h. */
 void sb_run_init(sb_run *run);

@@ -182,6 +182,8 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
     return rc;
 }
 
+void sb_record_library_init(void) { H5dont_atexit(); }
+
 const char *sb_record_status_name(int status)
 {
     return status == 0 ? "converged" : status == 1 ? "not converged" : status == SB_STATUS_UNFINISHED ? "unfinished"
