@@ -107,7 +107,8 @@ static int cmd_report(int argc, char **argv)
     char err[2048] = "";
     if (!rc && plot) {   /* the plot's path and format, before any work */
         sb_output_kind kind;
-        if (sb_output_check(plot, "plot", &kind, err, sizeof err) || sb_report_plot_format(plot, NULL, err, sizeof err)) {
+        if (sb_output_check(plot, "plot", &kind, err, sizeof err) ||
+            (kind != SB_OUTPUT_DISCARD && sb_report_plot_format(plot, NULL, err, sizeof err))) {
             sb_escape_controls(err, sizeof err);
             fprintf(stderr, "shellbench report: %s\n", err);
             rc = 2;
