@@ -78,8 +78,8 @@ int sb_cli_sweep(int argc, char **argv)
         return 2;
     }
     if (plan.n_left_out)
-        fprintf(stderr, "shellbench sweep: %d combination%s left out: %s%s\n", plan.n_left_out,
-                plan.n_left_out > 1 ? "s" : "", plan.left_out, plan.n_left_out > 4 ? "; ..." : "");
+        fprintf(stderr, "shellbench sweep: %d combination%s left out: %s\n", plan.n_left_out,
+                plan.n_left_out > 1 ? "s" : "", plan.left_out);
     const int show = c.req.progress > 0 || (c.req.progress == 0 && isatty(STDERR_FILENO));
     int worst = 0, n_conv = 0, n_not = 0, n_skip = 0, n_fail = 0, n_ran = 0;
     double t0 = sb_now(), ran_seconds = 0;
@@ -126,8 +126,8 @@ int sb_cli_sweep(int argc, char **argv)
         else n_fail++;
         if (x > worst) worst = x;
     }
-    printf("%d runs in %s: %d converged, %d not converged, %d skipped (already recorded), %d failed; %.1f s\n", plan.n,
-           ax.dir, n_conv, n_not, n_skip, n_fail, sb_now() - t0);
+    printf("%d run%s in %s: %d converged, %d not converged, %d skipped (already recorded), %d failed; %.1f s\n", plan.n,
+           plan.n == 1 ? "" : "s", ax.dir, n_conv, n_not, n_skip, n_fail, sb_now() - t0);
     sb_sweep_plan_free(&plan);
     return worst;
 }

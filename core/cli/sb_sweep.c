@@ -66,7 +66,9 @@ static int check_pair(const sb_method_type *mt, const sb_solver_type *st, int le
 static void note_left_out(sb_sweep_plan *plan, const char *why)
 {
     size_t u = strlen(plan->left_out);
-    if (plan->n_left_out++ < 4 && u + strlen(why) + 3 < sizeof plan->left_out)
+    if (strstr(plan->left_out, why)) return;   /* the same combination for another scene or resolution */
+    plan->n_left_out++;
+    if (u + strlen(why) + 3 < sizeof plan->left_out)
         snprintf(plan->left_out + u, sizeof plan->left_out - u, "%s%s", u ? "; " : "", why);
 }
 

@@ -37,8 +37,8 @@ typedef struct sb_sweep_item {
 typedef struct sb_sweep_plan {
     int n;
     sb_sweep_item *items;
-    int n_left_out;                    /* impossible combinations, named in `left_out` */
-    char left_out[1024];
+    int n_left_out;                    /* impossible (method, solver, levels) combinations, named in left_out */
+    char left_out[4096];               /* "method/solver lL: why; ..." */
 } sb_sweep_plan;
 
 /* The plan of the axes, every run validated; SB_OK, or SB_ERR_INPUT with
