@@ -40,7 +40,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan clean
+.PHONY: all deps test run bench report check-asan clean fuzz fuzz-build fuzz-short
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -115,7 +115,32 @@ check-asan:
 	$(MAKE) --no-print-directory BUILD=build-asan OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
 
+# Fuzzing (docs/cli.md "Fuzzing"): libFuzzer harnesses of the scene parser and
+# the record readers, built with clang, ASan and UBSan in build-fuzz/; clang is
+# installed by `ensure_deps.sh fuzz` here only (`make test` never needs it).
+# `make fuzz` builds them and their seed corpora; `make fuzz-short` runs each
+# for FUZZ_SECONDS (CI), failing on any crash, sanitizer report or abort.
+FUZZ_BUILD   := build-fuzz
+FUZZ_SAN     := -fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-omit-frame-pointer \
+                -fno-sanitize-recover=undefined
+FUZZ_SECONDS ?= 60
+
+fuzz: $(BIN)
+	@bash scripts/ensure_deps.sh fuzz
+	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=clang CXX=clang++ OPT=-O1 SAN="$(FUZZ_SAN)" fuzz-build
+	@bash scripts/fuzz_seeds.sh $(BIN) $(FUZZ_BUILD)/seeds
+	@echo "fuzz targets: $(FUZZ_BUILD)/fuzz/fuzz_scene, $(FUZZ_BUILD)/fuzz/fuzz_record (make fuzz-short runs each $(FUZZ_SECONDS) s)"
+
+fuzz-build: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_record
+
+$(BUILD)/fuzz/fuzz_%: fuzz/fuzz_%.c $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fsanitize=fuzzer -o $@ $< $(LIB) $(LDFLAGS) $(LDLIBS)
+
+fuzz-short: fuzz
+	@$(BLAS_ENV) bash scripts/fuzz_run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan build-fuzz
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -168,6 +168,21 @@ int sb_scene_parse_string(const char *text, const char *path_for_messages, sb_sc
     return r;
 }
 
+int sb_scene_parse_buffer(const char *bytes, size_t len, const char *path_for_messages, sb_scene *scene, char *err,
+                          size_t errlen)
+{
+    const char *file = path_for_messages ? path_for_messages : "<buffer>";
+    if (!scene) return SB_ERR_INPUT;
+    if (len > MAX_FILE_BYTES) {
+        memset(scene, 0, sizeof *scene);
+        if (err && errlen) snprintf(err, errlen, "%s:1:1: at /: too large (more than %u bytes)", file, MAX_FILE_BYTES);
+        return SB_ERR_INPUT;
+    }
+    int r = parse_buffer(bytes ? bytes : "", bytes ? len : 0, file, scene, err, errlen);
+    if (r && err && errlen) sb_escape_controls(err, errlen);
+    return r;
+}
+
 /* The standard input under the names a shell gives it: scenes may come
  * from a pipe or a terminal there, not from any other non-regular file. */
 static int is_stdin_path(const char *p)

@@ -201,6 +201,10 @@ typedef struct sb_scene {
 int sb_scene_load(const char *path, sb_scene *scene, char *err, size_t errlen);
 int sb_scene_parse_string(const char *text, const char *path_for_messages,
                           sb_scene *scene, char *err, size_t errlen);
+/* The same for len bytes that may hold anything (what sb_scene_load does
+ * with a file's contents: NUL bytes, a byte-order mark, an HDF5 file). */
+int sb_scene_parse_buffer(const char *bytes, size_t len, const char *path_for_messages,
+                          sb_scene *scene, char *err, size_t errlen);
 void sb_scene_free(sb_scene *scene);
 /* Resolve a scene name ("trampoline") or path to a file path. */
 int sb_scene_resolve(const char *name_or_path, char *path, size_t len);
