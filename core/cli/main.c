@@ -1,6 +1,7 @@
 /* main.c — the shellbench command line: dispatch, and the thin commands
  * run, check, report and inspect.  list, sweep, help and argument parsing
- * are in core/cli/sb_cli_*.c; the reference is docs/cli.md.
+ * are in core/cli/sb_cli_*.c; the reference is docs/cli.md (how to run:
+ * docs/running.md).
  *   shellbench list [scenes|methods|solvers|params [NAME]]
  *   shellbench check SCENE...
  *   shellbench run --scene NAME|PATH --method NAME --solver NAME [options]
