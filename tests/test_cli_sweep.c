@@ -45,8 +45,8 @@ SB_TEST(validated_before_the_first_run)
     refused(T, "--scenes trampoline --methods bhem, --solvers tr --res 4", "--methods: an empty list or an empty item");
     refused(T, "--scenes trampoline --methods bhem,nosuch --solvers tr --res 4", "unknown method \"nosuch\"");
     refused(T, "--scenes trampoline --methods bhem --solvers tr,nosuch --res 4", "unknown solver \"nosuch\"");
-    refused(T, "--scenes trampoline --methods bhem --solvers tr --res 4,abc", "\"abc\" is not an integer");
-    refused(T, "--scenes trampoline --methods bhem --solvers tr --res 4,4097", "is not an integer in [0, 4096]");
+    refused(T, "--scenes trampoline --methods bhem --solvers tr --res 4,abc", "\"abc\" is not a resolution");
+    refused(T, "--scenes trampoline --methods bhem --solvers tr --res 4,4097", "1 to 4096");
     refused(T, "--scenes trampoline --methods bhem --solvers tr --res 4 --levels 1,9", "--levels");
     refused(T, "--scenes trampoline,tests/scenes_bad/poisson_out_of_range.json --methods bhem --solvers tr --res 4",
             "at /material/poisson");

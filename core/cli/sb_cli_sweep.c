@@ -50,6 +50,7 @@ static void format_left(double s, char *buf, size_t len)
 int sb_cli_sweep(int argc, char **argv)
 {
     sb_cli_run c;
+    char err[2048];
     memset(&c, 0, sizeof c);
     int rc = sb_cli_parse_run(argc, argv, &c, 1);
     if (rc) return rc;
@@ -63,16 +64,18 @@ int sb_cli_sweep(int argc, char **argv)
     if (split_opt("--scenes", c.scenes, sb, sizeof sb, sc, &nsc) || split_opt("--methods", c.methods, mb, sizeof mb, me, &nme) ||
         split_opt("--solvers", c.solvers, vb, sizeof vb, so, &nso))
         return 2;
-    if (c.res_list && (split_opt("--res", c.res_list, rb, sizeof rb, re, &nre) ||
-                       parse_ints("--res", re, nre, 0, SB_SCENE_MAX_RESOLUTION, res)))
-        return 2;
+    if (c.res_list && split_opt("--res", c.res_list, rb, sizeof rb, re, &nre)) return 2;
+    for (int i = 0; c.res_list && i < nre; i++)   /* each item as `run --res` takes it */
+        if (sb_cli_parse_res(re[i], &res[i], err, sizeof err)) {
+            fprintf(stderr, "shellbench sweep: %s\n", err);
+            return 2;
+        }
     if (c.level_list && (split_opt("--levels", c.level_list, lb, sizeof lb, le, &nle) ||
                          parse_ints("--levels", le, nle, 1, SB_MAX_LEVELS, lev)))
         return 2;
     sb_sweep_axes ax = { nsc, (const char *const *)sc, nme, (const char *const *)me, nso, (const char *const *)so,
                          nre, res, nle, lev, c.req.n_sets, c.sets, c.dir ? c.dir : "results/sweep", c.req.sample_n };
     sb_sweep_plan plan;
-    char err[2048];
     if (sb_sweep_validate(&ax, &plan, err, sizeof err)) {
         fprintf(stderr, "shellbench %s\n", err);
         return 2;
