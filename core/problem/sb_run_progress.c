@@ -44,15 +44,15 @@ static void format_elapsed(double s, char *buf, size_t len)
 static void progress_update(run_state *R, const sb_iter_record *r)
 {
     sb_run_progress *P = &R->progress;
+    const int F = sb_problem_finest(R->prob);
     double now = sb_now();
-    P->iterations++;
+    P->iterations += r->level == F && r->iter > 0;   /* outer iterations, as report counts them */
     if (now - P->last < P->interval) return;
     P->last = now;
     char el[32], tr[48] = "", lev[24] = "";
     format_elapsed(now - R->t_start, el, sizeof el);
     if (isfinite(r->delta) && r->delta > 0) snprintf(tr, sizeof tr, ", radius %.2e", r->delta);
     else if (r->rho > 0) snprintf(tr, sizeof tr, ", step %.3g", r->rho);
-    const int F = sb_problem_finest(R->prob);
     if (r->level != F) snprintf(lev, sizeof lev, " (level %d)", r->level);
     fprintf(R->err, "%s%s%s/%s/%s step %d/%d, iteration %d%s: f = %.6g, |g| = %.2e%s; %ld iterations, %s%s",
             P->tty ? "\r" : "", P->prefix ? P->prefix : "", R->scene.name, R->mt->name, R->stype->name, r->step,

@@ -17,7 +17,7 @@
 typedef struct sb_run_progress {
     int on, tty, shown;                /* shown: a line is on the terminal now */
     double interval, last;             /* seconds between updates, time of the last */
-    long iterations;                   /* iteration records so far in this process */
+    long iterations;                   /* outer iterations (finest level) so far in this process */
     const char *prefix;
 } sb_run_progress;
 
