@@ -205,7 +205,7 @@ double lf_ratio(const double u[3], const double e[3], double *g, double *H)
                 const double d = i == j;
                 H[9 * i + j] = (d - uh[i] * uh[j]) / (lu * le);
                 H[9 * i + 6 + j] = H[9 * (6 + j) + i] = -uh[i] * eh[j] / (le * le);
-                H[9 * (6 + i) + 6 + j] = h * (3.0 * eh[i] * eh[j] - d) / (le * le);
+                H[9 * (6 + i) + 6 + j] = h * (3.0 * (eh[i] * eh[j]) - d) / (le * le);
             }
     }
     return h;
