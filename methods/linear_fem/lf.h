@@ -17,7 +17,9 @@
  *           b_ab = -x_,a . n_,b in the barycentric coordinates
  *           (x_,1 = p1 - p0, x_,2 = p2 - p0) gives exactly
  *             b = [[w0 + w1, w0], [w0, w0 + w2]],   w_i = -2 h_i sin(alpha_i),
- *           h_i the altitude of T on edge i (own derivation, see lf_element.c).
+ *           h_i the altitude of T on edge i (own derivation, see lf_element.c);
+ *           we take w_i = -2 h_i alpha_i (the angle, not its sine: same to
+ *           third order, and bounded below under end moments).
  *           Director data (method.director):
  *             edge     alpha_i = psi_e / 2 + sigma_i phi_e with one scalar
  *                      dof phi_e per edge (the midedge normal's rotation away
@@ -139,7 +141,6 @@ typedef struct lf_mq {         /* end-moment edge (one per boundary edge of the 
     int tri, slot;            /* triangle and the corner opposite the edge */
     int edge, load;
     double weight;            /* reference edge length */
-    double phi_sign;          /* edge directors: +-1 when the edge is parallel to the axis, else 0 */
     double axis[3], ub[3], e2[3], theta_b;
 } lf_mq;
 

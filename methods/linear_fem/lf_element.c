@@ -10,8 +10,12 @@
  * a_a.n_i = sin(alpha_i) a_a.m_i with (p_{i+1} - p_i).m_i = h_i, the altitude
  * on edge i (m_i outward), and a_1.m_2 = a_2.m_1 = 0, so
  *     b = [[w0 + w1, w0], [w0, w0 + w2]],  w_i = -2 h_i sin(alpha_i).
- * (The sin of the unit-normal interpolation; libshell's "tan" variant
- * differs at third order in alpha.)  Strains as in sb_shell.h: A = (a - abar)/2,
+ * We use the angle itself, w_i = -2 h_i alpha_i (the "angle" variant; sin
+ * and the tan of Chen et al. 2018 differ from it at third order in alpha):
+ * the sine saturates, which makes the energy periodic in a director phi and
+ * unbounded below under a linear load on it (the end moment, lf_loads.c:
+ * our first implementation spun the free end's director by pi), while the
+ * angle keeps it growing quadratically.  Strains as in sb_shell.h: A = (a - abar)/2,
  * B = (b - bbar)/2 in covariant components, T A and T B in the local warp /
  * weft frame, energy dA * sb_shell_section(T A, T B).
  *
@@ -19,10 +23,9 @@
  * nB = dA T^T sB and mu = M^T nB for B_cov = M w, M = 1/2 [[1,1,0],[1,0,1],[1,0,0]];
  * d2E = J^T D' J + sum_k nA_k d2A_k + sum_i mu_i d2w_i, J = d(A_cov, w)/dq,
  * D' = [[D_AA, D_AB M], [M^T D_BA, M^T D_BB M]], D_XY = dA T^T C_XY T;
- * w = -2 h s, s = sin(alpha):
- *   dw = -2 (s dh + h cos(alpha) dalpha),
- *   d2w = -2 (s d2h + cos(alpha)(dh dalpha^T + dalpha dh^T) + h cos(alpha) d2alpha
- *             - h s dalpha dalpha^T),   alpha = c psi + sigma phi.
+ * w = -2 h alpha, alpha = c psi + sigma phi:
+ *   dw = -2 (alpha dh + h dalpha),
+ *   d2w = -2 (alpha d2h + dh dalpha^T + dalpha dh^T + h c d2psi).
  * The pseudo Hessian drops sum_i mu_i d2w_i (the second derivatives of the
  * bending strains, as for bhem). */
 #include "lf.h"
@@ -99,23 +102,23 @@ static int edge_w(const lf_state *S, const lf_tri *T, int i, const double *qe, d
         if (need) lf_chain(dep, g9, H13 ? H81 : NULL, 12, gp, H13 ? Hp : NULL);
     }
     const double sig = T->sigma[i];
-    const double alpha = cpsi * psi + sig * phi, s = sin(alpha), co = cos(alpha);
-    *w = -2.0 * h * s;
+    const double alpha = cpsi * psi + sig * phi;
+    *w = -2.0 * h * alpha;
     if (!need) return 1;
     double ga[13];
     for (int k = 0; k < 12; k++) ga[k] = cpsi * gp[k];
     ga[12] = has_phi ? sig : 0.0;
     if (g13) {
-        for (int k = 0; k < 12; k++) g13[k] = -2.0 * (s * gh[k] + h * co * ga[k]);
-        g13[12] = -2.0 * h * co * ga[12];
+        for (int k = 0; k < 12; k++) g13[k] = -2.0 * (alpha * gh[k] + h * ga[k]);
+        g13[12] = -2.0 * h * ga[12];
     }
     if (H13) {
         for (int a = 0; a < 13; a++) {
             const double gha = a < 12 ? gh[a] : 0.0;
             for (int b = 0; b < 13; b++) {
                 const double ghb = b < 12 ? gh[b] : 0.0;
-                double v = co * (gha * ga[b] + ga[a] * ghb) - h * s * ga[a] * ga[b];
-                if (a < 12 && b < 12) v += s * Hh[12 * a + b] + h * co * cpsi * Hp[12 * a + b];
+                double v = gha * ga[b] + ga[a] * ghb;
+                if (a < 12 && b < 12) v += alpha * Hh[12 * a + b] + h * cpsi * Hp[12 * a + b];
                 H13[13 * a + b] = -2.0 * v;
             }
         }
