@@ -4,7 +4,8 @@
  * Jitter.  Vertex v moves by amp (h_s u_1, h_t u_2) in (s,t), u_i uniform on
  * [-1, 1) from a GSL generator (gsl_rng_mt19937 seeded with the run's seed;
  * two draws per movable vertex in vertex order, so a seed fixes the mesh),
- * h_s / h_t the shortest nonzero |ds| / |dt| of its edges.  Boundary,
+ * h_s / h_t the shortest nonzero |ds| / |dt| of its edges (sb_rng_alloc,
+ * core/base/sb_gsl.h).  Boundary,
  * pinned and seam vertices stay.  A displacement that leaves any triangle
  * with less than a quarter of its (s,t) area is halved, for the vertices of
  * that triangle, until no triangle is that thin (at most 40 rounds).
@@ -16,17 +17,19 @@
 #include "sb_mesh.h"
 #include "sb_geometry.h"
 
-#include <gsl/gsl_rng.h>
+#include "sb_gsl.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* The one place the mesh layer draws random numbers. */
+/* The one place the mesh layer draws random numbers (sb_gsl.h's factory:
+ * GSL's error policy, the generator named and seeded). */
 static int draw_offsets(int n, const unsigned char *movable, unsigned long seed, double *u, const char **name)
 {
-    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    char err[256];
+    gsl_rng *r = sb_rng_alloc("mt19937", seed, err, sizeof err);
     if (!r) return SB_ERR_NOMEM;
-    gsl_rng_set(r, seed);
     for (int v = 0; v < n; v++) {
         if (!movable[v]) { u[2 * v] = u[2 * v + 1] = 0.0; continue; }
         u[2 * v] = 2.0 * gsl_rng_uniform(r) - 1.0;
