@@ -63,6 +63,13 @@
  *           their triangle: theta = the angle to the clamp / symmetry normal,
  *           R = A_T.  Free and simply supported edges carry no hinge.
  *
+ * Known limits (measured, results/linear_fem_report.md): edge directors
+ * roll a strip under the fixed-axis end moment exactly up to ~1.85 pi, where
+ * the planar state becomes unstable (smallest Hessian eigenvalue crosses zero
+ * at ~1.88 pi, mesh independent); averaged directors and the hinge fail to
+ * converge on alternate / jittered meshes (the hinge on every mesh); with
+ * denim's softening law the fine triangle meshes localize strain.
+ *
  * DOFs: 3 per vertex (dof 3 v + c) then, for midedge with edge directors,
  * one per edge (dof 3 nv + e); the pattern then uses blocks of 1.  Level 0 is
  * the coarsest; level l+1 is the 1-to-4 refinement of level l. */
