@@ -4,7 +4,7 @@
  * run.max_memory, or whose Hessian could not be indexed, is refused with a
  * sentence (exit 2) for methods with an estimate op (bhem, rmtr) and without
  * one (the fixtures, measured after create); the estimate op's sizes are
- * those create() builds. */
+ * those create() builds (bhem, rmtr, linear_fem). */
 #include "cli_sh.h"
 #include "run_json.h"
 #include "sb_context.h"
@@ -132,6 +132,8 @@ SB_TEST(estimate_op_matches_create)
     compare(T, "rmtr", "drooping", 16, 3);
     compare(T, "rmtr", "reentrant_corner", 20, 1);
     compare(T, "bhem", "reentrant_corner", 20, 1);
+    compare(T, "linear_fem", "trampoline", 16, 1);
+    compare(T, "linear_fem", "drooping", 16, 2);
 }
 
 SB_TEST(estimate_of_absurd_sizes_is_finite_and_refused)

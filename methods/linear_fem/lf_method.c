@@ -9,6 +9,7 @@
  * --levels 1 puts the pattern at the finest level itself (`regular` is the
  * same for every L). */
 #include "lf.h"
+#include "sb_context.h"
 #include "sb_galerkin.h"
 
 #include <stdio.h>
@@ -38,7 +39,7 @@ const sb_param_def lf_params[] = {
       "Hessian: exact, pseudo (second derivatives of the bending strains dropped) or psd (exact, eigenvalues "
       "clamped per element)" },
     { "mass", SB_PARAM_CHOICE, 0, 0, 0, mass_choices, "mass matrix: consistent (rho A/12 (1 + delta_ij)) or lumped (rho A/3)" },
-    { "cells_t", SB_PARAM_INT, 0, 0, 8192, NULL, "cells along t on the finest level (0 = same as --res)" },
+    { "cells_t", SB_PARAM_INT, 0, 0, SB_SCENE_MAX_RESOLUTION, NULL, "cells along t on the finest level (0 = same as --res)" },
     { "n_thick", SB_PARAM_INT, 0, 0, 8, NULL, "Gauss points through the thickness (0 = material default)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
@@ -68,6 +69,45 @@ static int choice(const sb_paramset *ps, const char *name)
     return (int)pval(ps, key, 0.0);
 }
 
+/* sb_method_type.estimate (sb_memory.h): the meshes of every level as
+ * lf_level_build makes them: (n+1)(m+1) vertices (and one per cell for
+ * `crossed`), 2 triangles per cell (4 crossed), V + F - 1 edges; dofs 3 per
+ * vertex and, with edge directors, 1 per edge (block size 1 then).  The node
+ * stencils are measured on trampoline --res 32 (alternate and crossed): 17.8
+ * and 18.2 vertices for midedge with averaged directors (2-ring: 19), 10.5
+ * and 10.7 for hinges (11), 50.8 and 51.5 dofs with edge directors (53). */
+static int lf_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *sz)
+{
+    const sb_paramset *ps = cfg->params;
+    const int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
+    const int m = (int)pval(ps, "method.cells_t", 0) > 0 ? (int)pval(ps, "method.cells_t", 0) : n;
+    const int levels = cfg->levels > 0 ? cfg->levels : 1;
+    const int bending = choice(ps, "bending"), crossed = choice(ps, "mesh") == 2;
+    const int edge_dofs = bending == LF_BEND_MIDEDGE && choice(ps, "director") == LF_DIR_EDGE;
+    if (levels > SB_MAX_LEVELS || n > SB_SCENE_MAX_RESOLUTION || m > SB_SCENE_MAX_RESOLUTION)
+        return sb_error(cfg->ctx, SB_ERR_INPUT, "linear_fem: %d x %d cells with %d levels requested, at most %d per side "
+                        "and %d levels are supported", n, m, levels, SB_SCENE_MAX_RESOLUTION, SB_MAX_LEVELS);
+    memset(sz, 0, sizeof *sz);
+    sz->levels = levels;
+    sz->bs = edge_dofs ? 1 : 3;
+    sz->nodes_per_element = edge_dofs ? LF_NED_MAX : 6;
+    sz->stencil = edge_dofs ? 53 : bending == LF_BEND_HINGE ? 11 : 19;
+    double bytes = 0;
+    for (int l = 0; l < levels; l++) {
+        const int sh = levels - 1 - l;
+        const double n1 = n >> sh, n2 = m >> sh, cells = n1 * n2;
+        const double nv = (n1 + 1) * (n2 + 1) + (crossed ? cells : 0), nt = (crossed ? 4 : 2) * cells;
+        const double ne = nv + nt - 1, dofs = 3 * nv + (edge_dofs ? ne : 0);
+        sz->nodes[l] = edge_dofs ? dofs : nv;
+        sz->elements[l] = nt + (bending == LF_BEND_HINGE ? ne : 0);
+        bytes += nt * (sizeof(lf_tri) + 64) + ne * (bending == LF_BEND_HINGE ? sizeof(lf_hinge) : 0) + nv * 96 + ne * 32;
+        bytes += dofs * (2 + scene->n_loads) * sizeof(double);                                 /* x_ref, f_ext, loads */
+        if (l > 0) bytes += dofs * 6 * (sizeof(int) + sizeof(double));                         /* prolongation rows */
+    }
+    sz->method_bytes = bytes;
+    return SB_OK;
+}
+
 static int lf_create(void *state, const sb_scene *scene, const sb_method_config *cfg)
 {
     lf_state *S = state;
@@ -87,6 +127,9 @@ static int lf_create(void *state, const sb_scene *scene, const sb_method_config 
     S->edge_dofs = S->bending == LF_BEND_MIDEDGE && S->director == LF_DIR_EDGE;
     S->res = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
     if (S->cells_t <= 0) S->cells_t = S->res;
+    if (S->res > SB_SCENE_MAX_RESOLUTION || S->cells_t > SB_SCENE_MAX_RESOLUTION)   /* counts below stay in int */
+        return lf_fail(S, SB_ERR_INPUT, "%d x %d cells requested, at most %d per side are supported", S->res,
+                       S->cells_t, SB_SCENE_MAX_RESOLUTION);
     const int levels = cfg->levels > 0 ? cfg->levels : 1;
     if (levels > SB_MAX_LEVELS)
         return lf_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, SB_MAX_LEVELS);
@@ -232,6 +275,7 @@ const sb_method_type sb_method_linear_fem = {
     .params = lf_params,
     .flags = SB_METHOD_HIERARCHY | SB_METHOD_POTENTIAL,
     .create = lf_create,
+    .estimate = lf_estimate,
     .destroy = lf_destroy,
     .n_levels = lf_n_levels,
     .n_dofs = lf_n_dofs,
