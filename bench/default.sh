@@ -19,6 +19,7 @@ if [ -z "$methods" ]; then
 fi
 scenes="trampoline drooping reentrant_corner drape plate_clamped"
 files=()
+n_runs=0 n_failed=0 n_not=0
 for m in $methods; do
   hier=$("$BIN" list methods | awk -v m="$m" '$1 == m && /\[hierarchy\]/ {print 1}')
   for s in $scenes; do
@@ -40,6 +41,9 @@ for m in $methods; do
         --out "$f" --quiet --set run.max_iter=500
       rc=$?
       printf '%-60s exit %d\n' "$f" "$rc"
+      n_runs=$((n_runs + 1))
+      [ "$rc" -eq 1 ] && n_not=$((n_not + 1))
+      [ "$rc" -ge 2 ] && n_failed=$((n_failed + 1))
       [ -f "$f" ] && files+=("$f")
     done
   done
@@ -54,3 +58,5 @@ for s in $scenes; do
 done
 echo
 echo "records: $OUT/*.h5   report: $OUT/report.md   plots: $OUT/convergence.png, $OUT/convergence-SCENE.png"
+echo "$n_runs runs: $((n_runs - n_not - n_failed)) converged, $n_not did not converge, $n_failed failed (exit 2 or 3)"
+[ "$n_failed" -eq 0 ]

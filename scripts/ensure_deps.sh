@@ -18,6 +18,16 @@ command -v c++ >/dev/null 2>&1                    || need+=(g++)
 command -v make >/dev/null 2>&1                   || need+=(make)
 command -v git >/dev/null 2>&1                    || need+=(git)
 command -v python3 >/dev/null 2>&1                || need+=(python3)    # benchmark report scripts (standard library only)
+# `make fuzz` only (`ensure_deps.sh fuzz`): clang with libFuzzer and its sanitizer runtimes
+if [ "${1:-}" = fuzz ]; then
+  probe=$(mktemp -d)
+  echo 'int LLVMFuzzerTestOneInput(const unsigned char *d, unsigned long n) { (void)d; (void)n; return 0; }' > "$probe/f.c"
+  if ! clang -fsanitize=fuzzer,address,undefined "$probe/f.c" -o "$probe/f" >/dev/null 2>&1; then
+    need+=(clang libclang-rt-dev)
+  fi
+  command -v clang++ >/dev/null 2>&1 || need+=(clang)
+  rm -rf "$probe"
+fi
 if [ ${#need[@]} -eq 0 ]; then
   exit 0
 fi

@@ -62,6 +62,19 @@ typedef struct sb_penalty_report {
     double position_max;        /* max |x - b| over position constraints (m) */
     double rotation_max;        /* max |theta| over rotation (slope) constraints (rad) */
 } sb_penalty_report;
+/* The size of the discretization `create` would build, from the scene and
+ * the config alone (no allocation): the core refuses a run that cannot fit
+ * before any work (sb_memory.h).  Counts are doubles so that an absurd
+ * request is measured, not overflowed. */
+typedef struct sb_method_size {
+    int levels;
+    int bs;                          /* dofs per node */
+    double nodes[SB_MAX_LEVELS];     /* per level, coarsest first */
+    double elements[SB_MAX_LEVELS];
+    int nodes_per_element;           /* the most nodes an element couples (4 Hermite, 16 B-spline) */
+    int stencil;                     /* the most nodes one node couples with, itself included */
+    double method_bytes;             /* the method's own data: geometry, quadrature, transfers */
+} sb_method_size;
 
 typedef struct sb_method_type {
     const char *name;
@@ -113,6 +126,10 @@ typedef struct sb_method_type {
     /* optional: the violation of the penalty-imposed constraints at x on
      * `level` (NULL: the method eliminates its constraints) */
     int  (*penalty_violation)(void *state, int level, const double *x, sb_penalty_report *r);
+    /* optional: the sizes create() would build (sb_method_size); SB_OK, or
+     * SB_ERR_INPUT with a sentence in cfg->ctx when the request cannot be
+     * built at all.  NULL: the core measures the created method instead. */
+    int  (*estimate)(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *size);
 
     /* optional: one line describing the discretization ("8x8 Hermite patches") */
     void (*describe)(const void *state, char *buf, size_t len);

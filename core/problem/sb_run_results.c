@@ -8,11 +8,13 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 /* Sample grid (n x n in (s,t), points inside the domain) and its triangles. */
 int sb_run_build_samples(run_state *R)
 {
     const int n = R->n_grid;
+    if (n < 2 || n > SB_RUN_MAX_SAMPLES) return SB_ERR_INPUT;   /* n * n * 6 stays far inside int */
     int *idx = malloc((size_t)n * n * sizeof *idx);
     R->rec.sample_st = malloc((size_t)n * n * 2 * sizeof(double));
     R->rec.tris = malloc((size_t)(n - 1) * (n - 1) * 6 * sizeof(int));
@@ -134,6 +136,12 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     json_set_num(lin, "factor_flops", st->chol_flops[F]);
     json_object_set_new(lin, "not_posdef", json_integer(st->not_posdef));
     json_object_set_new(o, "linear_algebra", lin);
+    /* the up-front estimate (sb_memory.h) beside what the process took */
+    json_t *mem = json_object();
+    struct rusage ru;
+    json_set_num(mem, "estimate_bytes", R->mem_estimate);
+    if (getrusage(RUSAGE_SELF, &ru) == 0) json_set_num(mem, "peak_rss_bytes", 1024.0 * (double)ru.ru_maxrss);
+    json_object_set_new(o, "memory", mem);
     json_t *pr = json_object();
     int last = R->rec.steps_done;
     for (int p = 0; p < R->rec.n_probes; p++) {

@@ -124,6 +124,15 @@ typedef struct sb_run {
     const sb_resume_point *resume;
 } sb_run;
 
+/* Call first thing in main() of a program that reads records it did not
+ * write: HDF5 (1.10 to at least 1.14, HDFGroup/hdf5#6677) can be left by a
+ * malformed file with internal state its at-exit shutdown cannot release
+ * ("HDF5: infinite loop closing library", a bounded leak LeakSanitizer
+ * reports) although every handle the readers opened is closed.  This turns
+ * that shutdown off (H5dont_atexit): files are always closed explicitly, and
+ * what HDF5 holds stays reachable until the process ends. */
+void sb_record_library_init(void);
+
 /* Zero the run and fill the machine/build fields (build_id, cpu_model,
  * n_cores, started = now) from sb_sysinfo.h. */
 void sb_run_init(sb_run *run);
@@ -169,11 +178,18 @@ typedef struct sb_record_summary {
     int resumes;               /* times the run was resumed (0 in records written before resumes existed) */
     char resume_steps[256];    /* after which completed steps, "2,3" */
     int resume_point;          /* a checkpoint: the completed step --resume continues after; -1 otherwise */
+    int res;                   /* elements per side (0 in records written before the resolution used was kept) */
+    int res_t;                 /* elements along t with --res NxM (0: as res, or not recorded) */
+    char overrides[1024];      /* the parameters the run was given (--set), "key=value, key=value"; "" none */
     char validation[16];       /* "passed", "failed", "none"; "" in records written before validation */
     double potential_change;   /* NaN when not recorded */
 } sb_record_summary;
 
 int  sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen);
+/* The name of a record's status: "converged" (0), "not converged" (1),
+ * "unfinished" (SB_STATUS_UNFINISHED, a checkpoint), "failed" (< 0),
+ * "unknown" otherwise. */
+const char *sb_record_status_name(int status);
 void sb_record_summary_free(sb_record_summary *s);
 /* Read the sampled final positions (for reference-run errors). */
 int  sb_record_read_samples(const char *path, int *n, double **st, double **pos,
@@ -232,8 +248,13 @@ int sb_report(int n_files, char **files, const char *format, FILE *out,
  * could not be read (their rows are left out).  err names the cause. */
 enum { SB_REPORT_WARN_PLOT = 1, SB_REPORT_WARN_FILES = 2 };
 
+/* The plot format of a path, from its extension: ".png" (PNG), ".svg"
+ * (SVG), ".jpg"/".jpeg" (JPEG); *format (may be NULL) gets "png", "svg" or
+ * "jpeg".  SB_OK, or SB_ERR_INPUT with a sentence for any other extension. */
+int sb_report_plot_format(const char *path, const char **format, char *err, size_t errlen);
+
 /* sb_report with every option: format "md" (default) or "csv"; plot_path
- * ending in ".svg" gives an SVG, anything else a PNG; gnuplot is the program
+ * in the format of its extension (sb_report_plot_format); gnuplot is the program
  * to run (NULL: $SB_GNUPLOT, else "gnuplot"). */
 typedef struct sb_report_options {
     const char *format;

@@ -104,4 +104,13 @@ int  sb_h5r_dset(sb_h5r *r, hid_t loc, const char *name, int rank, hid_t mtype, 
 int sb_report_plot(int n, const sb_record_summary *s, const char *plot_path,
                    const char *gnuplot, char *err, size_t errlen);
 
+/* ---- the report (core/report) ------------------------------------------ */
+/* "converged (grad_tol)", "not converged (max_iter)", "unfinished (checkpoint)" */
+void   sb_report_status_text(const sb_record_summary *s, char *buf, size_t len);
+/* The run's error figure (RMS field error or max probe error; *label "rms"
+ * or "probe"), NaN when it has none. */
+double sb_report_error_value(const sb_record_summary *s, const char **label);
+/* The Markdown report of n summaries (sb_report_md.c). */
+void   sb_report_markdown(FILE *out, int n, const sb_record_summary *s);
+
 #endif

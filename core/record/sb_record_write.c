@@ -5,6 +5,7 @@
  * names, so an interrupted run or sweep never leaves a truncated record and
  * never damages an earlier one.  The layout (every group, dataset and
  * attribute, with units) is documented in docs/recorded_figures.md. */
+#include "sb_output.h"
 #include "sb_record_io.h"
 #include "sb_sysinfo.h"
 
@@ -440,9 +441,20 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
         snprintf(err, errlen, "cannot record run: output path too long (%zu characters)", strlen(path));
         return SB_ERR_INPUT;
     }
+    /* Only new paths and regular files are replaced (sb_output.h): a device,
+     * FIFO or symbolic link at the path is never renamed over. */
+    sb_output_kind kind;
+    if (sb_output_check(path, "record", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD ||
+        sb_output_check(xpath, "XDMF sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD) {
+        if (kind == SB_OUTPUT_DISCARD) snprintf(err, errlen, "will not write record %s: the null device", path);
+        return SB_ERR_INPUT;
+    }
     /* Create the temp file ourselves first: errno then names the cause
-     * (missing directory, permission, a directory in the way). */
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+     * (missing directory, permission, a directory in the way); a stale one
+     * of an earlier process with our pid is replaced, a link there is not
+     * followed. */
+    unlink(tmp);
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
     if (fd < 0) {
         snprintf(err, errlen, "cannot write record %s: cannot create %s: %s", path, tmp, strerror(errno));
         return SB_ERR_IO;
@@ -478,6 +490,7 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
         unlink(tmp);
         return SB_ERR_IO;
     }
+    unlink(xtmp);   /* fopen below would follow a link left there */
     rc = sb_record_write_xdmf(run, xtmp, sb_record_basename(path), err, errlen);
     if (rc) {
         unlink(tmp);

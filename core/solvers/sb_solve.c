@@ -19,7 +19,7 @@ const sb_param_def sb_solve_params[] = {
     { "gtol_rel", SB_PARAM_REAL, 1e-9, 0, 1, NULL,
       "stop when ||g|| <= gtol_rel F; stop=scaled: F = min(||g_0||, force scale of the step), stop=paper: "
       "F = ||g_0|| (scale-free extension of Eq. 7.1; 0 = off)" },
-    { "xtol_rel", SB_PARAM_REAL, 1e-13, 0, 1e-3, NULL,
+    { "xtol_rel", SB_PARAM_REAL, 1e-12, 0, 1e-3, NULL,
       "stop=scaled: the limiting accuracy, a correction not limited by a radius or line search below "
       "xtol_rel ||x|| (converged, roundoff_limit); also the size of a stalled step" },
     { "ftol", SB_PARAM_REAL, 1e-12, 0, 1e10, NULL, "stop=paper: |f_{i-1} - f_i| < ftol once Delta > delta_big (Eq. 7.1)" },
@@ -50,6 +50,9 @@ const sb_param_def sb_solve_params[] = {
       "add to every dof of the start an offset uniform in [-perturb, perturb] (the dofs' units: m for control "
       "points), to sample how counts on a nonconvex scene spread under round-off-sized changes (0 = none)" },
     { "seed", SB_PARAM_INT, 1, 0, 2147483647, NULL, "seed of run.perturb's random offsets" },
+    { "max_memory", SB_PARAM_REAL, 0, 0, 1e9, NULL,
+      "GB (1e9 bytes) a run may take: one whose estimate (discretization, matrices, Cholesky factor, record) exceeds "
+      "it is refused before any work (0 = the machine's physical memory)" },
     { "lifting", SB_PARAM_INT, 1, 0, 1, NULL,
       "start a step with moving boundaries from the linear lifting of the boundary increment (0 = off)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }

@@ -2,6 +2,7 @@
  * (BHEM paper 001_…): creation from a scene, levels, step data, and the
  * operation table `sb_method_bhem`. */
 #include "bhem.h"
+#include "sb_context.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,7 +17,7 @@ const sb_param_def bhem_params[] = {
     { "imperfection", SB_PARAM_REAL, 0.0, 0.0, 1.0, NULL,
       "amplitude (m) of a smooth deterministic out-of-plane imperfection of the reference surface "
       "(symmetry breaking for buckling scenes; 0 = none)" },
-    { "cells_t", SB_PARAM_INT, 0, 0, 4096, NULL,
+    { "cells_t", SB_PARAM_INT, 0, 0, SB_SCENE_MAX_RESOLUTION, NULL,
       "patches along t on the finest level (0 = same as --res; --res NxM says the same)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
@@ -47,6 +48,69 @@ static int read_params(bhem_state *S, const sb_method_config *cfg, int *cells_t)
     return SB_OK;
 }
 
+/* Patches (n, m) of the finest level, with the checks every size of
+ * create() relies on: at most SB_SCENE_MAX_RESOLUTION per side (so n*m,
+ * 12 (n+1)(m+1) dofs and 48 n m element dofs fit in int), divisible by
+ * 2^(levels-1). */
+static int bhem_grid_size(const sb_scene *scene, const sb_method_config *cfg, int cells_t, int *n, int *m,
+                          int *levels, char *msg, size_t len)
+{
+    *n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 8);
+    /* along t: --res NxM (the core passes a scene's "resolution": [N, M] alike), or method.cells_t */
+    if (cfg->res_t > 0 && cells_t > 0 && cfg->res_t != cells_t) {
+        snprintf(msg, len, "--res %dx%d and method.cells_t=%d say different things about the patches along t", *n,
+                 cfg->res_t, cells_t);
+        return SB_ERR_INPUT;
+    }
+    *m = cfg->res_t > 0 ? cfg->res_t : cells_t > 0 ? cells_t : *n;
+    *levels = cfg->levels > 0 ? cfg->levels : 1;
+    if (*levels > SB_MAX_LEVELS) {
+        snprintf(msg, len, "%d levels requested, at most %d are supported", *levels, SB_MAX_LEVELS);
+        return SB_ERR_INPUT;
+    }
+    if (*n > SB_SCENE_MAX_RESOLUTION || *m > SB_SCENE_MAX_RESOLUTION) {
+        snprintf(msg, len, "%d x %d patches requested, at most %d per side are supported", *n, *m,
+                 SB_SCENE_MAX_RESOLUTION);
+        return SB_ERR_INPUT;
+    }
+    int div = 1 << (*levels - 1);
+    if (*n % div || *m % div) {
+        snprintf(msg, len, "--res %d (x %d) patches cannot be coarsened %d times: the resolution must be divisible by "
+                 "2^(levels-1) = %d", *n, *m, *levels - 1, div);
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
+}
+
+/* sb_method_type.estimate: the grid of every level, counted as create()
+ * allocates it (bhem_grid.c, bhem_loads.c, bhem_transfer.c); masked
+ * (L-shape) and identified (periodic) nodes are counted as present. */
+static int bhem_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *sz)
+{
+    int n, m, levels, cells_t = cfg->params ? sb_param_int(cfg->params, "method.cells_t") : 0;
+    char msg[256];
+    if (bhem_grid_size(scene, cfg, cells_t, &n, &m, &levels, msg, sizeof msg))
+        return sb_error(cfg->ctx, SB_ERR_INPUT, "bhem: %s", msg);
+    memset(sz, 0, sizeof *sz);
+    sz->levels = levels;
+    sz->bs = 12;
+    sz->nodes_per_element = 4;
+    sz->stencil = 9;
+    double bytes = 0;
+    for (int l = 0; l < levels; l++) {
+        int sh = levels - 1 - l;
+        double n1 = n >> sh, n2 = m >> sh, nodes = (n1 + 1) * (n2 + 1), ne = n1 * n2, dofs = 12 * nodes;
+        sz->nodes[l] = nodes;
+        sz->elements[l] = ne;
+        bytes += nodes * 3 * sizeof(int) + ne * (2 + BHEM_NED) * sizeof(int);   /* node ids, cells, elements */
+        bytes += ne * BHEM_NQP * sizeof(sb_shell_ref);                          /* quadrature reference data */
+        bytes += dofs * (2 + scene->n_loads) * sizeof(double);                   /* x_ref, f_ext, load vectors */
+        if (l + 1 < levels) bytes += 4 * 4 * nodes * 4 * (sizeof(int) + sizeof(double));   /* prolongation rows */
+    }
+    sz->method_bytes = bytes;
+    return SB_OK;
+}
+
 static int bhem_create(void *state, const sb_scene *scene, const sb_method_config *cfg)
 {
     bhem_state *S = state;
@@ -55,20 +119,10 @@ static int bhem_create(void *state, const sb_scene *scene, const sb_method_confi
     S->ctx = cfg->ctx;
     int cells_t, rc = read_params(S, cfg, &cells_t);
     if (rc) return rc;
-    int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 8);
-    if (cfg->res_t > 0 && cells_t > 0 && cfg->res_t != cells_t)
-        return bhem_fail(S, SB_ERR_INPUT, "--res %dx%d and method.cells_t=%d say different things about the patches "
-                         "along t", n, cfg->res_t, cells_t);
-    int m = cfg->res_t > 0 ? cfg->res_t : cells_t > 0 ? cells_t
-          : (cfg->res <= 0 && scene->default_res_t > 0) ? scene->default_res_t : n;
-    int levels = cfg->levels > 0 ? cfg->levels : 1;
-    if (levels > SB_MAX_LEVELS)
-        return bhem_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, SB_MAX_LEVELS);
-    int div = 1 << (levels - 1);
-    if (n % div || m % div)
-        return bhem_fail(S, SB_ERR_INPUT,
-                         "--res %d (x %d) patches cannot be coarsened %d times: the resolution must be divisible by "
-                         "2^(levels-1) = %d", n, m, levels - 1, div);
+    int n, m, levels;
+    char msg[256];
+    if (bhem_grid_size(scene, cfg, cells_t, &n, &m, &levels, msg, sizeof msg))
+        return bhem_fail(S, SB_ERR_INPUT, "%s", msg);
     if (scene->material.thickness <= 0.0 || scene->material.density < 0.0)
         return bhem_fail(S, SB_ERR_INPUT, "material thickness must be > 0 and density >= 0");
     if ((rc = sb_material_init(&S->mat, &scene->material, 0))) {
@@ -217,5 +271,6 @@ const sb_method_type sb_method_bhem = {
     .prolong = bhem_prolong_op,
     .restrict_adj = bhem_restrict_op,
     .project = bhem_project_op,
+    .estimate = bhem_estimate,
     .describe = bhem_describe,
 };

@@ -118,6 +118,62 @@ static int coarse_cage(const sb_scene *sc, int n, int nt_, cc_mesh *m, cc_err *e
     return cc_cage_grid(sl, n, tl, nt_, corner, ns, nt, m, e);
 }
 
+/* Elements per side of the finest level, with the checks every size of
+ * create() relies on: at most SB_SCENE_MAX_RESOLUTION (so the cages'
+ * vertex, face and quadrature counts fit in int), divisible by 2^(levels-1). */
+static int cc_grid_size(const sb_scene *scene, const sb_method_config *cfg, int *n, int *nt, int *levels, char *msg,
+                        size_t len)
+{
+    *levels = cfg->levels > 0 ? cfg->levels : 1;
+    *n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
+    *nt = cfg->res_t > 0 ? cfg->res_t : *n;   /* --res NxM: N along s, M along t */
+    if (*levels > CC_MAX_LEVELS) {
+        snprintf(msg, len, "%d levels requested, at most %d are supported", *levels, CC_MAX_LEVELS);
+        return SB_ERR_INPUT;
+    }
+    if (*n > SB_SCENE_MAX_RESOLUTION || *nt > SB_SCENE_MAX_RESOLUTION) {
+        snprintf(msg, len, "--res %dx%d elements requested, at most %d per side are supported", *n, *nt,
+                 SB_SCENE_MAX_RESOLUTION);
+        return SB_ERR_INPUT;
+    }
+    if (*n % (1 << (*levels - 1)) || *nt % (1 << (*levels - 1))) {
+        snprintf(msg, len, "--res %dx%d cannot be coarsened %d times: both must be divisible by 2^(levels-1) = %d",
+                 *n, *nt, *levels - 1, 1 << (*levels - 1));
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
+}
+
+/* sb_method_type.estimate: the cages of every level (the domain's n_l x n_l
+ * faces and one ghost ring, cc_cage.c, cc_hier.c) with their topology,
+ * subdivision and projection matrices, quadrature tables (cc_quad.c) and
+ * reference data (cc_level.c); boundary points are left out (O(n_l)). */
+static int cc_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *sz)
+{
+    int n, nt, levels;
+    char msg[256];
+    if (cc_grid_size(scene, cfg, &n, &nt, &levels, msg, sizeof msg)) return sb_error(cfg->ctx, SB_ERR_INPUT, "rmtr: %s", msg);
+    const double ng = param(cfg, "gauss"), nq = ng * ng;
+    memset(sz, 0, sizeof *sz);
+    sz->levels = levels;
+    sz->bs = 3;
+    sz->nodes_per_element = 16;   /* the bicubic B-spline patch of a regular face */
+    sz->stencil = 49;             /* control points sharing a face support: 7 x 7 */
+    double bytes = 0;
+    for (int l = 0; l < levels; l++) {
+        double nl = (double)(n >> (levels - 1 - l)), ml = (double)(nt >> (levels - 1 - l));
+        double nv = (nl + 3) * (ml + 3), nf = (nl + 2) * (ml + 2), ne = nl * ml;
+        sz->nodes[l] = nv;
+        sz->elements[l] = ne;
+        bytes += nv * (2 * sizeof(double) + 2 * sizeof(int) + 4 * 3 * sizeof(int) + 3 * sizeof(double));  /* st, grid, topology, X */
+        bytes += nf * (4 + 4 + 2 + 4 + 2) * sizeof(int);                                                    /* fv, fe, cell, vf, felem */
+        bytes += ne * (16 + 4) * sizeof(int) + ne * nq * sizeof(sb_shell_ref);                             /* quadrature, reference */
+        bytes += nv * 10 * (sizeof(int) + sizeof(double));       /* S onto this level (about 6 entries a row) and P from it */
+    }
+    sz->method_bytes = bytes;
+    return SB_OK;
+}
+
 static int cc_create(void *state, const sb_scene *scene, const sb_method_config *cfg)
 {
     cc_state *S = state;
@@ -137,15 +193,8 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     char msg[256];
     if (sb_material_init_msg(&S->mat, &scene->material, (int)param(cfg, "n_thick"), msg, sizeof msg) != SB_OK)
         return cc_state_fail(S, SB_ERR_INPUT, "material: %s", msg);
-    int levels = cfg->levels > 0 ? cfg->levels : 1;
-    int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
-    if (levels > CC_MAX_LEVELS)
-        return cc_state_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, CC_MAX_LEVELS);
-    /* --res NxM: N along s, M along t; the scene's "resolution": [N, M] without --res */
-    int nt = cfg->res_t > 0 ? cfg->res_t : (cfg->res <= 0 && scene->default_res_t > 0) ? scene->default_res_t : n;
-    if (n % (1 << (levels - 1)) || nt % (1 << (levels - 1)))
-        return cc_state_fail(S, SB_ERR_INPUT, "--res %dx%d cannot be coarsened %d times: both must be divisible by "
-                             "2^(levels-1) = %d", n, nt, levels - 1, 1 << (levels - 1));
+    int n, nt, levels;
+    if (cc_grid_size(scene, cfg, &n, &nt, &levels, msg, sizeof msg)) return cc_state_fail(S, SB_ERR_INPUT, "%s", msg);
     S->n_fine = n;
     S->n_coarse = n >> (levels - 1);
     S->nt_fine = nt;
@@ -341,6 +390,7 @@ const sb_method_type sb_method_subdiv = {
     .restrict_adj = cc_restrict,
     .project = cc_project,
     .prolong_matrix = cc_prolong_matrix,
+    .estimate = cc_estimate,
     .penalty_violation = cc_penalty_violation_op,
     .describe = cc_describe,
 };
