@@ -7,11 +7,13 @@
  *                  [--set key=value]... [--dir DIR]
  *   shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...
  *   shellbench inspect [--format md|csv] FILE.h5...
+ *   shellbench render FILE.h5 [options]   (core/render/sb_render_cli.c, docs/render.md)
  * Exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error, 3 internal error. */
 #include "sb_context.h"
 #include "sb_inspect.h"
 #include "sb_method.h"
 #include "sb_record.h"
+#include "sb_render.h"
 #include "sb_run.h"
 #include "sb_scene.h"
 #include "sb_solver.h"
@@ -36,6 +38,7 @@ static void usage(FILE *f)
             "            its checkpoint OUT.partial (same scene, method, solver, sizes and parameters)\n"
             "  shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...\n"
             "  shellbench inspect [--format md|csv] FILE.h5...   (material state of the recorded final state)\n"
+            "  shellbench render FILE.h5 [--out FILE.png] [--size WxH] [--spp N] [--color ...] ...  (a picture; render --help)\n"
             "exit codes: 0 converged, 1 did not converge, 2 usage or input error, 3 internal error,\n"
             "            4 stopped by --stop-after-steps (resumable)\n");
 }
@@ -315,6 +318,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "sweep")) return cmd_sweep(argc - 2, argv + 2);
     if (!strcmp(cmd, "report")) return cmd_report(argc - 2, argv + 2);
     if (!strcmp(cmd, "inspect")) return cmd_inspect(argc - 2, argv + 2);
+    if (!strcmp(cmd, "render")) return sb_render_main(argc - 2, argv + 2);
     if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) { usage(stdout); return 0; }
     fprintf(stderr, "shellbench: unknown command \"%s\"\n", cmd);
     usage(stderr);

@@ -52,6 +52,8 @@ extern const int sb_record_n_iter_cols, sb_record_n_step_cols;
 
 /* The /resume group of a checkpoint (sb_record_resume.c); 0 or -1. */
 int   sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp);
+/* /steps: the sample grid of every step (sb_record_steps.c); 0 or -1. */
+int   sb_record_write_steps(sb_h5w *w, hid_t f, const sb_run *r);
 /* The resume log as root attributes (every record). */
 int   sb_record_write_resume_log(sb_h5w *w, hid_t f, const sb_resume_log *log);
 

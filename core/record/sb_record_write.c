@@ -314,6 +314,7 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
     if (!bad) bad = write_probes(w, f, run);
     if (!bad) bad = write_final(w, f, run);
     if (!bad) bad = write_error(w, f, run);
+    if (!bad) bad = sb_record_write_steps(w, f, run);
     if (!bad) bad = sb_record_write_resume_log(w, f, &run->resumed);
     if (!bad && run->resume) bad = sb_record_write_resume(w, f, run->resume);
     if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = sb_h5w_fail(w, -1, "(flush)");

@@ -212,4 +212,5 @@ const sb_method_type sb_method_bhem = {
     .restrict_adj = bhem_restrict_op,
     .project = bhem_project_op,
     .describe = bhem_describe,
+    .surface = bhem_surface,
 };

@@ -324,4 +324,5 @@ const sb_method_type sb_method_subdiv = {
     .project = cc_project,
     .prolong_matrix = cc_prolong_matrix,
     .describe = cc_describe,
+    .surface = cc_surface,
 };
