@@ -21,6 +21,11 @@ const char *sb_record_basename(const char *path);
 int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h5_name,
                          char *err, size_t errlen);
 
+/* The time-series sidecar (RUN.steps.xdmf) of a run that keeps
+ * sample_traj: a temporal collection of its steps.  SB_OK or SB_ERR_IO. */
+int sb_record_write_steps_xdmf(const sb_run *run, const char *path, const char *h5_name,
+                               char *err, size_t errlen);
+
 /* ---- HDF5 writers (sb_record_h5w.c): 0, or -1 after noting the object ---- */
 typedef struct sb_h5w {
     char failed[160];      /* first object that could not be written */

@@ -1,7 +1,12 @@
 /* sb_record_steps.c — the time series of a record: the sample grid after
- * every step, /steps/sample_pos [steps_done + 1, n_samples, 3] (m) with the
- * step times /steps/t, written with the record and read back for
- * `shellbench render --step` and --resume.  The XDMF sidecar plays it as a
+ * every step k = 0 .. steps_done, one dataset /steps/sample_pos/NNNNNN
+ * [n_samples, 3] (m) per step (zero-padded step number) and its
+ * displacement from the reference /steps/displacement/NNNNNN, with the
+ * step times /steps/t; written with the record and read back for
+ * `shellbench render --step` and --resume.  One dataset per step rather
+ * than one 3-D array, and the displacement stored rather than an XDMF
+ * Function: ParaView's Xdmf3 readers read neither hyperslabs nor functions
+ * (`make check-paraview`).  The sidecar RUN.steps.xdmf plays it as a
  * temporal collection (sb_record_xdmf.c). */
 #include "sb_record_io.h"
 
@@ -28,9 +33,26 @@ int sb_record_write_steps(sb_h5w *w, hid_t f, const sb_run *r)
         t[k] = k;
         if (r->stats && (size_t)k <= r->stats->n_steps && r->stats->steps[k - 1].step == k) t[k] = r->stats->steps[k - 1].t;
     }
-    hsize_t d3[3] = { (hsize_t)rows, (hsize_t)r->n_samples, 3 }, d1 = (hsize_t)rows;
-    int bad = sb_h5w_dset_dbl(w, g, "sample_pos", 3, d3, r->sample_traj, "m");
-    bad |= sb_h5w_dset_dbl(w, g, "t", 1, &d1, t, NULL);
+    hsize_t d2[2] = { (hsize_t)r->n_samples, 3 }, d1 = (hsize_t)rows;
+    int bad = sb_h5w_dset_dbl(w, g, "t", 1, &d1, t, NULL);
+    hid_t gp = bad ? -1 : sb_h5w_group(w, f, "/steps/sample_pos");
+    if (gp < 0) bad = -1;
+    hid_t gd = bad ? -1 : sb_h5w_group(w, f, "/steps/displacement");
+    if (gd < 0) bad = -1;
+    const size_t n3 = (size_t)r->n_samples * 3;
+    double *disp = bad ? NULL : malloc(n3 * sizeof *disp);
+    if (!bad && !disp) bad = sb_h5w_fail(w, -1, "/steps/displacement (out of memory)");
+    for (int k = 0; k < rows && !bad; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "%06d", k);
+        const double *pos = r->sample_traj + (size_t)k * n3;
+        for (size_t i = 0; i < n3; i++) disp[i] = pos[i] - r->sample_ref[i];
+        bad |= sb_h5w_dset_dbl(w, gp, name, 2, d2, pos, "m");
+        bad |= sb_h5w_dset_dbl(w, gd, name, 2, d2, disp, "m");
+    }
+    free(disp);
+    if (gd >= 0) H5Gclose(gd);
+    if (gp >= 0) H5Gclose(gp);
     free(t);
     H5Gclose(g);
     return bad ? -1 : 0;
@@ -46,36 +68,42 @@ void sb_record_samples_free(sb_record_samples *s)
     memset(s, 0, sizeof *s);
 }
 
-/* rows [0, nrows) of /steps/sample_pos as a hyperslab starting at row `first` */
+/* rows [first, first + nrows) of the time series into out (n x 3 each) */
 static int read_rows(sb_h5r *r, hid_t f, int first, int nrows, int n, double *out)
 {
-    hid_t d = H5Dopen2(f, "/steps/sample_pos", H5P_DEFAULT);
-    if (d < 0) {
+    if (H5Lexists(f, "/steps", H5P_DEFAULT) <= 0 || H5Lexists(f, "/steps/sample_pos", H5P_DEFAULT) <= 0) {
         snprintf(r->err, r->errlen, "%s has no per-step surfaces (/steps/sample_pos): written before they were kept",
                  r->path);
         return SB_ERR_INPUT;
     }
-    hid_t sp = H5Dget_space(d);
-    hsize_t dims[3] = { 0, 0, 0 };
-    int rc = SB_OK;
-    if (sp < 0 || H5Sget_simple_extent_ndims(sp) != 3 || H5Sget_simple_extent_dims(sp, dims, NULL) < 0 ||
-        dims[1] != (hsize_t)n || dims[2] != 3)
-        rc = sb_h5r_fail(r, SB_ERR_INPUT, "unexpected shape of", "/steps/sample_pos");
-    else if ((hsize_t)first + (hsize_t)nrows > dims[0]) {
-        snprintf(r->err, r->errlen, "%s: step %d is past the last recorded step, %d", r->path, first + nrows - 1,
-                 (int)dims[0] - 1);
-        rc = SB_ERR_INPUT;
-    } else {
-        hsize_t start[3] = { (hsize_t)first, 0, 0 }, count[3] = { (hsize_t)nrows, (hsize_t)n, 3 };
-        hid_t ms = H5Screate_simple(3, count, NULL);
-        if (ms < 0 || H5Sselect_hyperslab(sp, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
-            H5Dread(d, H5T_NATIVE_DOUBLE, ms, sp, H5P_DEFAULT, out) < 0)
-            rc = sb_h5r_fail(r, SB_ERR_IO, "cannot read", "/steps/sample_pos");
-        if (ms >= 0) H5Sclose(ms);
+    for (int k = first; k < first + nrows; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "/steps/sample_pos/%06d", k);
+        if (H5Lexists(f, name, H5P_DEFAULT) <= 0) {
+            snprintf(r->err, r->errlen, "%s: step %d is not in the recorded time series (%s missing)", r->path, k, name);
+            return SB_ERR_INPUT;
+        }
+        hsize_t d[2];
+        double *buf = NULL;
+        int rc = sb_h5r_dset(r, f, name, 2, H5T_NATIVE_DOUBLE, sizeof(double), d, (void **)&buf);
+        if (!rc && (d[0] != (hsize_t)n || d[1] != 3)) rc = sb_h5r_fail(r, SB_ERR_INPUT, "unexpected shape of", name);
+        if (!rc) memcpy(out + (size_t)(k - first) * n * 3, buf, (size_t)n * 3 * sizeof(double));
+        free(buf);
+        if (rc) return rc;
     }
-    if (sp >= 0) H5Sclose(sp);
-    H5Dclose(d);
-    return rc;
+    return SB_OK;
+}
+
+/* number of steps in the time series (0: none) */
+static int count_rows(hid_t f)
+{
+    if (H5Lexists(f, "/steps", H5P_DEFAULT) <= 0 || H5Lexists(f, "/steps/sample_pos", H5P_DEFAULT) <= 0) return 0;
+    hid_t g = H5Gopen2(f, "/steps/sample_pos", H5P_DEFAULT);
+    if (g < 0) return 0;
+    H5G_info_t info;
+    int n = H5Gget_info(g, &info) >= 0 && info.nlinks < 100000000 ? (int)info.nlinks : 0;
+    H5Gclose(g);
+    return n;
 }
 
 int sb_record_read_step_samples(const char *path, int step, sb_record_samples *s, char *err, size_t errlen)
@@ -98,15 +126,7 @@ int sb_record_read_step_samples(const char *path, int step, sb_record_samples *s
             if (s->tris[i] < 0 || s->tris[i] >= s->n)
                 rc = sb_h5r_fail(&r, SB_ERR_INPUT, "a triangle refers to a missing sample in", "/final/triangles");
     }
-    if (!rc && H5Lexists(f, "/steps", H5P_DEFAULT) > 0 && H5Lexists(f, "/steps/sample_pos", H5P_DEFAULT) > 0) {
-        hid_t d = H5Dopen2(f, "/steps/sample_pos", H5P_DEFAULT);
-        hid_t sp = d < 0 ? -1 : H5Dget_space(d);
-        hsize_t dims[3];
-        if (sp >= 0 && H5Sget_simple_extent_ndims(sp) == 3 && H5Sget_simple_extent_dims(sp, dims, NULL) >= 0)
-            s->n_steps = (int)dims[0];
-        if (sp >= 0) H5Sclose(sp);
-        if (d >= 0) H5Dclose(d);
-    }
+    if (!rc) s->n_steps = count_rows(f);
     if (!rc) {
         if (step < 0) {
             hsize_t dp[2];

@@ -158,7 +158,7 @@ typedef struct shade_ctx {
     sb_world *w;
     const sb_render_options *o;
     const lights *L;
-    double range;             /* colour scale: |value| mapped to the ends */
+    double lo, hi;            /* colour scale: values mapped to the ends */
     sb_render_stats *st;
     int err;
 } shade_ctx;
@@ -196,7 +196,7 @@ static void albedo_of(shade_ctx *S, const sb_hit *h, int back, float a[3])
             const int soft = v < -1e-9;
             a[0] = lin(soft ? 0.86 : 0.74); a[1] = lin(soft ? 0.20 : 0.77); a[2] = lin(soft ? 0.14 : 0.82);
         } else {
-            diverging(v / S->range, a);
+            diverging(2.0 * (v - S->lo) / (S->hi - S->lo) - 1.0, a);
         }
         return;
     }
@@ -252,10 +252,10 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* Sample the field on the surface (9x9 points per patch, centroid and
- * corners per triangle): the colour range is the 98th percentile of |value|
- * (a corner singularity does not wash out the picture; the maximum is
- * printed beside the scale). */
-static int field_range(sb_world *w, sb_color_kind kind, sb_render_stats *st, double *range)
+ * corners per triangle): the colour scale runs from the 1st to the 99th
+ * percentile of the samples (a corner singularity does not wash out the
+ * picture; the extremes are printed with the scale). */
+static int field_range(sb_world *w, sb_color_kind kind, sb_render_stats *st, double *lo, double *hi)
 {
     const sb_surface *s = w->s;
     const long n = 81L * s->n_patches + 4L * s->n_tris;
@@ -277,13 +277,20 @@ static int field_range(sb_world *w, sb_color_kind kind, sb_render_stats *st, dou
     double mx = 0;
     for (long i = 0; i < m; i++) {
         if (a[i] < -1e-9) soft++;
-        a[i] = fabs(a[i]);
-        mx = fmax(mx, a[i]);
+        mx = fmax(mx, fabs(a[i]));
     }
     qsort(a, (size_t)m, sizeof *a, cmp_double);
-    *range = m ? a[(long)floor(0.98 * (m - 1))] : 0.0;
-    if (!(*range > 0)) *range = mx > 0 ? mx : 1e-12;
-    st->field_max = mx;
+    *lo = m ? a[(long)floor(0.01 * (m - 1))] : 0.0;
+    *hi = m ? a[(long)ceil(0.99 * (m - 1))] : 0.0;
+    st->field_min = m ? a[0] : NAN;
+    st->field_max = m ? a[m - 1] : NAN;
+    /* a (nearly) constant field: a symmetric scale about it */
+    const double span = fmax(1e-12, 1e-6 * fmax(fabs(*lo), fabs(*hi)));
+    if (!(*hi - *lo > span)) {
+        const double c = 0.5 * (*lo + *hi);
+        *lo = c - span;
+        *hi = c + span;
+    }
     st->soft_fraction = m ? (double)soft / m : 0.0;
     free(a);
     return 0;
@@ -300,8 +307,7 @@ static void fill_rect(sb_image *im, int x0, int y0, int x1, int y1, const float 
         }
 }
 
-static void draw_labels(sb_image *im, const sb_render_options *o, const sb_render_stats *st, double range,
-                        double grid)
+static void draw_labels(sb_image *im, const sb_render_options *o, const sb_render_stats *st, double grid)
 {
     const int sc = im->w >= 1200 ? 2 : 1, m = 6 * sc, lh = sb_font_height(sc) + 2 * sc;
     const float ink[3] = { 0.01f, 0.01f, 0.012f }, paper[3] = { 1, 1, 1 };
@@ -318,16 +324,16 @@ static void draw_labels(sb_image *im, const sb_render_options *o, const sb_rende
     /* bottom line: the colour scale, or the ground grid */
     const int yb = im->h - m - lh;
     if (o->color == SB_COLOR_CURVATURE || o->color == SB_COLOR_STRAIN) {
-        const int bw = im->w / 4, bx = m, bh = lh - 4 * sc;
+        const int bw = im->w / 5, bx = m, bh = lh - 4 * sc;
         for (int x = 0; x < bw; x++) {
             float c[3];
             diverging(2.0 * x / (bw - 1) - 1.0, c);
             fill_rect(im, bx + x, yb + 2 * sc, bx + x + 1, yb + 2 * sc + bh, c, 1.0f);
         }
         if (o->color == SB_COLOR_CURVATURE)
-            snprintf(buf, sizeof buf, "mean curvature +-%.3g 1/m (max %.3g)", range, st->field_max);
+            snprintf(buf, sizeof buf, "H %.3g .. %.3g 1/m", st->field_lo, st->field_hi);
         else
-            snprintf(buf, sizeof buf, "principal membrane strain +-%.3g (max %.3g)", range, st->field_max);
+            snprintf(buf, sizeof buf, "strain %.3g .. %.3g", st->field_lo, st->field_hi);
         const int wd = sb_font_width(buf, sc);
         fill_rect(im, bx + bw + 2 * sc, yb - sc, bx + bw + 8 * sc + wd, yb + lh - sc, paper, 0.55f);
         sb_font_draw(im, bx + bw + 5 * sc, yb, sc, buf, ink);
@@ -335,8 +341,7 @@ static void draw_labels(sb_image *im, const sb_render_options *o, const sb_rende
         if (o->color == SB_COLOR_SOFTENING) {
             const float red[3] = { lin(0.86), lin(0.20), lin(0.14) };
             fill_rect(im, m, yb + 2 * sc, m + 3 * sb_font_height(sc) / 2, yb + lh - 2 * sc, red, 1.0f);
-            snprintf(buf, sizeof buf, "softening (membrane tangent indefinite): %.1f %% of samples",
-                     100.0 * st->soft_fraction);
+            snprintf(buf, sizeof buf, "soft: %.1f %% of samples", 100.0 * st->soft_fraction);
             const int x = m + 2 * sb_font_height(sc);
             const int wd = sb_font_width(buf, sc);
             fill_rect(im, x - 3 * sc, yb - sc, x + wd + 3 * sc, yb + lh - sc, paper, 0.55f);
@@ -382,16 +387,16 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
         snprintf(err, errlen, "out of memory for a %dx%d image", o->width, o->height);
         return SB_ERR_NOMEM;
     }
-    double range = 1.0;
-    if (o->color != SB_COLOR_NONE && field_range(&w, o->color, st, &range)) {
+    double lo = -1.0, hi = 1.0;
+    if (o->color != SB_COLOR_NONE && field_range(&w, o->color, st, &lo, &hi)) {
         sb_world_free(&w);
         sb_image_free(img);
         snprintf(err, errlen, "out of memory sampling the colour field");
         return SB_ERR_NOMEM;
     }
     if (o->color == SB_COLOR_CURVATURE || o->color == SB_COLOR_STRAIN) {
-        st->field_lo = -range;
-        st->field_hi = range;
+        st->field_lo = lo;
+        st->field_hi = hi;
     }
     /* pixel samples: the first spp points of the 4-D Sobol sequence (pixel x,
      * y, key-light disc), shifted per pixel by a hashed Cranley–Patterson
@@ -416,7 +421,7 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
     camera_setup(&cam, o, &w);
     lights L;
     lights_setup(&L, &cam);
-    shade_ctx S = { &w, o, &L, range, st, 0 };
+    shade_ctx S = { &w, o, &L, lo, hi, st, 0 };
     st->build_seconds = now() - t0;
     const double t1 = now();
     for (int py = 0; py < o->height && !S.err; py++)
@@ -453,7 +458,7 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
         snprintf(err, errlen, "out of memory in the ray–patch search");
         return SB_ERR_NOMEM;
     }
-    draw_labels(img, o, st, range, w.grid);
+    draw_labels(img, o, st, w.grid);
     sb_world_free(&w);
     return SB_OK;
 }

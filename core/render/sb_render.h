@@ -58,8 +58,8 @@ typedef struct sb_render_stats {
     long primary_rays, shadow_rays;
     long tri_tests;
     sb_isect_counts isect;   /* Bézier-patch work (sb_bezier_ray.h) */
-    double field_lo, field_hi;   /* colour-scale range (NaN without a field) */
-    double field_max;            /* largest |value| sampled */
+    double field_lo, field_hi;   /* colour scale: 1st and 99th percentile of the sampled field (NaN without) */
+    double field_min, field_max; /* extremes of the sampled field */
     double soft_fraction;        /* softening: fraction of samples that are soft */
 } sb_render_stats;
 
