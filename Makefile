@@ -40,7 +40,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan clean
+.PHONY: all deps test run bench report check-asan check-paraview clean
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -114,6 +114,11 @@ bench: $(BIN) $(BENCH_BIN)
 check-asan:
 	$(MAKE) --no-print-directory BUILD=build-asan OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
+
+# ParaView opens every method's XDMF sidecars (installs ParaView if missing;
+# not part of `make test`): scripts/check_paraview.sh
+check-paraview: $(BIN)
+	$(BLAS_ENV) bash scripts/check_paraview.sh $(BIN) $(BUILD)/paraview
 
 clean:
 	rm -rf build build-asan

@@ -9,9 +9,9 @@
  * through the ray along L; D(u,v) = sum B_i(u) B_j(v) D_ij vanishes at the
  * intersection, and by the convex-hull property of the points (i/3, D_ij) it
  * can vanish only for u in the interval where that hull meets D = 0.  The
- * sub-patch over that interval replaces the patch; then v likewise.  A clip
- * that removes less than 20 % of a parameter range is replaced by a split in
- * half (NSK90 §4).  Regions are taken smallest depth first from the same
+ * sub-patch over that interval replaces the patch; then v likewise.  When
+ * neither clip removes 20 % of its range the patch is split in half across
+ * its longer side (NSK90 §4).  Regions are taken smallest depth first from the same
  * min-heap as the subdivision algorithms (key: smallest q3 of the control
  * points), so the search for the first hit stops as theirs does. */
 #include "sb_bezier_ray.h"
@@ -144,31 +144,18 @@ int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, doub
             }
             continue;
         }
-        /* clip in u, then in v; a weak clip becomes a split in half */
-        int dead = 0, pushed = 0;
-        for (int pass = 0; pass < 2 && !dead && !pushed; pass++) {
-            const int dir = pass;
+        /* clip in u, then in v (each clip applied, however small); when
+         * neither removed 20 % of its range, split in half across the
+         * longer side instead (NSK90 §4) */
+        double frac[2] = { 1, 1 };
+        int dead = 0;
+        for (int dir = 0; dir < 2 && !dead; dir++) {
             double c0, c1;
             ws->counts.clips++;
             if (!clip_interval(R.P, dir, &c0, &c1)) { dead = 1; break; }
+            frac[dir] = c1 - c0;
+            if (c0 <= 0.0 && c1 >= 1.0) continue;
             const double w0 = dir == 0 ? R.u0 : R.v0, w = dir == 0 ? R.u1 - R.u0 : R.v1 - R.v0;
-            if (c1 - c0 > 0.8) {
-                /* NSK90: less than 20 % clipped away: split in half */
-                double A[SB_BEZ_N], B[SB_BEZ_N];
-                if (dir == 0) {
-                    sb_bezier_split_u(R.P, 0.5, A, B);
-                    if (push(ws, A, R.u0, w0 + 0.5 * w, R.v0, R.v1, limit) ||
-                        push(ws, B, w0 + 0.5 * w, R.u1, R.v0, R.v1, limit))
-                        return -1;
-                } else {
-                    sb_bezier_split_v(R.P, 0.5, A, B);
-                    if (push(ws, A, R.u0, R.u1, R.v0, w0 + 0.5 * w, limit) ||
-                        push(ws, B, R.u0, R.u1, w0 + 0.5 * w, R.v1, limit))
-                        return -1;
-                }
-                pushed = 1;
-                break;
-            }
             if (dir == 0) {
                 sb_bezier_sub(R.P, c0, c1, 0, 1, R.P);
                 R.u0 = w0 + c0 * w;
@@ -179,7 +166,28 @@ int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, doub
                 R.v1 = w0 + c1 * w;
             }
         }
-        if (!dead && !pushed && push(ws, R.P, R.u0, R.u1, R.v0, R.v1, limit)) return -1;
+        if (dead) continue;
+        if (frac[0] > 0.8 && frac[1] > 0.8) {
+            /* the longer side in the ray's projection plane */
+            double lu = 0, lv = 0;
+            for (int k = 0; k < 4; k++) {
+                const double *a = R.P + 3 * (4 * k), *b = R.P + 3 * (4 * k + 3), *c = R.P + 3 * k, *e = R.P + 3 * (k + 12);
+                lu = fmax(lu, hypot(b[0] - a[0], b[1] - a[1]));
+                lv = fmax(lv, hypot(e[0] - c[0], e[1] - c[1]));
+            }
+            double A[SB_BEZ_N], B[SB_BEZ_N];
+            if (lu >= lv) {
+                const double um = 0.5 * (R.u0 + R.u1);
+                sb_bezier_split_u(R.P, 0.5, A, B);
+                if (push(ws, A, R.u0, um, R.v0, R.v1, limit) || push(ws, B, um, R.u1, R.v0, R.v1, limit)) return -1;
+            } else {
+                const double vm = 0.5 * (R.v0 + R.v1);
+                sb_bezier_split_v(R.P, 0.5, A, B);
+                if (push(ws, A, R.u0, R.u1, R.v0, vm, limit) || push(ws, B, R.u0, R.u1, vm, R.v1, limit)) return -1;
+            }
+            continue;
+        }
+        if (push(ws, R.P, R.u0, R.u1, R.v0, R.v1, limit)) return -1;
     }
     return found;
 }

@@ -149,11 +149,15 @@ static double inverse3(const double c0[3], const double c1[3], const double c2[3
 
 /* Newton's method on F(a,b,tau) = x(a,b) - o - tau d over the sub-patch Q
  * (local parameters a, b), from its centre.  Returns 1 when it converges
- * (|F| <= tol) with (a,b) in [0,1]^2; Ji is then J^-1 at the root. */
+ * (|F| <= tol) with (a,b) in [0,1]^2; Ji is then J^-1 at the root.  A run
+ * that does not contract (a step in (a,b) longer than half the previous one
+ * after the second, or an iterate far outside the sub-patch) is abandoned
+ * early: it would not converge inside the sub-patch within the fixed
+ * number of iterations (our safeguard; the paper fixes only the count). */
 static int newton(const double *Q, const sb_ray *r, double tol, double *a, double *b, double *tau, double Ji[9])
 {
     double x[3], xa[3], xb[3], F[3], md[3] = { -r->d[0], -r->d[1], -r->d[2] };
-    double A = 0.5, B = 0.5;
+    double A = 0.5, B = 0.5, prev = INFINITY;
     sb_bezier_eval(Q, A, B, x, NULL, NULL);
     double T = (x[0] - r->o[0]) * r->d[0] + (x[1] - r->o[1]) * r->d[1] + (x[2] - r->o[2]) * r->d[2];
     for (int it = 0; it <= NEWTON_ITERS; it++) {
@@ -166,10 +170,14 @@ static int newton(const double *Q, const sb_ray *r, double tol, double *a, doubl
             return 1;
         }
         if (it == NEWTON_ITERS) break;
-        A -= dot3(Ji, F);
-        B -= dot3(Ji + 3, F);
+        const double dA = dot3(Ji, F), dB = dot3(Ji + 3, F);
+        A -= dA;
+        B -= dB;
         T -= dot3(Ji + 6, F);
-        if (!(A > -1.0 && A < 2.0 && B > -1.0 && B < 2.0)) return 0;   /* left the neighbourhood */
+        const double step = fabs(dA) + fabs(dB);
+        if (!(A > -0.5 && A < 1.5 && B > -0.5 && B < 1.5)) return 0;   /* left the neighbourhood */
+        if (it >= 2 && step > 0.5 * prev) return 0;                    /* not contracting */
+        prev = step;
     }
     return 0;
 }

@@ -39,6 +39,13 @@ static double now(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
 static void cross3(const double a[3], const double b[3], double c[3])
 {
     c[0] = a[1] * b[2] - a[2] * b[1];
@@ -313,12 +320,29 @@ static void draw_labels(sb_image *im, const sb_render_options *o, const sb_rende
     const float ink[3] = { 0.01f, 0.01f, 0.012f }, paper[3] = { 1, 1, 1 };
     int y = m;
     const char *lines[2] = { o->title, o->subtitle };
+    const int maxw = im->w - 2 * m;
     for (int i = 0; i < 2; i++) {
-        if (!lines[i][0]) continue;
-        const int wd = sb_font_width(lines[i], sc);
-        fill_rect(im, m - 3 * sc, y - sc, m + wd + 3 * sc, y + lh - sc, paper, 0.55f);
-        sb_font_draw(im, m, y, sc, lines[i], ink);
-        y += lh;
+        /* wrap at " | " separators (else anywhere) to fit the width */
+        const char *p = lines[i];
+        while (*p == ' ') p++;
+        while (*p && y + lh < im->h / 2) {
+            char buf[256];
+            size_t n = strlen(p), take = n;
+            if (sb_font_width(p, sc) > maxw) {
+                const size_t fit = (size_t)(maxw / sb_font_width("M", sc));
+                take = fit < n ? fit : n;
+                for (size_t k = take; k > 2; k--)
+                    if (!strncmp(p + k - 2, " |", 2)) { take = k - 2; break; }
+            }
+            if (take == 0) take = 1;
+            snprintf(buf, sizeof buf, "%.*s", (int)(take < sizeof buf - 1 ? take : sizeof buf - 1), p);
+            const int wd = sb_font_width(buf, sc);
+            fill_rect(im, m - 3 * sc, y - sc, m + wd + 3 * sc, y + lh - sc, paper, 0.55f);
+            sb_font_draw(im, m, y, sc, buf, ink);
+            y += lh;
+            p += take;
+            while (*p == ' ' || *p == '|') p++;
+        }
     }
     char buf[160];
     /* bottom line: the colour scale, or the ground grid */
@@ -423,7 +447,7 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
     lights_setup(&L, &cam);
     shade_ctx S = { &w, o, &L, lo, hi, st, 0 };
     st->build_seconds = now() - t0;
-    const double t1 = now();
+    const double t1 = now(), c1 = cpu_now();
     for (int py = 0; py < o->height && !S.err; py++)
         for (int px = 0; px < o->width && !S.err; px++) {
             uint64_t seed = (uint64_t)py * 0x10000ULL + (uint64_t)px;
@@ -449,6 +473,7 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
             for (int j = 0; j < 3; j++) d[j] = acc[j] / spp;
         }
     st->seconds = now() - t1;
+    st->cpu_seconds = cpu_now() - c1;
     st->isect = *sb_bezier_ws_counts(w.ws);
     st->tri_tests = w.tri_tests;
     free(pts);

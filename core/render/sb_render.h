@@ -53,7 +53,8 @@ typedef struct sb_render_options {
 void sb_render_options_default(sb_render_options *o);
 
 typedef struct sb_render_stats {
-    double seconds;          /* rendering (world build excluded) */
+    double seconds;          /* rendering (world build excluded), wall clock */
+    double cpu_seconds;      /* the same in process CPU time (what benches compare) */
     double build_seconds;    /* BVH and field range */
     long primary_rays, shadow_rays;
     long tri_tests;

@@ -149,11 +149,11 @@ int sb_render_main(int argc, char **argv)
     if (!rq.quiet) printf("%s\n", info);
     if (stats) {
         const sb_isect_counts *c = &st.isect;
-        printf("{\"seconds\": %.6f, \"build_seconds\": %.6f, \"width\": %d, \"height\": %d, \"spp\": %d, "
+        printf("{\"seconds\": %.6f, \"cpu_seconds\": %.6f, \"build_seconds\": %.6f, \"width\": %d, \"height\": %d, \"spp\": %d, "
                "\"intersect\": \"%s\", \"primary_rays\": %ld, \"shadow_rays\": %ld, \"patch_tests\": %ld, "
                "\"patch_hits\": %ld, \"regions\": %ld, \"subpatches\": %ld, \"newton\": %ld, \"newton_roots\": %ld, "
                "\"excluded\": %ld, \"clips\": %ld, \"budget_stops\": %ld, \"triangle_tests\": %ld}\n",
-               st.seconds, st.build_seconds, rq.opt.width, rq.opt.height, rq.opt.spp, sb_isect_names[rq.opt.isect],
+               st.seconds, st.cpu_seconds, st.build_seconds, rq.opt.width, rq.opt.height, rq.opt.spp, sb_isect_names[rq.opt.isect],
                st.primary_rays, st.shadow_rays, c->calls, c->hits, c->regions, c->splits, c->newton, c->newton_roots,
                c->excluded, c->clips, c->budget, st.tri_tests);
     }
