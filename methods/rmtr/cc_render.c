@@ -76,6 +76,6 @@ int cc_surface(void *state, int level, const double *x, sb_surface *out)
         b[3] = Bref[3 * 15 + 1];
     }
     snprintf(out->what, sizeof out->what,
-             "%d regular Catmull-Clark faces as bicubic Bezier patches (exact limit surface)", ne);
+             "%d regular Catmull-Clark faces as bicubic Bézier patches (exact limit surface)", ne);
     return SB_OK;
 }
