@@ -163,4 +163,21 @@ for d in sorted((d for d in rmtr if d), key=lambda d: (d["scene"], d["solver"], 
         d["scene"], d["solver"], d["res"], d["dofs"], d["steps"], d["steps_planned"], d["status"], d["reason"],
         d["iterations"], d["work_units"]["assembly"], d["seconds"]["total"], pr))
 
+# ---- pictures of final states (bench/render_thumbs.py, `shellbench render`) ----
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from render_thumbs import thumbnails  # noqa: E402
+
+BIN = os.environ.get("SB_BIN", "build/shellbench")
+PICS = [("clamped plate, 16×16", "plate_clamped_r16"), ("Scordelis–Lo roof, full load, 16×16", "scordelis_full_r16"),
+        ("heavy cantilever Γ = 5, 32×1", "cantilever_G5_r32"), ("full roll-up, 16×1", "rollup_full_r16"),
+        ("wrinkled sheet, 15×15", "wrinkled_r15"), ("twisting cloth, 30×30", "twisting_r30"),
+        ("draped cloth, 30×30", "draped_r30")]
+rows = thumbnails(BIN, [(c, os.path.join(RUNS, t + ".h5")) for c, t in PICS],
+                  os.path.join(os.path.dirname(RUNS.rstrip("/")), "images"), "bhem/images")
+if rows:
+    P("\n### Final states\n")
+    P("Drawn from the records' final states by `shellbench render` (the Hermite patches traced directly, BHEM §5; "
+      "docs/render.md).  Ray tracing the patches, the paper's Table 1: results/bhem_table1.md.\n")
+    out.extend(rows)
+
 print("\n".join(out))

@@ -4,6 +4,7 @@
  * and labels (sb_render.h). */
 #include "sb_render_world.h"
 #include "sb_common.h"
+#include "sb_gsl.h"
 
 #include <gsl/gsl_qrng.h>
 #include <math.h>
@@ -252,12 +253,6 @@ static void shade(shade_ctx *S, const sb_ray *ray, const sb_hit *h, const double
 
 /* ---- colour scale --------------------------------------------------------- */
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* Sample the field on the surface (9x9 points per patch, centroid and
  * corners per triangle): the colour scale runs from the 1st to the 99th
  * percentile of the samples (a corner singularity does not wash out the
@@ -281,16 +276,19 @@ static int field_range(sb_world *w, sb_color_kind kind, sb_render_stats *st, dou
             double v;
             if (sb_field_at(w, kind, SB_HIT_TRIANGLE, t, bary[k][0], bary[k][1], &v) == 0) a[m++] = v;
         }
-    double mx = 0;
-    for (long i = 0; i < m; i++) {
+    for (long i = 0; i < m; i++)
         if (a[i] < -1e-9) soft++;
-        mx = fmax(mx, fabs(a[i]));
+    /* percentiles by GSL's rule (sb_quantiles: gsl_sort + gsl_stats) */
+    static const double pq[4] = { 0.0, 0.01, 0.99, 1.0 };
+    double q[4] = { 0, 0, 0, 0 };
+    if (m > 0 && sb_quantiles(a, (size_t)m, pq, 4, q) != SB_OK) {
+        free(a);
+        return -1;
     }
-    qsort(a, (size_t)m, sizeof *a, cmp_double);
-    *lo = m ? a[(long)floor(0.01 * (m - 1))] : 0.0;
-    *hi = m ? a[(long)ceil(0.99 * (m - 1))] : 0.0;
-    st->field_min = m ? a[0] : NAN;
-    st->field_max = m ? a[m - 1] : NAN;
+    *lo = q[1];
+    *hi = q[2];
+    st->field_min = m ? q[0] : NAN;
+    st->field_max = m ? q[3] : NAN;
     /* a (nearly) constant field: a symmetric scale about it */
     const double span = fmax(1e-12, 1e-6 * fmax(fabs(*lo), fabs(*hi)));
     if (!(*hi - *lo > span)) {
@@ -427,6 +425,7 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
      * rotation; one sample = the pixel centre */
     const int spp = o->spp;
     double *pts = malloc((size_t)spp * 4 * sizeof *pts);
+    sb_gsl_errors_off();   /* the suite's GSL policy (sb_gsl.h): a failure returns NULL */
     gsl_qrng *q = spp > 1 ? gsl_qrng_alloc(gsl_qrng_sobol, 4) : NULL;
     if (!pts || (spp > 1 && !q)) {
         free(pts);
@@ -436,11 +435,19 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
         snprintf(err, errlen, "out of memory for the sample pattern");
         return SB_ERR_NOMEM;
     }
+    int qbad = 0;
     for (int k = 0; k < spp; k++) {
-        if (q) gsl_qrng_get(q, pts + 4 * k);
+        if (q) qbad |= gsl_qrng_get(q, pts + 4 * k) != GSL_SUCCESS;
         else pts[0] = pts[1] = pts[2] = pts[3] = 0.5;
     }
     if (q) gsl_qrng_free(q);
+    if (qbad) {   /* more points than the Sobol generator gives: cannot happen below 2^30 */
+        free(pts);
+        sb_world_free(&w);
+        sb_image_free(img);
+        snprintf(err, errlen, "the Sobol sequence cannot give %d points", spp);
+        return SB_ERR_INTERNAL;
+    }
     camera cam;
     camera_setup(&cam, o, &w);
     lights L;
