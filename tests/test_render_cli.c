@@ -133,6 +133,36 @@ SB_TEST(tessellation_steps_and_time_series)
     CHECK(strstr(out, "mem.h5") && strstr(out, "step 9") && lines(out) == 1);
 }
 
+SB_TEST(resumed_run_keeps_its_time_series)
+{
+    /* an uninterrupted run and one stopped after step 1 and resumed: the
+     * same per-step surfaces, and no checkpoint sidecars left behind */
+    const char *run = "cd %s && %s run --scene tests/scenes/membrane_dynamic.json --method fixture_membrane "
+                      "--solver lsnewton --res 4 --out %s/%s.h5 --quiet %s";
+    CHECK_EQ_INT(sh(NULL, 0, run, sb_test_root(), sb_test_bin(), tmpdir, "whole", ""), 0);
+    CHECK_EQ_INT(sh(NULL, 0, run, sb_test_root(), sb_test_bin(), tmpdir, "cut", "--stop-after-steps 1"), 4);
+    CHECK_EQ_INT(sh(NULL, 0, run, sb_test_root(), sb_test_bin(), tmpdir, "cut", "--resume"), 0);
+    char a[512], b[512], err[1024];
+    snprintf(a, sizeof a, "%s/whole.h5", tmpdir);
+    snprintf(b, sizeof b, "%s/cut.h5", tmpdir);
+    for (int k = 0; k <= 3; k++) {
+        sb_record_samples sa, sb;
+        CHECK(sb_record_read_step_samples(a, k, &sa, err, sizeof err) == 0);
+        CHECK_MSG(sb_record_read_step_samples(b, k, &sb, err, sizeof err) == 0, "%s", err);
+        for (int i = 0; i < 3 * sa.n && sb.pos && sa.pos; i++) CHECK_NEAR(sb.pos[i], sa.pos[i], 1e-12);
+        sb_record_samples_free(&sa);
+        sb_record_samples_free(&sb);
+    }
+    const char *left[] = { "cut.h5.partial", "cut.h5.partial.xdmf", "cut.h5.partial.steps.xdmf" };
+    for (int i = 0; i < 3; i++) {
+        char p[512];
+        snprintf(p, sizeof p, "%s/%s", tmpdir, left[i]);
+        CHECK_MSG(access(p, F_OK) != 0, "%s left behind", left[i]);
+    }
+    snprintf(b, sizeof b, "%s/cut.steps.xdmf", tmpdir);
+    CHECK(access(b, F_OK) == 0);
+}
+
 SB_TEST(unrenderable_records_and_bad_options_exit_2)
 {
     static char out[8192];
@@ -192,7 +222,8 @@ int main(int argc, char **argv)
     mkdir(tmpdir, 0755);
     static const sb_test_case cases[] = {
         SB_CASE(bhem_and_rmtr_records_render_their_patches), SB_CASE(tessellation_steps_and_time_series),
-        SB_CASE(unrenderable_records_and_bad_options_exit_2), SB_CASE(report_entry_point_renders_a_thumbnail), SB_END,
+        SB_CASE(resumed_run_keeps_its_time_series), SB_CASE(unrenderable_records_and_bad_options_exit_2),
+        SB_CASE(report_entry_point_renders_a_thumbnail), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];
