@@ -3,7 +3,8 @@ final state rendered by `shellbench render` (docs/render.md) into a PNG
 beside the report, and the Markdown that shows them.
 
     from render_thumbs import thumbnails
-    lines = thumbnails(BIN, [(caption, record.h5), ...], "results/rmtr/images", "rmtr/images")
+    lines = thumbnails(BIN, [(caption, record.h5[, [extra render options]]), ...],
+                       "results/rmtr/images", "rmtr/images")
 
 A picture is made only when its PNG is missing (the committed pictures are
 the report's; delete them to redraw).  A record that cannot be drawn gets
@@ -24,14 +25,16 @@ def render(bin_, record, png, size="320x240", spp=8, extra=()):
 def thumbnails(bin_, items, outdir, reldir, per_row=3, size="320x240", spp=8):
     """Markdown table rows of pictures (per_row per row), captions below"""
     cells = []
-    for caption, record in items:
+    for item in items:
+        caption, record = item[0], item[1]
+        extra = item[2] if len(item) > 2 else ()
         name = os.path.basename(record)
         if name.endswith(".h5"):
             name = name[:-3]
         png = os.path.join(outdir, name + ".png")
         if not os.path.exists(record) and not os.path.exists(png):
             continue
-        err = render(bin_, record, png, size, spp) if os.path.exists(record) else None
+        err = render(bin_, record, png, size, spp, extra) if os.path.exists(record) else None
         if err:
             cells.append(("—", "%s: not drawn (%s)" % (caption, err)))
         else:
