@@ -1,6 +1,7 @@
 #define _GNU_SOURCE   /* memmem */
 /* test_render_cli.c — `shellbench render` on records of every kind: bhem
- * and rmtr (Bézier patches), a method without a surface op (tessellated), a
+ * and rmtr (Bézier patches), linear_fem (its triangles), a method without a
+ * surface op (tessellated), a
  * step of the time series; the records' time-series sidecar; and the one-line
  * refusals, exit 2, of what cannot be rendered (not a record, a method that
  * is not in the build, a method that cannot evaluate its surface, a step not
@@ -67,18 +68,19 @@ static int lines(const char *s)
     return n;
 }
 
-SB_TEST(bhem_and_rmtr_records_render_their_patches)
+SB_TEST(every_method_renders_its_own_primitives)
 {
     static char out[8192];
-    const char *runs[2][3] = { { "bhem", "bench/bhem/scenes/render_plane.json", "1" },
-                               { "rmtr", "tests/scenes/trampoline_1step.json", "4" } };
-    for (int k = 0; k < 2; k++) {
+    const char *runs[3][4] = { { "bhem", "bench/bhem/scenes/render_plane.json", "1", "Bézier" },
+                               { "rmtr", "tests/scenes/trampoline_1step.json", "4", "Bézier" },
+                               { "linear_fem", "tests/scenes/trampoline_1step.json", "4", "triangles of the linear_fem mesh" } };
+    for (int k = 0; k < 3; k++) {
         CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene %s --method %s --solver lsnewton --res %s --out %s/%s.h5 --quiet",
                         sb_test_root(), sb_test_bin(), runs[k][1], runs[k][0], runs[k][2], tmpdir, runs[k][0]), 0);
         for (int a = 0; a < 3; a++) {
             CHECK_EQ_INT(sh(out, sizeof out, "%s render %s/%s.h5 --size 48x36 --spp 2 --intersect %s --color strain --out %s/%s_%d.png",
                             sb_test_bin(), tmpdir, runs[k][0], sb_isect_names[a], tmpdir, runs[k][0], a), 0);
-            CHECK_MSG(strstr(out, "Bézier") != NULL, "%s: %s", runs[k][0], out);
+            CHECK_MSG(strstr(out, runs[k][3]) != NULL, "%s: %s", runs[k][0], out);
             char png[512];
             snprintf(png, sizeof png, "%s/%s_%d.png", tmpdir, runs[k][0], a);
             CHECK(is_png(png));
@@ -221,7 +223,7 @@ int main(int argc, char **argv)
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_test_render_cli_%d", (int)getpid());
     mkdir(tmpdir, 0755);
     static const sb_test_case cases[] = {
-        SB_CASE(bhem_and_rmtr_records_render_their_patches), SB_CASE(tessellation_steps_and_time_series),
+        SB_CASE(every_method_renders_its_own_primitives), SB_CASE(tessellation_steps_and_time_series),
         SB_CASE(resumed_run_keeps_its_time_series), SB_CASE(unrenderable_records_and_bad_options_exit_2),
         SB_CASE(report_entry_point_renders_a_thumbnail), SB_END,
     };

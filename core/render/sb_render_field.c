@@ -5,8 +5,12 @@
  *              current surface (first and second fundamental forms; signed
  *              with the surface's own normal x_u x x_v);
  *   strain     membrane Green–Lagrange strain A = (a - abar)/2 in the local
- *              warp/weft frame (sb_shell_strains); the principal value of
- *              largest magnitude (signed: < 0 compression);
+ *              warp/weft frame (sb_shell_strains); its larger principal
+ *              value, the stretch (< 0 where the membrane is compressed in
+ *              every direction).  Not the principal value of largest
+ *              magnitude: that jumps between the two where tension and
+ *              compression are about equal, which a uniaxially pulled cloth
+ *              is;
  *   softening  the smallest relative eigenvalue of the membrane tangent
  *              d2e/dA2 through the thickness (sb_shell_section_stability);
  *              negative where the law softens (what `shellbench inspect`
@@ -28,7 +32,7 @@ int sb_field_check(const sb_surface *s, const sb_material *mat, sb_color_kind ki
         snprintf(err, errlen, "--color %s needs the scene's material", sb_color_names[kind]);
         return -1;
     }
-    if ((s->n_patches && !s->patch_ref) || (s->n_tris && (!s->vert_ref || !s->vert_st))) {
+    if ((s->n_patches && !s->patch_ref) || (s->n_tris && (!s->vert_ref || (!s->vert_st && !s->tri_st)))) {
         snprintf(err, errlen, "--color %s needs the reference surface (and, for triangles, their grid parameters), "
                  "which this surface does not carry", sb_color_names[kind]);
         return -1;
@@ -60,11 +64,11 @@ static int mean_curvature(const double y[5][3], double *H)
     return isfinite(*H) ? 0 : -1;
 }
 
-/* principal value of largest magnitude of the symmetric (A11, A22, A12) */
+/* the larger principal value of the symmetric (A11, A22, A12) */
 static double principal(const double A[3])
 {
     const double m = 0.5 * (A[0] + A[1]), r = sqrt(0.25 * (A[0] - A[1]) * (A[0] - A[1]) + A[2] * A[2]);
-    return fabs(m + r) >= fabs(m - r) ? m + r : m - r;
+    return m + r;
 }
 
 static int from_strains(sb_world *w, sb_color_kind kind, const sb_shell_basis *b, const double *q, const double *qref,
@@ -110,7 +114,16 @@ int sb_field_at(sb_world *w, sb_color_kind kind, int hit_kind, int prim, double 
         return 0;
     }
     /* linear basis in (s,t): dN/d(s,t) = dN/d(b1,b2) J^-1, J = d(s,t)/d(b1,b2) */
-    const double *p0 = s->vert_st + 2 * T[0], *p1 = s->vert_st + 2 * T[1], *p2 = s->vert_st + 2 * T[2];
+    const double *p0, *p1, *p2;
+    if (s->tri_st) {
+        p0 = s->tri_st + 6 * prim;
+        p1 = p0 + 2;
+        p2 = p0 + 4;
+    } else {
+        p0 = s->vert_st + 2 * T[0];
+        p1 = s->vert_st + 2 * T[1];
+        p2 = s->vert_st + 2 * T[2];
+    }
     const double j11 = p1[0] - p0[0], j12 = p2[0] - p0[0], j21 = p1[1] - p0[1], j22 = p2[1] - p0[1];
     const double det = j11 * j22 - j12 * j21;
     if (!(fabs(det) > 1e-300)) return -1;

@@ -49,8 +49,8 @@ void sb_world_free(sb_world *w);
 int  sb_world_intersect(sb_world *w, const sb_ray *r, double tmax, int any, sb_hit *h);
 
 /* Colour field at a surface hit (sb_render_field.c): the scalar for kind
- * (curvature: mean curvature, 1/m; strain: the principal membrane
- * Green–Lagrange strain of largest magnitude; softening: the smallest
+ * (curvature: mean curvature, 1/m; strain: the larger principal membrane
+ * Green–Lagrange strain; softening: the smallest
  * relative eigenvalue of the membrane tangent, < 0 = soft).  Returns 0, or
  * -1 when it cannot be evaluated there (degenerate point). */
 int  sb_field_at(sb_world *w, sb_color_kind kind, int hit_kind, int prim, double u, double v, double *val);

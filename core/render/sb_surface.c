@@ -24,8 +24,8 @@ int sb_surface_alloc_patches(sb_surface *s, int n, int with_ref)
 
 int sb_surface_alloc_tris(sb_surface *s, int nv, int nt, int with_ref, int with_st)
 {
-    free(s->vert); free(s->vert_ref); free(s->vert_st); free(s->tri);
-    s->vert = s->vert_ref = s->vert_st = NULL;
+    free(s->vert); free(s->vert_ref); free(s->vert_st); free(s->tri); free(s->tri_st);
+    s->vert = s->vert_ref = s->vert_st = s->tri_st = NULL;
     s->tri = NULL;
     s->n_verts = s->n_tris = 0;
     if (nv < 0 || nt < 0) return -1;
@@ -42,7 +42,7 @@ int sb_surface_alloc_tris(sb_surface *s, int nv, int nt, int with_ref, int with_
 void sb_surface_free(sb_surface *s)
 {
     free(s->patch); free(s->patch_ref); free(s->patch_st);
-    free(s->vert); free(s->vert_ref); free(s->vert_st); free(s->tri);
+    free(s->vert); free(s->vert_ref); free(s->vert_st); free(s->tri); free(s->tri_st);
     memset(s, 0, sizeof *s);
 }
 

@@ -12,8 +12,8 @@
  * and material softening through the shared shell kernel (sb_shell.h), in the
  * material frame of the scene (warp along the first parameter direction,
  * rotated by material.warp_angle).  Triangle strains need vert_st, the grid
- * parameter (s,t) of each vertex (the first parameter direction of a
- * triangle is d/ds). */
+ * parameter (s,t) of each vertex, or tri_st, that of each corner (the first
+ * parameter direction of a triangle is d/ds). */
 #ifndef SB_SURFACE_H
 #define SB_SURFACE_H
 
@@ -29,6 +29,8 @@ typedef struct sb_surface {
     double *vert_ref;     /* 3 n_verts, reference, or NULL */
     double *vert_st;      /* 2 n_verts grid parameters, or NULL */
     int *tri;             /* 3 n_tris */
+    double *tri_st;       /* 6 n_tris: (s,t) of each corner, or NULL (then vert_st); needed where a
+                             seam identifies vertices (sb_mesh.h "corner coordinates") */
     /* what the primitives are, one line ("64 Bézier patches (Hermite, exact)") */
     char what[160];
 } sb_surface;
