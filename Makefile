@@ -12,14 +12,14 @@ PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
 # core/ is the architecture, one folder per part (docs/architecture.md):
-# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, cli
-CORE_DIRS := base scene mesh problem linalg shell solvers record report cli
+# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, cli
+CORE_DIRS := base scene mesh problem linalg shell solvers record report render cli
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
            $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) -MMD -MP
 CXXFLAGS ?= $(OPT) -g
 CXXFLAGS += -std=c++14 -Wall -Wextra $(CORE_INC) $(SAN) -MMD -MP
-LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -lstdc++ -lm
+LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -lstdc++ -lz -lm
 LDFLAGS += $(SAN)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
@@ -40,7 +40,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan clean fuzz fuzz-build fuzz-short
+.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -142,6 +142,11 @@ $(BUILD)/fuzz/fuzz_%: fuzz/fuzz_%.c $(LIB) | $(DEPS_STAMP)
 
 fuzz-short: fuzz
 	@$(BLAS_ENV) $(LSAN_ENV) bash scripts/fuzz_run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+# ParaView opens every method's XDMF sidecars (installs ParaView if missing;
+# not part of `make test`): scripts/check_paraview.sh
+check-paraview: $(BIN)
+	$(BLAS_ENV) bash scripts/check_paraview.sh $(BIN) $(BUILD)/paraview
 
 clean:
 	rm -rf build build-asan build-fuzz

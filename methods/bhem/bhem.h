@@ -177,6 +177,11 @@ int  bhem_prolong(const bhem_state *S, int lc, const double *xc, double *xf);
 int  bhem_restrict(const bhem_state *S, int lc, const double *gf, double *gc);
 int  bhem_project(const bhem_state *S, int lc, const double *xf, double *xc);
 
+/* ---- rendering (bhem_ray.c) ------------------------------------------------ */
+struct sb_surface;
+/* The patches of x on `level` as Bézier patches, with the reference (sb_surface.h). */
+int  bhem_surface(void *state, int level, const double *x, struct sb_surface *out);
+
 /* ---- creation (bhem_method.c) ------------------------------------------- */
 extern const sb_param_def bhem_params[];
 extern const sb_method_type sb_method_bhem;

@@ -265,4 +265,5 @@ const sb_method_type sb_method_bhem = {
     .project = bhem_project_op,
     .estimate = bhem_estimate,
     .describe = bhem_describe,
+    .surface = bhem_surface,
 };

@@ -372,4 +372,5 @@ const sb_method_type sb_method_subdiv = {
     .prolong_matrix = cc_prolong_matrix,
     .estimate = cc_estimate,
     .describe = cc_describe,
+    .surface = cc_surface,
 };
