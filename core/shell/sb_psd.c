@@ -6,6 +6,7 @@
  * bit-for-bit unchanged, and the cost beyond the eigen-decomposition is
  * proportional to the number of negative eigenvalues. */
 #include "sb_shell.h"
+#include "sb_simd.h"
 
 #include <math.h>
 #include <string.h>
@@ -97,7 +98,10 @@ int sb_psd_check(int n, const double *H, double *work)
         for (int i = j + 1; i < n; i++) {
             const double lij = col[i] / piv;
             double *ai = &AT(i, 0);
-            for (int k = j + 1; k <= i; k++) ai[k] -= lij * col[k];
+            int k = j + 1;
+            const sb_vd lv = sb_vbcast(lij);
+            for (; k + SB_VL <= i + 1; k += SB_VL) sb_vstore(ai + k, sb_vload(ai + k) - lv * sb_vload(col + k));
+            for (; k <= i; k++) ai[k] -= lij * col[k];
         }
     }
 #undef AT

@@ -21,6 +21,33 @@
 #define SB_INV_LN2 1.44269504088896338700e+00
 #define SB_ROUND_MAGIC 6755399441055744.0   /* 1.5 * 2^52: x + M - M rounds x to an integer */
 
+/* Polynomial coefficients as vectors in memory: GCC would otherwise
+ * rebuild each uniform constant with a scalar load and a shuffle before
+ * every use; reading them through a pointer it cannot see through (the
+ * empty asm) makes each one a memory operand of the multiply-add. */
+#if SB_VL == 2
+#define SB_VC(x) { (x), (x) }
+#elif SB_VL == 4
+#define SB_VC(x) { (x), (x), (x), (x) }
+#else
+#define SB_VC(x) { (x), (x), (x), (x), (x), (x), (x), (x) }
+#endif
+static const double sb_expm1_c[12][SB_VL] __attribute__((aligned(64))) = {
+    SB_VC(1.0 / 6227020800.0), SB_VC(1.0 / 479001600.0), SB_VC(1.0 / 39916800.0), SB_VC(1.0 / 3628800.0),
+    SB_VC(1.0 / 362880.0),     SB_VC(1.0 / 40320.0),     SB_VC(1.0 / 5040.0),     SB_VC(1.0 / 720.0),
+    SB_VC(1.0 / 120.0),        SB_VC(1.0 / 24.0),        SB_VC(1.0 / 6.0),        SB_VC(0.5)
+};
+static const double sb_log1p_c[10][SB_VL] __attribute__((aligned(64))) = {
+    SB_VC(2.0 / 21.0), SB_VC(2.0 / 19.0), SB_VC(2.0 / 17.0), SB_VC(2.0 / 15.0), SB_VC(2.0 / 13.0),
+    SB_VC(2.0 / 11.0), SB_VC(2.0 / 9.0),  SB_VC(2.0 / 7.0),  SB_VC(2.0 / 5.0),  SB_VC(2.0 / 3.0)
+};
+static inline const sb_vd *sb_vopaque(const double (*t)[SB_VL])
+{
+    const sb_vd *p = (const sb_vd *)t;
+    __asm__("" : "+r"(p));
+    return p;
+}
+
 /* expm1(x) = e^x - 1.  Reduction x = k ln2 + r, |r| <= ln2/2; expm1(r) by
  * its Taylor series to r^13/13! (truncation < 2e-17 relative); then
  * e^x - 1 = 2^k expm1(r) + (2^k - 1), exact scaling and one rounding.
@@ -37,18 +64,9 @@ static inline sb_vd sb_vexpm1(sb_vd x)
     const sb_vi ki = sb_vasint(t) - sb_vasint(sb_vbcast(SB_ROUND_MAGIC));
     const sb_vd r = (x - kf * SB_LN2_HI) - kf * SB_LN2_LO;
     /* expm1(r) = r + r^2 (1/2! + r (1/3! + ... + r/13!)) */
-    sb_vd p = sb_vbcast(1.0 / 6227020800.0);   /* 1/13! */
-    p = p * r + 1.0 / 479001600.0;              /* 1/12! */
-    p = p * r + 1.0 / 39916800.0;
-    p = p * r + 1.0 / 3628800.0;
-    p = p * r + 1.0 / 362880.0;
-    p = p * r + 1.0 / 40320.0;
-    p = p * r + 1.0 / 5040.0;
-    p = p * r + 1.0 / 720.0;
-    p = p * r + 1.0 / 120.0;
-    p = p * r + 1.0 / 24.0;
-    p = p * r + 1.0 / 6.0;
-    p = p * r + 0.5;
+    const sb_vd *c = sb_vopaque(sb_expm1_c);
+    sb_vd p = c[0];
+    for (int i = 1; i < 12; i++) p = p * r + c[i];
     const sb_vd em = r + (r * r) * p;
     const sb_vd two_k = sb_vasdbl((ki + 1023) << 52);   /* 2^k, -58 <= k <= 1023 on the regular lanes */
     const sb_vd y = two_k * em + (two_k - 1.0);
@@ -77,16 +95,9 @@ static inline sb_vd sb_vlog1p(sb_vd u)
     const sb_vd ef = sb_vasdbl(sb_vasint(sb_vbcast(SB_ROUND_MAGIC)) + e) - SB_ROUND_MAGIC;
     const sb_vd f = m - 1.0;
     const sb_vd s = f / (2.0 + f), z = s * s, hfsq = 0.5 * f * f;
-    sb_vd R = sb_vbcast(2.0 / 21.0);
-    R = R * z + 2.0 / 19.0;
-    R = R * z + 2.0 / 17.0;
-    R = R * z + 2.0 / 15.0;
-    R = R * z + 2.0 / 13.0;
-    R = R * z + 2.0 / 11.0;
-    R = R * z + 2.0 / 9.0;
-    R = R * z + 2.0 / 7.0;
-    R = R * z + 2.0 / 5.0;
-    R = R * z + 2.0 / 3.0;
+    const sb_vd *cl = sb_vopaque(sb_log1p_c);
+    sb_vd R = cl[0];
+    for (int i = 1; i < 10; i++) R = R * z + cl[i];
     R = R * z;
     const sb_vd y = ef * SB_LN2_HI + ((f - (hfsq - s * (hfsq + R))) + (ef * SB_LN2_LO + c));
     sb_vd out = sb_vselect(u < -1.0, sb_vbcast(NAN), y);
