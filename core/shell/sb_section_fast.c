@@ -57,54 +57,6 @@ static double section_stvk(const sb_material *m, const double A[3], const double
     return e;
 }
 
-/* phi_j of RMTR paper Eq. (3.4) and its derivatives on a vector of
- * arguments, as phi_fast / phi_cont in sb_material.c */
-static inline void vphi(const sb_material *m, int j, sb_vd u, sb_vd *f, sb_vd *d1, sb_vd *d2)
-{
-    const sb_denim_params *p = &m->denim;
-    if (m->denim_linear[j]) {   /* every alpha = 1: phi = (sum mu) u */
-        double s = 0.0;
-        for (int i = 0; i < p->d[j]; i++) s += p->mu[j][i];
-        *f = s * u;
-        *d1 = sb_vbcast(s);
-        *d2 = sb_vbcast(0.0);
-        return;
-    }
-    const sb_vd L = sb_vlog1p(u);   /* NaN for u <= -1: outside the domain, as phi_fast */
-    sb_vd F = sb_vbcast(0.0), G = F, G1 = F, H = F;
-    for (int i = 0; i < p->d[j]; i++) {
-        const double al = p->alpha[j][i], mu = p->mu[j][i];
-        if (al == 1.0) {   /* exact linear term */
-            F += mu * u;
-            G1 += mu;
-            continue;
-        }
-        const sb_vd em1 = sb_vexpm1(al * L), pw = em1 + 1.0;
-        F += m->denim_mu_over_alpha[j][i] * em1;
-        G += mu * pw;
-        H += m->denim_mu_alpha_m1[j][i] * pw;
-    }
-    const sb_vd inv = 1.0 / (1.0 + u);
-    sb_vd D1 = G1 + G * inv, D2 = H * inv * inv;
-    if (!p->beyond_fit) {   /* linear continuation beyond the joins (phi_cont) */
-        const double jh = m->denim_join_hi[j], jl = m->denim_join_lo[j];
-        const sb_vi hi = u > jh, lo = u < jl;
-        if (isfinite(jh)) {
-            F = sb_vselect(hi, m->denim_fj_hi[j] + m->denim_gj_hi[j] * (u - jh), F);
-            D1 = sb_vselect(hi, sb_vbcast(m->denim_gj_hi[j]), D1);
-            D2 = sb_vselect(hi, sb_vbcast(0.0), D2);
-        }
-        if (isfinite(jl)) {
-            F = sb_vselect(lo, m->denim_fj_lo[j] + m->denim_gj_lo[j] * (u - jl), F);
-            D1 = sb_vselect(lo, sb_vbcast(m->denim_gj_lo[j]), D1);
-            D2 = sb_vselect(lo, sb_vbcast(0.0), D2);
-        }
-    }
-    *f = F;
-    *d1 = D1;
-    *d2 = D2;
-}
-
 static inline double hsum(sb_vd v)
 {
     double s = 0.0;
@@ -112,27 +64,36 @@ static inline double hsum(sb_vd v)
     return s;
 }
 
+#define NG_MAX ((SB_MAX_THICK + SB_VL - 1) / SB_VL)
+
+/* denim: the thickness points in ng vectors; all logarithms of the section
+ * in one batch, then all powers in one batch (sb_vmath.h: the evaluations
+ * interleave instead of each waiting out its own chain of latencies) */
 static double section_denim(const sb_material *m, const double A[3], const double B[3], double sA[3],
                             double sB[3], double C[36])
 {
     const double *k = m->denim.k;
-    const int nt = m->n_thick;
-    sb_vd E = sb_vbcast(0.0), gA[3], gB[3], caa[4], cab[4], cbb[4];   /* C entries 00 01 11 22 */
-    for (int i = 0; i < 3; i++) gA[i] = gB[i] = E;
-    for (int i = 0; i < 4; i++) caa[i] = cab[i] = cbb[i] = E;
-    for (int g0 = 0; g0 < nt; g0 += SB_VL) {
+    const sb_denim_params *p = &m->denim;
+    const int nt = m->n_thick, ng = (nt + SB_VL - 1) / SB_VL;
+    sb_vd xi[NG_MAX], wg[NG_MAX], e0[NG_MAX], e1[NG_MAX], e2[NG_MAX], U[4][NG_MAX];
+    for (int g = 0; g < ng; g++) {
         /* lanes past the rule: xi = 0, weight 0 (finite values, no contribution) */
-        sb_vd xi, wg;
         for (int l = 0; l < SB_VL; l++) {
-            const int g = g0 + l;
-            xi[l] = g < nt ? m->thick_pt[g] : 0.0;
-            wg[l] = g < nt ? m->thick_w[g] : 0.0;
+            const int t = g * SB_VL + l;
+            xi[g][l] = t < nt ? m->thick_pt[t] : 0.0;
+            wg[g][l] = t < nt ? m->thick_w[t] : 0.0;
         }
-        const sb_vd e0 = A[0] - 2.0 * xi * B[0], e1 = A[1] - 2.0 * xi * B[1], e2 = A[2] - 2.0 * xi * B[2];
-        const sb_vd u1 = e0 * e0, u2 = e0 * e1, u3 = e1 * e1, u4 = e2 * e2;
-        if (m->denim.beyond_fit) {   /* outside the admissible range: NaN (denim_psi) */
-            const sb_vi out = (u1 > m->denim_u_max[0]) | (u2 > m->denim_u_max[1]) | (u2 < m->denim_u_min[1]) |
-                              (u3 > m->denim_u_max[2]) | (u4 > m->denim_u_max[3]);
+        e0[g] = A[0] - 2.0 * xi[g] * B[0];
+        e1[g] = A[1] - 2.0 * xi[g] * B[1];
+        e2[g] = A[2] - 2.0 * xi[g] * B[2];
+        U[0][g] = e0[g] * e0[g];
+        U[1][g] = e0[g] * e1[g];
+        U[2][g] = e1[g] * e1[g];
+        U[3][g] = e2[g] * e2[g];
+        if (p->beyond_fit) {   /* outside the admissible range: NaN (denim_psi) */
+            const sb_vi out = (U[0][g] > m->denim_u_max[0]) | (U[1][g] > m->denim_u_max[1]) |
+                              (U[1][g] < m->denim_u_min[1]) | (U[2][g] > m->denim_u_max[2]) |
+                              (U[3][g] > m->denim_u_max[3]);
             for (int l = 0; l < SB_VL; l++)
                 if (out[l]) {
                     if (sA) sA[0] = sA[1] = sA[2] = NAN;
@@ -142,33 +103,109 @@ static double section_denim(const sb_material *m, const double A[3], const doubl
                     return NAN;
                 }
         }
-        sb_vd f1, f2, f3, f4, g1, g2, g3, g4, h1, h2, h3, h4;
-        vphi(m, 0, u1, &f1, &g1, &h1);
-        vphi(m, 1, u2, &f2, &g2, &h2);
-        vphi(m, 2, u3, &f3, &g3, &h3);
-        vphi(m, 3, u4, &f4, &g4, &h4);
-        /* RMTR paper Eq. (3.3) and its derivatives (denim_psi) */
-        const sb_vd psi = 0.5 * k[0] * f1 + k[1] * f2 + 0.5 * k[2] * f3 + k[3] * f4;
-        E += wg * psi;
+    }
+    /* L = log1p(u) of every nonlinear phi_j (NaN for u <= -1, as phi_fast) */
+    sb_vd Lin[4 * NG_MAX], L[4 * NG_MAX];
+    int nl = 0, lofs[4] = { 0, 0, 0, 0 };
+    for (int j = 0; j < 4; j++) {
+        if (m->denim_linear[j]) continue;
+        lofs[j] = nl;
+        for (int g = 0; g < ng; g++) Lin[nl++] = U[j][g];
+    }
+    sb_vlog1p_n(nl, Lin, L);
+    /* the powers (u + 1)^alpha - 1 = expm1(alpha L) of every term alpha != 1 */
+    sb_vd X[4 * SB_DENIM_MAX_TERMS * NG_MAX], EM[4 * SB_DENIM_MAX_TERMS * NG_MAX];
+    int nx = 0;
+    for (int j = 0; j < 4; j++) {
+        if (m->denim_linear[j]) continue;
+        for (int i = 0; i < p->d[j]; i++) {
+            if (p->alpha[j][i] == 1.0) continue;
+            for (int g = 0; g < ng; g++) X[nx++] = p->alpha[j][i] * L[lofs[j] + g];
+        }
+    }
+    sb_vexpm1_n(nx, X, EM);
+    /* phi_j, phi_j', phi_j'' (RMTR paper Eq. 3.4; phi_fast and phi_cont in sb_material.c) */
+    sb_vd F[4][NG_MAX], D1[4][NG_MAX], D2[4][NG_MAX];
+    int ix = 0;
+    for (int j = 0; j < 4; j++) {
+        if (m->denim_linear[j]) {   /* every alpha = 1: phi = (sum mu) u */
+            double s = 0.0;
+            for (int i = 0; i < p->d[j]; i++) s += p->mu[j][i];
+            for (int g = 0; g < ng; g++) {
+                F[j][g] = s * U[j][g];
+                D1[j][g] = sb_vbcast(s);
+                D2[j][g] = sb_vbcast(0.0);
+            }
+            continue;
+        }
+        for (int g = 0; g < ng; g++) {
+            sb_vd Fs = sb_vbcast(0.0), G = Fs, G1 = Fs, H = Fs;
+            const sb_vd u = U[j][g];
+            int t = ix;
+            for (int i = 0; i < p->d[j]; i++) {
+                const double al = p->alpha[j][i], mu = p->mu[j][i];
+                if (al == 1.0) {   /* exact linear term */
+                    Fs += mu * u;
+                    G1 += mu;
+                    continue;
+                }
+                const sb_vd em1 = EM[t + g], pw = em1 + 1.0;
+                t += ng;
+                Fs += m->denim_mu_over_alpha[j][i] * em1;
+                G += mu * pw;
+                H += m->denim_mu_alpha_m1[j][i] * pw;
+            }
+            const sb_vd inv = 1.0 / (1.0 + u);
+            sb_vd d1 = G1 + G * inv, d2 = H * inv * inv;
+            if (!p->beyond_fit) {   /* linear continuation beyond the joins (phi_cont) */
+                const double jh = m->denim_join_hi[j], jl = m->denim_join_lo[j];
+                if (isfinite(jh)) {
+                    const sb_vi hi = u > jh;
+                    Fs = sb_vselect(hi, m->denim_fj_hi[j] + m->denim_gj_hi[j] * (u - jh), Fs);
+                    d1 = sb_vselect(hi, sb_vbcast(m->denim_gj_hi[j]), d1);
+                    d2 = sb_vselect(hi, sb_vbcast(0.0), d2);
+                }
+                if (isfinite(jl)) {
+                    const sb_vi lo = u < jl;
+                    Fs = sb_vselect(lo, m->denim_fj_lo[j] + m->denim_gj_lo[j] * (u - jl), Fs);
+                    d1 = sb_vselect(lo, sb_vbcast(m->denim_gj_lo[j]), d1);
+                    d2 = sb_vselect(lo, sb_vbcast(0.0), d2);
+                }
+            }
+            F[j][g] = Fs;
+            D1[j][g] = d1;
+            D2[j][g] = d2;
+        }
+        for (int i = 0; i < p->d[j]; i++) ix += p->alpha[j][i] == 1.0 ? 0 : ng;
+    }
+    /* RMTR paper Eq. (3.3), its derivatives (denim_psi), through the thickness */
+    sb_vd E = sb_vbcast(0.0), gA[3], gB[3], caa[4], cab[4], cbb[4];   /* C entries 00 01 11 22 */
+    for (int i = 0; i < 3; i++) gA[i] = gB[i] = E;
+    for (int i = 0; i < 4; i++) caa[i] = cab[i] = cbb[i] = E;
+    for (int g = 0; g < ng; g++) {
+        const sb_vd psi = 0.5 * k[0] * F[0][g] + k[1] * F[1][g] + 0.5 * k[2] * F[2][g] + k[3] * F[3][g];
+        E += wg[g] * psi;
         if (!sA && !sB && !C) continue;
-        const sb_vd s0 = k[0] * g1 * e0 + k[1] * g2 * e1, s1 = k[1] * g2 * e0 + k[2] * g3 * e1,
-                    s2 = 2.0 * k[3] * g4 * e2;
-        const sb_vd wb = -2.0 * xi * wg;   /* dE/dB = -2 xi3 */
-        gA[0] += wg * s0;
-        gA[1] += wg * s1;
-        gA[2] += wg * s2;
+        const sb_vd g1 = D1[0][g], g2 = D1[1][g], g3 = D1[2][g], g4 = D1[3][g];
+        const sb_vd s0 = k[0] * g1 * e0[g] + k[1] * g2 * e1[g], s1 = k[1] * g2 * e0[g] + k[2] * g3 * e1[g],
+                    s2 = 2.0 * k[3] * g4 * e2[g];
+        const sb_vd wb = -2.0 * xi[g] * wg[g];   /* dE/dB = -2 xi3 */
+        gA[0] += wg[g] * s0;
+        gA[1] += wg[g] * s1;
+        gA[2] += wg[g] * s2;
         gB[0] += wb * s0;
         gB[1] += wb * s1;
         gB[2] += wb * s2;
         if (!C) continue;
-        const sb_vd c00 = k[0] * (g1 + 2.0 * e0 * e0 * h1) + k[1] * h2 * e1 * e1;
-        const sb_vd c01 = k[1] * (g2 + h2 * e0 * e1);
-        const sb_vd c11 = k[2] * (g3 + 2.0 * e1 * e1 * h3) + k[1] * h2 * e0 * e0;
-        const sb_vd c22 = 2.0 * k[3] * (g4 + 2.0 * e2 * e2 * h4);
-        const sb_vd wbb = 4.0 * xi * xi * wg;
+        const sb_vd h1 = D2[0][g], h2 = D2[1][g], h3 = D2[2][g], h4 = D2[3][g];
+        const sb_vd c00 = k[0] * (g1 + 2.0 * e0[g] * e0[g] * h1) + k[1] * h2 * e1[g] * e1[g];
+        const sb_vd c01 = k[1] * (g2 + h2 * e0[g] * e1[g]);
+        const sb_vd c11 = k[2] * (g3 + 2.0 * e1[g] * e1[g] * h3) + k[1] * h2 * e0[g] * e0[g];
+        const sb_vd c22 = 2.0 * k[3] * (g4 + 2.0 * e2[g] * e2[g] * h4);
+        const sb_vd wbb = 4.0 * xi[g] * xi[g] * wg[g];
         const sb_vd cc[4] = { c00, c01, c11, c22 };
         for (int i = 0; i < 4; i++) {
-            caa[i] += wg * cc[i];
+            caa[i] += wg[g] * cc[i];
             cab[i] += wb * cc[i];
             cbb[i] += wbb * cc[i];
         }
