@@ -12,14 +12,18 @@
 #endif
 
 struct sb_assembler {
-    int threads, max_n, max_terms, chunk;
-    size_t slot;        /* doubles per slot */
-    double *buf;        /* 2 buffers x chunk slots */
+    int threads, max_n, max_terms;
+    size_t budget;      /* doubles per buffer */
+    double *buf;        /* 2 buffers */
+    size_t *off;        /* per element: its slot's offset in its chunk's buffer */
+    int *chunk;         /* chunk boundaries: elements [chunk[c], chunk[c+1]) */
+    int *nt;            /* per element: energy terms written by compute */
+    int cap;            /* elements off/chunk/nt hold */
 };
 
-/* elements per chunk and thread: enough to balance the dynamic schedule,
- * few enough that the two buffers of a 120 x 120 element stay ~4 MB */
-#define SB_CHUNK_PER_THREAD 4
+/* a buffer of ~4 MB: chunks of ~200 shell elements, so that the threads
+ * meet at a barrier a few times per assembly, not per element */
+#define SB_ASSEMBLE_BUDGET (512 * 1024)
 
 int sb_assemble_have_threads(void)
 {
@@ -30,6 +34,8 @@ int sb_assemble_have_threads(void)
 #endif
 }
 
+static size_t slot_size(const sb_assembler *A, int n) { return (size_t)n * n + (size_t)n + (size_t)A->max_terms; }
+
 sb_assembler *sb_assembler_new(int threads, int max_n, int max_terms)
 {
     if (threads < 1 || threads > 256 || max_n < 1 || max_terms < 1) return NULL;
@@ -39,9 +45,13 @@ sb_assembler *sb_assembler_new(int threads, int max_n, int max_terms)
     A->threads = threads;
     A->max_n = max_n;
     A->max_terms = max_terms;
-    A->chunk = threads == 1 ? 1 : SB_CHUNK_PER_THREAD * threads;
-    A->slot = (size_t)max_n * max_n + (size_t)max_n + (size_t)max_terms;
-    A->buf = malloc(2 * (size_t)A->chunk * A->slot * sizeof *A->buf);
+    if (threads == 1) {
+        A->budget = slot_size(A, max_n);
+    } else {
+        A->budget = SB_ASSEMBLE_BUDGET;
+        if (A->budget < (size_t)threads * slot_size(A, max_n)) A->budget = (size_t)threads * slot_size(A, max_n);
+    }
+    A->buf = malloc(2 * A->budget * sizeof *A->buf);
     if (!A->buf) {
         free(A);
         return NULL;
@@ -53,66 +63,99 @@ void sb_assembler_free(sb_assembler *A)
 {
     if (!A) return;
     free(A->buf);
+    free(A->off);
+    free(A->chunk);
+    free(A->nt);
     free(A);
 }
 
 int sb_assembler_threads(const sb_assembler *A) { return A ? A->threads : 0; }
 
-static sb_elem_out slot_out(const sb_assembler *A, int buffer, int i, int want_ge, int want_Ke)
+static sb_elem_out slot_out(const sb_assembler *A, double *s, int n, int want_ge, int want_Ke)
 {
-    double *s = A->buf + ((size_t)buffer * A->chunk + (size_t)i) * A->slot;
     sb_elem_out o;
     o.terms = s;
     o.n_terms = 0;
     o.ge = want_ge || want_Ke ? s + A->max_terms : NULL;
-    o.Ke = want_Ke ? s + A->max_terms + A->max_n : NULL;
+    o.Ke = want_Ke ? s + A->max_terms + n : NULL;
     return o;
 }
 
-void sb_assemble(sb_assembler *A, int n_elems, int want_ge, int want_Ke, sb_elem_compute compute,
+void sb_assemble(sb_assembler *A, int n_elems, sb_elem_dim dim, int want_ge, int want_Ke, sb_elem_compute compute,
                  sb_elem_reduce reduce, void *ctx)
 {
     if (!A || n_elems < 1) return;
     if (A->threads == 1 || n_elems < 2) {
         for (int e = 0; e < n_elems; e++) {
-            sb_elem_out o = slot_out(A, 0, 0, want_ge, want_Ke);
+            sb_elem_out o = slot_out(A, A->buf, A->max_n, want_ge, want_Ke);
             compute(ctx, 0, e, &o);
             reduce(ctx, e, &o);
         }
         return;
     }
 #ifdef _OPENMP
-    const int chunk = A->chunk, nchunks = (n_elems + chunk - 1) / chunk;
-    /* the outcome of compute(e) lives in its slot's terms/ge/Ke plus
-     * n_terms, kept beside the buffers */
-    int nt[2][256 * SB_CHUNK_PER_THREAD];
+    if (n_elems > A->cap) {   /* first assembly of this size: the tables, once */
+        size_t *off = realloc(A->off, (size_t)n_elems * sizeof *off);
+        if (off) A->off = off;
+        int *ch = realloc(A->chunk, ((size_t)n_elems + 1) * sizeof *ch);
+        if (ch) A->chunk = ch;
+        int *nt = realloc(A->nt, (size_t)n_elems * sizeof *nt);
+        if (nt) A->nt = nt;
+        if (!off || !ch || !nt) {   /* out of memory: the serial loop needs no tables */
+            for (int e = 0; e < n_elems; e++) {
+                sb_elem_out o = slot_out(A, A->buf, A->max_n, want_ge, want_Ke);
+                compute(ctx, 0, e, &o);
+                reduce(ctx, e, &o);
+            }
+            return;
+        }
+        A->cap = n_elems;
+    }
+    /* chunks: consecutive elements whose slots fill one buffer */
+    int nchunks = 0;
+    size_t used = 0;
+    A->chunk[0] = 0;
+    for (int e = 0; e < n_elems; e++) {
+        const int n = dim ? dim(ctx, e) : A->max_n;
+        const size_t sz = (slot_size(A, n) + 7) / 8 * 8;   /* 64-byte multiples */
+        if (used + sz > A->budget) {
+            A->chunk[++nchunks] = e;
+            used = 0;
+        }
+        A->off[e] = used;
+        used += sz;
+    }
+    A->chunk[++nchunks] = n_elems;
 #pragma omp parallel num_threads(A->threads)
     {
         for (int c = 0; c <= nchunks; c++) {
             /* one thread reduces the previous chunk, in element order ... */
 #pragma omp single nowait
             if (c > 0) {
-                const int b = (c - 1) & 1, e0 = (c - 1) * chunk;
-                const int e1 = e0 + chunk < n_elems ? e0 + chunk : n_elems;
-                for (int e = e0; e < e1; e++) {
-                    sb_elem_out o = slot_out(A, b, e - e0, want_ge, want_Ke);
-                    o.n_terms = nt[b][e - e0];
+                double *b = A->buf + (size_t)((c - 1) & 1) * A->budget;
+                for (int e = A->chunk[c - 1]; e < A->chunk[c]; e++) {
+                    const int n = dim ? dim(ctx, e) : A->max_n;
+                    sb_elem_out o = slot_out(A, b + A->off[e], n, want_ge, want_Ke);
+                    o.n_terms = A->nt[e];
                     reduce(ctx, e, &o);
                 }
             }
             /* ... while the others (and then it) compute this one */
             if (c < nchunks) {
-                const int b = c & 1, e0 = c * chunk;
-                const int e1 = e0 + chunk < n_elems ? e0 + chunk : n_elems;
-#pragma omp for schedule(dynamic, 1) nowait
+                double *b = A->buf + (size_t)(c & 1) * A->budget;
+                const int e0 = A->chunk[c], e1 = A->chunk[c + 1];
+#pragma omp for schedule(dynamic, 4) nowait
                 for (int e = e0; e < e1; e++) {
-                    sb_elem_out o = slot_out(A, b, e - e0, want_ge, want_Ke);
+                    const int n = dim ? dim(ctx, e) : A->max_n;
+                    sb_elem_out o = slot_out(A, b + A->off[e], n, want_ge, want_Ke);
                     compute(ctx, omp_get_thread_num(), e, &o);
-                    nt[b][e - e0] = o.n_terms;
+                    A->nt[e] = o.n_terms;
                 }
             }
 #pragma omp barrier
         }
     }
+#else
+    (void)dim;
 #endif
 }

@@ -8,8 +8,9 @@
  * energy, gradient and matrix (called for e = 0, 1, 2, ... in order, one
  * call at a time).  With one thread the loop is compute(e); reduce(e), the
  * arithmetic of a plain serial loop.  With T > 1 threads (OpenMP) the
- * elements go in chunks through two slot buffers: while the threads compute
- * chunk c, one of them reduces chunk c - 1, then joins the computing. */
+ * elements go in chunks (consecutive elements whose slots fill ~4 MB)
+ * through two buffers: while the threads compute chunk c, one of them
+ * reduces chunk c - 1, then joins the computing. */
 #ifndef SB_ASSEMBLE_H
 #define SB_ASSEMBLE_H
 
@@ -27,6 +28,8 @@ typedef struct sb_elem_out {
  * which indexes the caller's per-thread scratch. */
 typedef void (*sb_elem_compute)(void *ctx, int thread, int e, sb_elem_out *out);
 typedef void (*sb_elem_reduce)(void *ctx, int e, const sb_elem_out *out);
+/* the dimension of element e (<= max_n); NULL: every element has max_n */
+typedef int (*sb_elem_dim)(void *ctx, int e);
 
 typedef struct sb_assembler sb_assembler;
 
@@ -39,7 +42,7 @@ int sb_assembler_threads(const sb_assembler *A);
 /* 1 when this build runs assemblies on more than one thread (OpenMP) */
 int sb_assemble_have_threads(void);
 
-void sb_assemble(sb_assembler *A, int n_elems, int want_ge, int want_Ke, sb_elem_compute compute,
+void sb_assemble(sb_assembler *A, int n_elems, sb_elem_dim dim, int want_ge, int want_Ke, sb_elem_compute compute,
                  sb_elem_reduce reduce, void *ctx);
 
 #endif

@@ -75,7 +75,8 @@ static double section_denim(const sb_material *m, const double A[3], const doubl
     const double *k = m->denim.k;
     const sb_denim_params *p = &m->denim;
     const int nt = m->n_thick, ng = (nt + SB_VL - 1) / SB_VL;
-    sb_vd xi[NG_MAX], wg[NG_MAX], e0[NG_MAX], e1[NG_MAX], e2[NG_MAX], U[4][NG_MAX];
+    sb_vd xi[NG_MAX] = { 0 }, wg[NG_MAX] = { 0 }, e0[NG_MAX] = { 0 }, e1[NG_MAX] = { 0 }, e2[NG_MAX] = { 0 };
+    sb_vd U[4][NG_MAX];
     for (int g = 0; g < ng; g++) {
         /* lanes past the rule: xi = 0, weight 0 (finite values, no contribution) */
         for (int l = 0; l < SB_VL; l++) {

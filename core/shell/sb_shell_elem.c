@@ -430,20 +430,30 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
     }
 
     /* Z^cd rows of the point: Z[s][J] = sum_t K[3s+c][3t+d] W_t^J, the
-     * blocks below the block diagonal read from above it (K symmetric) */
-    const size_t zstride = (size_t)5 * w->nqmax * kp;
+     * blocks below the block diagonal read from above it (K symmetric).
+     * The 150 coefficients are broadcast once into kb; then each vector of
+     * columns J loads the 5 basis rows once for all 30 output rows. */
+    sb_vd kb[30][5];
     for (int pr = 0; pr < 6; pr++) {
-        double *Zp = w->Z + pr * zstride + (size_t)5 * p * kp;
         const int cc = pc[pr], d = pd[pr];
 #pragma GCC unroll 5
-        for (int s = 0; s < 5; s++) {
-#define KST(t) sb_vbcast(s <= (t) ? K[3 * s + cc][3 * (t) + d] : K[3 * (t) + d][3 * s + cc])
-            const sb_vd k0 = KST(0), k1 = KST(1), k2 = KST(2), k3 = KST(3), k4 = KST(4);
-#undef KST
-            double *zs = Zp + (size_t)s * kp;
-            for (int J = 0; J < kp; J += SB_VL)
-                sb_vstore(zs + J, k0 * sb_vload(Wp + J) + k1 * sb_vload(Wp + kp + J) + k2 * sb_vload(Wp + 2 * kp + J) +
-                                      k3 * sb_vload(Wp + 3 * kp + J) + k4 * sb_vload(Wp + 4 * kp + J));
+        for (int s = 0; s < 5; s++)
+#pragma GCC unroll 5
+            for (int t = 0; t < 5; t++)
+                kb[5 * pr + s][t] = sb_vbcast(s <= t ? K[3 * s + cc][3 * t + d] : K[3 * t + d][3 * s + cc]);
+    }
+    const size_t zstride = (size_t)5 * w->nqmax * kp;
+    double *Z0 = w->Z + (size_t)5 * p * kp;
+    for (int J = 0; J < kp; J += SB_VL) {
+        const sb_vd w0 = sb_vload(Wp + J), w1 = sb_vload(Wp + kp + J), w2 = sb_vload(Wp + 2 * kp + J),
+                    w3 = sb_vload(Wp + 3 * kp + J), w4 = sb_vload(Wp + 4 * kp + J);
+        for (int pr = 0; pr < 6; pr++) {
+            double *Zp = Z0 + pr * zstride + J;
+#pragma GCC unroll 5
+            for (int s = 0; s < 5; s++) {
+                const sb_vd *k5 = kb[5 * pr + s];
+                sb_vstore(Zp + (size_t)s * kp, k5[0] * w0 + k5[1] * w1 + k5[2] * w2 + k5[3] * w3 + k5[4] * w4);
+            }
         }
     }
     return e;

@@ -103,7 +103,7 @@ int bhem_energy(bhem_state *S, int level, const double *x, double *f, double *g,
         if (sc->loads[k].kind == SB_LOAD_PRESSURE && sc->loads[k].follower)
             a.p_follow += S->load_factor[k] * sc->loads[k].value;
     a.kind = S->hess == SB_HESS_PSD ? SB_HESS_EXACT : S->hess;
-    sb_assemble(S->assembler, L->n_elems, g || H, H != NULL, bhem_compute, bhem_reduce, &a);
+    sb_assemble(S->assembler, L->n_elems, NULL, g || H, H != NULL, bhem_compute, bhem_reduce, &a);
     double E = a.E;
     /* dead loads: E_ext = -f_ext . (x - x_ref) (BHEM Eq. 19 and 21); measured
      * from the reference so that f carries no large constant (the f-tests of

@@ -120,6 +120,12 @@ static void cc_reduce(void *ctx, int el, const sb_elem_out *o)
     if (a->H) sb_matrix_add_element(a->H, el, o->Ke);
 }
 
+static int cc_dim(void *ctx, int el)
+{
+    const cc_quad *Q = &((cc_asm *)ctx)->L->quad;
+    return 3 * (Q->eoff[el + 1] - Q->eoff[el]);
+}
+
 int cc_energy(cc_state *S, int l, const double *x, double *f, double *g, sb_matrix *H)
 {
     const sb_scene *sc = S->scene;
@@ -140,7 +146,7 @@ int cc_energy(cc_state *S, int l, const double *x, double *f, double *g, sb_matr
         a.has_p |= ld->kind == SB_LOAD_PRESSURE;
     }
     a.hk = S->hess == SB_HESS_PSD ? SB_HESS_EXACT : S->hess;
-    sb_assemble(S->assembler, L->quad.ne, g != NULL, H != NULL, cc_compute, cc_reduce, &a);
+    sb_assemble(S->assembler, L->quad.ne, cc_dim, g != NULL, H != NULL, cc_compute, cc_reduce, &a);
     *f = a.E;
     if (!isfinite(a.E)) return SB_NONFINITE;
     if (g && !sb_all_finite(3 * L->nv, g)) return SB_NONFINITE;
