@@ -34,7 +34,10 @@ int sb_assemble_have_threads(void)
 #endif
 }
 
-static size_t slot_size(const sb_assembler *A, int n) { return (size_t)n * n + (size_t)n + (size_t)A->max_terms; }
+static size_t slot_size(const sb_assembler *A, int n, int want_Ke)
+{
+    return (want_Ke ? (size_t)n * n : 0) + (size_t)n + (size_t)A->max_terms;
+}
 
 sb_assembler *sb_assembler_new(int threads, int max_n, int max_terms)
 {
@@ -46,10 +49,10 @@ sb_assembler *sb_assembler_new(int threads, int max_n, int max_terms)
     A->max_n = max_n;
     A->max_terms = max_terms;
     if (threads == 1) {
-        A->budget = slot_size(A, max_n);
+        A->budget = slot_size(A, max_n, 1);
     } else {
         A->budget = SB_ASSEMBLE_BUDGET;
-        if (A->budget < (size_t)threads * slot_size(A, max_n)) A->budget = (size_t)threads * slot_size(A, max_n);
+        if (A->budget < (size_t)threads * slot_size(A, max_n, 1)) A->budget = (size_t)threads * slot_size(A, max_n, 1);
     }
     A->buf = malloc(2 * A->budget * sizeof *A->buf);
     if (!A->buf) {
@@ -117,7 +120,7 @@ void sb_assemble(sb_assembler *A, int n_elems, sb_elem_dim dim, int want_ge, int
     A->chunk[0] = 0;
     for (int e = 0; e < n_elems; e++) {
         const int n = dim ? dim(ctx, e) : A->max_n;
-        const size_t sz = (slot_size(A, n) + 7) / 8 * 8;   /* 64-byte multiples */
+        const size_t sz = (slot_size(A, n, want_Ke) + 7) / 8 * 8;   /* 64-byte multiples */
         if (used + sz > A->budget) {
             A->chunk[++nchunks] = e;
             used = 0;
