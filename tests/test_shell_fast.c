@@ -362,11 +362,13 @@ SB_TEST(psd_strain_space)
         make_case(&c, B_BSPLINE, denim, denim ? 0.01 : 0.01, &s);
         const int n = 3 * c.k;
         double q[48];
+        int path = -1;
         /* rest: PSD (rigid modes at zero), kept exactly */
         memset(H, 0, sizeof(double) * n * n);
         sb_shell_element(&c.m, c.nq, c.r, c.b, c.Xq, NULL, H, SB_HESS_EXACT, bw);
-        memcpy(P, H, sizeof(double) * n * n);
-        CHECK_EQ_INT(sb_shell_element_psd(&c.m, c.nq, c.r, c.b, c.Xq, P, Kx, 0, bw, work), 0);
+        memset(P, 0, sizeof(double) * n * n);
+        sb_shell_element_psd(&c.m, c.nq, c.r, c.b, c.Xq, NULL, P, Kx, 0, bw, work, &path);
+        CHECK_EQ_INT(path, 0);
         CHECK(memcmp(P, H, sizeof(double) * n * n) == 0);
         /* compressed and bent: the exact Hessian is indefinite */
         for (int i = 0; i < n; i++) q[i] = c.Xq[i] * (i % 3 == 2 ? 1.0 : 0.93);
@@ -385,19 +387,31 @@ SB_TEST(psd_strain_space)
         CHECK_MSG(lmin >= -1e-12 * lmax, "%s: projected min eigenvalue %.3g of %.3g", denim ? "denim" : "stvk", lmin,
                   lmax);
         CHECK_EQ_INT(sb_psd_check(n, P, work), 1);
-        /* through sb_shell_element_psd, with a PSD other term (a penalty-like N N^T) */
+        /* through sb_shell_element_psd: the exact Hessian minus the 3-slot
+         * difference equals the projection computed from scratch */
+        memset(H, 0, sizeof(double) * n * n);
+        double gq[48] = { 0 }, gr[48] = { 0 };
+        const double e1 = sb_shell_element_psd(&c.m, c.nq, c.r, c.b, q, gq, H, Kx, 0, bw, work, &path);
+        const double e2 = sb_shell_element(&c.m, c.nq, c.r, c.b, q, gr, NULL, SB_HESS_EXACT, bw);
+        CHECK_EQ_INT(path, 1);
+        CHECK(e1 == e2 && memcmp(gq, gr, sizeof gq) == 0);
+        double dmax = 0;
+        for (int i = 0; i < n * n; i++) dmax = fmax(dmax, fabs(H[i] - P[i]));
+        CHECK_MSG(dmax <= 1e-12 * maxabs((size_t)n * n, P), "%s: difference path vs projection %.3g of %.3g",
+                  denim ? "denim" : "stvk", dmax, maxabs((size_t)n * n, P));
+        /* with a PSD other term (a penalty-like N N^T) */
         for (int i = 0; i < n; i++)
             for (int j = 0; j < n; j++) Kx[i * n + j] = i % 3 == j % 3 ? 1e3 * c.tb[0].N[i / 3] * c.tb[0].N[j / 3] : 0.0;
-        for (int i = 0; i < n * n; i++) H[i] += Kx[i];
-        CHECK_EQ_INT(sb_shell_element_psd(&c.m, c.nq, c.r, c.b, q, H, Kx, 1, bw, work), 1);
+        memset(H, 0, sizeof(double) * n * n);
+        sb_shell_element_psd(&c.m, c.nq, c.r, c.b, q, NULL, H, Kx, 1, bw, work, &path);
+        CHECK_EQ_INT(path, 1);
         eig_range(n, H, &lmin, &lmax);
         CHECK_MSG(lmin >= -1e-12 * lmax, "with Kx: min eigenvalue %.3g of %.3g", lmin, lmax);
         /* an indefinite other term: the whole element is clamped (eigenvalues) */
         for (int i = 0; i < n * n; i++) Kx[i] = -Kx[i];
         memset(H, 0, sizeof(double) * n * n);
-        sb_shell_element(&c.m, c.nq, c.r, c.b, q, NULL, H, SB_HESS_EXACT, bw);
-        for (int i = 0; i < n * n; i++) H[i] += Kx[i];
-        CHECK_EQ_INT(sb_shell_element_psd(&c.m, c.nq, c.r, c.b, q, H, Kx, 1, bw, work), 2);
+        sb_shell_element_psd(&c.m, c.nq, c.r, c.b, q, NULL, H, Kx, 1, bw, work, &path);
+        CHECK_EQ_INT(path, 2);
         eig_range(n, H, &lmin, &lmax);
         CHECK_MSG(lmin >= -1e-12 * lmax, "eigen clamp: min eigenvalue %.3g of %.3g", lmin, lmax);
         memset(Kx, 0, sizeof(double) * 192 * 192);

@@ -107,21 +107,3 @@ int sb_psd_check(int n, const double *H, double *work)
 #undef AT
     return 1;
 }
-
-/* kind PSD with the fast kernel (issue 30; see sb_shell.h) */
-int sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
-                         const double *q, double *Ke, const double *Kx, int kx_used, sb_shell_batch *w,
-                         double *work)
-{
-    const int n = 3 * b[0].k;
-    if (sb_psd_check(n, Ke, work)) return 0;   /* PSD already: kept exactly */
-    if (!kx_used || sb_psd_check(n, Kx, work)) {
-        /* the other terms are PSD: PSD shell part by the strain-space projection */
-        if (kx_used) memcpy(Ke, Kx, (size_t)n * n * sizeof *Ke);
-        else memset(Ke, 0, (size_t)n * n * sizeof *Ke);
-        sb_shell_element(m, nq, r, b, q, NULL, Ke, SB_HESS_PSD, w);
-        return 1;
-    }
-    sb_psd_project(n, Ke, work);   /* indefinite other terms: clamp the whole element */
-    return 2;
-}

@@ -161,17 +161,21 @@ int sb_psd_project(int n, double *H, double *work);
 #define SB_PSD_CHECK_MAX_N (3 * SB_SHELL_MAX_BASIS)
 int sb_psd_check(int n, const double *H, double *work);
 
-/* Hessian kind PSD with the fast kernel, for one element: Ke holds the
- * exact element Hessian (sb_shell_element, kind EXACT, on q) plus Kx, the
- * element's other terms (penalty, loads; ignored unless kx_used).  Ke is
- * kept when it is PSD (sb_psd_check): exact where the element Hessian
- * already is.  Otherwise, if Kx is PSD, Ke = Kx + the strain-space
- * projected shell Hessian (sb_shell_element, kind PSD), and else the
- * eigenvalues of Ke are clamped (sb_psd_project).  Returns 0, 1 or 2 for
- * the three cases.  work: sb_psd_work_size(n) doubles. */
-int sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
-                         const double *q, double *Ke, const double *Kx, int kx_used, sb_shell_batch *w,
-                         double *work);
+/* Hessian kind PSD with the fast kernel, for one element: as
+ * sb_shell_element (energy returned, grad and hess accumulated; hess must
+ * hold zeros or other terms of no concern here), hess then plus Kx, the
+ * element's other terms (penalty, loads; ignored unless kx_used).  The sum
+ * is kept when it is PSD (sb_psd_check): exact where the element Hessian
+ * already is.  Otherwise, if Kx is PSD, the shell part is replaced by the
+ * strain-space projection (kind PSD above, computed as the exact Hessian
+ * minus the difference: bending second derivatives, negative membrane
+ * stress and, where a section tangent is clamped, its clamped part), and
+ * else the eigenvalues of the sum are clamped
+ * (sb_psd_project).  *path (may be NULL) = 0, 1 or 2 for the three cases.
+ * work: sb_psd_work_size(3k) doubles. */
+double sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                            const double *q, double *grad, double *hess, const double *Kx, int kx_used,
+                            sb_shell_batch *w, double *work, int *path);
 
 /* Per-thread element scratch of a method: both kernels' work spaces,
  * control values qe (3 kmax), the other terms' matrix Kx ((3 kmax)^2), PSD

@@ -69,7 +69,13 @@ struct sb_shell_batch {
     double *Gt;   /* 5 nq x 3: local gradient de/dy per point */
     double *qd;   /* 3 x kp: control values by component */
     double *gd;   /* 3 x kp: gradient by component */
+    int keep;     /* sb_shell_element_psd's exact pass: keep what the PSD difference needs */
+    double *kd;   /* nq x KD: per point the PSD difference (see point()) */
 };
+/* per point: 5 blocks of 3 x 3 (0..44), h (45..47); where the section
+ * tangent is not positive definite also Jx (48..83), n (84..86) and the
+ * clamped-away part dD of D (87..122); the flag "positive definite" (127) */
+#define KD 128
 
 const char *const sb_kernel_names[] = { "fast", "reference", NULL };
 
@@ -99,7 +105,8 @@ sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax)
     w->Gt = alloc64(3 * r);
     w->qd = alloc64(3 * kp);
     w->gd = alloc64(3 * kp);
-    if (!w->Wt || !w->Wb || !w->Z || !w->Hc || !w->Gt || !w->qd || !w->gd) {
+    w->kd = alloc64((size_t)KD * nqmax);
+    if (!w->kd || !w->Wt || !w->Wb || !w->Z || !w->Hc || !w->Gt || !w->qd || !w->gd) {
         sb_shell_batch_free(w);
         return NULL;
     }
@@ -116,6 +123,7 @@ void sb_shell_batch_free(sb_shell_batch *w)
     free(w->Gt);
     free(w->qd);
     free(w->gd);
+    free(w->kd);
     free(w);
 }
 
@@ -159,7 +167,7 @@ static void jacobi_eig(int n, double *A, double *V)
             diag += A[i * n + i] * A[i * n + i];
             for (int j = i + 1; j < n; j++) off += A[i * n + j] * A[i * n + j];
         }
-        if (!(off > 1e-34 * diag)) break;   /* converged (also for NaN: give up) */
+        if (!(off > 1e-30 * diag)) break;   /* converged to ~1e-15 relative (also for NaN: give up) */
         for (int p = 0; p < n; p++)
             for (int q = p + 1; q < n; q++) {
                 const double apq = A[p * n + q];
@@ -187,24 +195,30 @@ static void jacobi_eig(int n, double *A, double *V)
     }
 }
 
-/* C (n x n symmetric, n <= 6) <- its positive semidefinite part.  A matrix
- * whose LDL^T pivots are all positive is positive definite and kept as it
- * is (every StVK section, denim where it is convex). */
-static void psd_part(int n, double *C)
+/* 1 when the LDL^T pivots of the symmetric n x n C (n <= 6) are all
+ * positive: C is positive definite */
+static int pos_def(int n, const double *C)
 {
     double L[36];
     memcpy(L, C, sizeof(double) * n * n);
-    int pd_ok = 1;
-    for (int j = 0; j < n && pd_ok; j++) {
+    for (int j = 0; j < n; j++) {
         const double piv = L[j * n + j];
-        if (!(piv > 0.0)) { pd_ok = 0; break; }
+        if (!(piv > 0.0)) return 0;
         for (int i = j + 1; i < n; i++) {
             const double l = L[i * n + j] / piv;
             for (int k = j + 1; k <= i; k++) L[i * n + k] -= l * L[k * n + j];
             L[i * n + j] = l;
         }
     }
-    if (pd_ok) return;
+    return 1;
+}
+
+/* C (n x n symmetric, n <= 6) <- its positive semidefinite part.  A matrix
+ * whose LDL^T pivots are all positive is positive definite and kept as it
+ * is (every StVK section, denim where it is convex). */
+static void psd_part(int n, double *C)
+{
+    if (pos_def(n, C)) return;
     double A[36], V[36];
     memcpy(A, C, sizeof(double) * n * n);
     jacobi_eig(n, A, V);
@@ -216,6 +230,83 @@ static void psd_part(int n, double *C)
                 if (lam > 0.0) s += V[i * n + l] * lam * V[j * n + l];
             }
             C[i * n + j] = s;
+        }
+}
+
+/* D = dA blockdiag(T, T)^T C6 blockdiag(T, T): the material-frame section
+ * tangent in covariant strain components (a congruence: PSD stays PSD) */
+static void congruence6(const double *C6, const double *T, double dA, double D[6][6])
+{
+    double CT[6][6];
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++) {
+            const int jb = j < 3 ? 0 : 3, jj = j - jb;
+            CT[i][j] = C6[6 * i + jb] * T[jj] + C6[6 * i + jb + 1] * T[3 + jj] + C6[6 * i + jb + 2] * T[6 + jj];
+        }
+    for (int i = 0; i < 6; i++)
+        for (int j = i; j < 6; j++) {
+            const int ib = i < 3 ? 0 : 3, ii = i - ib;
+            D[i][j] = D[j][i] = dA * (T[ii] * CT[ib][j] + T[3 + ii] * CT[ib + 1][j] + T[6 + ii] * CT[ib + 2][j]);
+        }
+}
+
+/* x-slot parts of J = d(A, B)/dy (rows A11 A22 A12 B0 B1 B2; slots x_,1
+ * x_,2); the v-slot part of bending row i is n/2 in slot bslot[i] */
+static void jacobian_x(const double *x1, const double *x2, double gv[3][3], double Jx[6][2][3])
+{
+    for (int d = 0; d < 3; d++) {
+        Jx[0][0][d] = x1[d];       Jx[0][1][d] = 0.0;
+        Jx[1][0][d] = 0.0;         Jx[1][1][d] = x2[d];
+        Jx[2][0][d] = 0.5 * x2[d]; Jx[2][1][d] = 0.5 * x1[d];
+    }
+    for (int i = 0; i < 3; i++) {
+        double t1[3], t2[3];
+        cross3(x2, gv[i], t1);
+        cross3(gv[i], x1, t2);
+        for (int d = 0; d < 3; d++) {
+            Jx[3 + i][0][d] = 0.5 * t1[d];
+            Jx[3 + i][1][d] = 0.5 * t2[d];
+        }
+    }
+}
+
+/* K = J^T D J in the local jet, the blocks on and above the block diagonal
+ * (slot s <= t), exploiting J's sparsity */
+static void jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15])
+{
+    /* DJx[r][s][d] = sum_r' D[r][r'] Jx[r'][s][d] */
+    double DJx[6][2][3];
+    for (int rr = 0; rr < 6; rr++)
+        for (int s = 0; s < 2; s++)
+            for (int d = 0; d < 3; d++) {
+                double acc = 0.0;
+                for (int q = 0; q < 6; q++) acc += D[rr][q] * Jx[q][s][d];
+                DJx[rr][s][d] = acc;
+            }
+    /* (x, x) blocks: sum_r Jx[r][s][c] DJx[r][t][d] */
+    for (int s = 0; s < 2; s++)
+        for (int tt = s; tt < 2; tt++)
+            for (int cc = 0; cc < 3; cc++)
+                for (int d = 0; d < 3; d++) {
+                    double acc = 0.0;
+                    for (int rr = 0; rr < 6; rr++) acc += Jx[rr][s][cc] * DJx[rr][tt][d];
+                    K[3 * s + cc][3 * tt + d] = acc;
+                }
+    /* (x, v_i) blocks: (sum_r Jx[r][s][c] D[r][3+i]) n_d / 2 */
+    for (int s = 0; s < 2; s++)
+        for (int i = 0; i < 3; i++)
+            for (int cc = 0; cc < 3; cc++) {
+                double u = 0.0;
+                for (int rr = 0; rr < 6; rr++) u += Jx[rr][s][cc] * D[rr][3 + i];
+                for (int d = 0; d < 3; d++) K[3 * s + cc][3 * bslot[i] + d] = 0.5 * u * n[d];
+            }
+    /* (v_i, v_j) blocks: D[3+i][3+j] n_c n_d / 4 */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const int si = bslot[i], sj = bslot[j];
+            if (sj < si) continue;
+            for (int cc = 0; cc < 3; cc++)
+                for (int d = 0; d < 3; d++) K[3 * si + cc][3 * sj + d] = 0.25 * D[3 + i][3 + j] * n[cc] * n[d];
         }
 }
 
@@ -301,78 +392,50 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
 
     /* 4c. K = J^T D J + membrane and bending second derivatives (15 x 15) */
     if (kind == SB_HESS_PSD) psd_part(6, C6);   /* section tangent in the material frame */
-    double D[6][6];
-    {
-        /* D = dA blockdiag(T, T)^T C6 blockdiag(T, T) (congruence: PSD stays PSD) */
-        double CT[6][6];
-        for (int i = 0; i < 6; i++)
-            for (int j = 0; j < 6; j++) {
-                const int jb = j < 3 ? 0 : 3, jj = j - jb;
-                CT[i][j] = C6[6 * i + jb] * T[jj] + C6[6 * i + jb + 1] * T[3 + jj] + C6[6 * i + jb + 2] * T[6 + jj];
-            }
-        for (int i = 0; i < 6; i++)
-            for (int j = i; j < 6; j++) {
-                const int ib = i < 3 ? 0 : 3, ii = i - ib;
-                D[i][j] = D[j][i] = dA * (T[ii] * CT[ib][j] + T[3 + ii] * CT[ib + 1][j] + T[6 + ii] * CT[ib + 2][j]);
-            }
-    }
-    /* x-slot parts of J (rows A11 A22 A12 B0 B1 B2; slots x_,1 x_,2); the
-     * v-slot part of bending row i is n/2 in slot bslot[i] */
-    double Jx[6][2][3];
-    for (int d = 0; d < 3; d++) {
-        Jx[0][0][d] = x1[d];       Jx[0][1][d] = 0.0;
-        Jx[1][0][d] = 0.0;         Jx[1][1][d] = x2[d];
-        Jx[2][0][d] = 0.5 * x2[d]; Jx[2][1][d] = 0.5 * x1[d];
-    }
-    for (int i = 0; i < 3; i++) {
-        double t1[3], t2[3];
-        cross3(x2, gv[i], t1);
-        cross3(gv[i], x1, t2);
-        for (int d = 0; d < 3; d++) {
-            Jx[3 + i][0][d] = 0.5 * t1[d];
-            Jx[3 + i][1][d] = 0.5 * t2[d];
+    double D[6][6], Jx[6][2][3], K[15][15];
+    congruence6(C6, T, dA, D);
+    jacobian_x(x1, x2, gv, Jx);
+    jtdj(Jx, n, D, K);
+    double *kd = w->keep ? w->kd + (size_t)KD * p : NULL;
+    if (kd) {   /* what the strain-space projection takes away from J^T D J */
+        kd[KD - 1] = pos_def(6, C6);
+        if (kd[KD - 1] == 0.0) {
+            double Cp[36], dC[36], dD[6][6];
+            memcpy(Cp, C6, sizeof Cp);
+            psd_part(6, Cp);
+            for (int i = 0; i < 36; i++) dC[i] = C6[i] - Cp[i];
+            congruence6(dC, T, dA, dD);
+            memcpy(kd + 48, Jx, sizeof Jx);
+            memcpy(kd + 84, n, 3 * sizeof *n);
+            memcpy(kd + 87, dD, sizeof dD);
         }
     }
-    double K[15][15];
-    /* DJx[r][s][d] = sum_r' D[r][r'] Jx[r'][s][d] */
-    double DJx[6][2][3];
-    for (int rr = 0; rr < 6; rr++)
-        for (int s = 0; s < 2; s++)
-            for (int d = 0; d < 3; d++) {
-                double acc = 0.0;
-                for (int q = 0; q < 6; q++) acc += D[rr][q] * Jx[q][s][d];
-                DJx[rr][s][d] = acc;
-            }
-    /* (x, x) blocks: sum_r Jx[r][s][c] DJx[r][t][d] */
-    for (int s = 0; s < 2; s++)
-        for (int tt = s; tt < 2; tt++)
-            for (int cc = 0; cc < 3; cc++)
-                for (int d = 0; d < 3; d++) {
-                    double acc = 0.0;
-                    for (int rr = 0; rr < 6; rr++) acc += Jx[rr][s][cc] * DJx[rr][tt][d];
-                    K[3 * s + cc][3 * tt + d] = acc;
-                }
-    /* (x, v_i) blocks: (sum_r Jx[r][s][c] D[r][3+i]) n_d / 2 */
-    for (int s = 0; s < 2; s++)
-        for (int i = 0; i < 3; i++)
-            for (int cc = 0; cc < 3; cc++) {
-                double u = 0.0;
-                for (int rr = 0; rr < 6; rr++) u += Jx[rr][s][cc] * D[rr][3 + i];
-                for (int d = 0; d < 3; d++) K[3 * s + cc][3 * bslot[i] + d] = 0.5 * u * n[d];
-            }
-    /* (v_i, v_j) blocks: D[3+i][3+j] n_c n_d / 4 */
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            const int si = bslot[i], sj = bslot[j];
-            if (sj < si) continue;
-            for (int cc = 0; cc < 3; cc++)
-                for (int d = 0; d < 3; d++) K[3 * si + cc][3 * sj + d] = 0.25 * D[3 + i][3 + j] * n[cc] * n[d];
-        }
     /* only the blocks on and above the block diagonal (slot s <= t) are
      * formed from here on; the Z product below reads the others by symmetry */
     /* membrane second derivatives (BHEM paper Eq. 51-53); kind PSD: the PSD
      * part of the 2 x 2 stress resultant S = [nA0, nA2/2; nA2/2, nA1] */
     double s00 = nA[0], s11 = nA[1], s01 = 0.5 * nA[2];
+    if (kd) {   /* the PSD difference: S - S+ on the diagonal blocks, below the bending terms */
+        double t00 = s00, t11 = s11, t01 = s01;
+        if (!(t00 >= 0.0 && t11 >= 0.0 && t00 * t11 - t01 * t01 >= 0.0)) {
+            const double mean = 0.5 * (t00 + t11), rad = sqrt(0.25 * (t00 - t11) * (t00 - t11) + t01 * t01);
+            const double lp = mean + rad, lm = mean - rad;
+            if (lp <= 0.0) {
+                t00 = t11 = t01 = 0.0;
+            } else {
+                const double f = lp / (lp - lm);
+                t00 = f * (t00 - lm);
+                t11 = f * (t11 - lm);
+                t01 = f * t01;
+            }
+        }
+        for (int i = 0; i < 27; i++) kd[i] = 0.0;
+        for (int d = 0; d < 3; d++) {
+            kd[4 * d] = s00 - t00;             /* B11 += (S - S+)_00 I */
+            kd[9 + 4 * d] = s01 - t01;         /* B12 */
+            kd[18 + 4 * d] = s11 - t11;        /* B22 */
+        }
+    }
     if (kind == SB_HESS_PSD && !(s00 >= 0.0 && s11 >= 0.0 && s00 * s11 - s01 * s01 >= 0.0)) {
         const double mean = 0.5 * (s00 + s11), rad = sqrt(0.25 * (s00 - s11) * (s00 - s11) + s01 * s01);
         const double lp = mean + rad, lm = mean - rad;
@@ -406,18 +469,31 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
         mul33(M1, X2, M2);
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) K[3 * S_X1 + a][3 * S_X1 + b] -= M2[3 * a + b];
+        if (kd)
+            for (int i = 0; i < 9; i++) kd[i] -= M2[i];
         mul33(M1, X1, M2);
         skew3(gV, S);
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) {
                 K[3 * S_X1 + a][3 * S_X2 + b] += M2[3 * a + b] - S[3 * a + b];
             }
+        if (kd)
+            for (int i = 0; i < 9; i++) kd[9 + i] += M2[i] - S[i];
         mul33(X1, Hc, M1);
         mul33(M1, X1, M2);
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++) K[3 * S_X2 + a][3 * S_X2 + b] -= M2[3 * a + b];
+        if (kd)
+            for (int i = 0; i < 9; i++) kd[18 + i] -= M2[i];
         mul33(X2, P, M1);
         mul33(X1, P, M2);
+        if (kd) {   /* (x1, mu) = X2 P/|c|, (x2, mu) = -X1 P/|c|, mu = sum_i nB_i/2 v_i */
+            for (int i = 0; i < 9; i++) {
+                kd[27 + i] = M1[i];
+                kd[36 + i] = -M2[i];
+            }
+            for (int i = 0; i < 3; i++) kd[45 + i] = 0.5 * nB[i];
+        }
         for (int i = 0; i < 3; i++) {
             const int sv = bslot[i];
             const double h = 0.5 * nB[i];
@@ -524,8 +600,36 @@ static void products(int R, int kp, sb_shell_batch *w)
 
 /* ---- the element ------------------------------------------------------------------ */
 
-double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
-                        const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
+/* H (3k x 3k) += sign * the element matrix of the products in w->Hc: entry
+ * (3I+c, 3J+d) is H^cd[I][J] for c < d, H^dc[J][I] for c > d and H^cc at
+ * (min, max) on the diagonal pairs, so the result is exactly symmetric */
+static void scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+{
+    const int n3 = 3 * k;
+    const double *H[3][3];
+    for (int pr = 0; pr < 6; pr++) H[pc[pr]][pd[pr]] = w->Hc + (size_t)pr * kp * kp;
+    for (int I = 0; I < k; I++) {
+        double *row0 = hess + (size_t)(3 * I) * n3;
+        for (int J = 0; J < k; J++) {
+            const size_t ij = (size_t)I * kp + J, ji = (size_t)J * kp + I, dg = I <= J ? ij : ji;
+            double *h = row0 + 3 * J;
+            h[0] += sign * H[0][0][dg];
+            h[1] += sign * H[0][1][ij];
+            h[2] += sign * H[0][2][ij];
+            h += n3;
+            h[0] += sign * H[0][1][ji];
+            h[1] += sign * H[1][1][dg];
+            h[2] += sign * H[1][2][ij];
+            h += n3;
+            h[0] += sign * H[0][2][ji];
+            h[1] += sign * H[1][2][ji];
+            h[2] += sign * H[2][2][dg];
+        }
+    }
+}
+
+static double element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
+                      double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
 {
     if (!m || !r || !b || !q || !w || nq < 1 || nq > w->nqmax || m->n_thick < 1 || m->n_thick > 8) return NAN;
     const int k = b[0].k;
@@ -578,32 +682,136 @@ double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, con
             for (int cc = 0; cc < 3; cc++) grad[3 * I + cc] += w->gd[(size_t)cc * kp + I];
     }
     if (!hess) return e;
-
     products(5 * nq, kp, w);
-    /* scatter into the 3k x 3k element matrix: entry (3I+c, 3J+d) is H^cd[I][J]
-     * for c < d, H^dc[J][I] for c > d and H^cc at (min, max) on the diagonal
-     * pairs, so the result is exactly symmetric */
-    const int n3 = 3 * k;
-    const double *H[3][3];
-    for (int pr = 0; pr < 6; pr++) H[pc[pr]][pd[pr]] = w->Hc + (size_t)pr * kp * kp;
-    for (int I = 0; I < k; I++) {
-        double *row0 = hess + (size_t)(3 * I) * n3;
-        for (int J = 0; J < k; J++) {
-            const size_t ij = (size_t)I * kp + J, ji = (size_t)J * kp + I, dg = I <= J ? ij : ji;
-            double *h = row0 + 3 * J;
-            h[0] += H[0][0][dg];
-            h[1] += H[0][1][ij];
-            h[2] += H[0][2][ij];
-            h += n3;
-            h[0] += H[0][1][ji];
-            h[1] += H[1][1][dg];
-            h[2] += H[1][2][ij];
-            h += n3;
-            h[0] += H[0][2][ji];
-            h[1] += H[1][2][ji];
-            h[2] += H[2][2][dg];
+    scatter(k, kp, w, hess, 1.0);
+    return e;
+}
+
+double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                        const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
+{
+    if (w) w->keep = 0;
+    return element(m, nq, r, b, q, grad, hess, kind, w);
+}
+
+/* The exact minus the strain-space Hessian of an element (what the exact
+ * pass kept in w->kd), hess -= it.  Per point the difference is the bending
+ * second derivatives plus S - S+ (membrane), which live in the 3-slot jet
+ * (x,1, x,2, mu = sum_i nB_i/2 x,ab_i) — the bending terms touch x,ab only
+ * through mu — plus, where the section tangent was clamped, J^T (D - D+) J
+ * in the full 5-slot jet.  The product's inner dimension is 3 per point
+ * (5 where clamped) instead of 5, and the section law is not evaluated
+ * again. */
+/* the Z rows of one point for ns = 3 or 5 slots (a constant once inlined) */
+static inline void zrows(int ns, double Kd[15][15], double *const *u, int kp, double *Z0, size_t zstride)
+{
+    for (int pr = 0; pr < 6; pr++) {
+        const int cc = pc[pr], d = pd[pr];
+#pragma GCC unroll 5
+        for (int s = 0; s < ns; s++) {
+            sb_vd kv[5];
+#pragma GCC unroll 5
+            for (int t = 0; t < ns; t++) kv[t] = sb_vbcast(s <= t ? Kd[3 * s + cc][3 * t + d] : Kd[3 * t + d][3 * s + cc]);
+            double *zs = Z0 + pr * zstride + (size_t)s * kp;
+            for (int J = 0; J < kp; J += SB_VL) {
+                sb_vd z = kv[0] * sb_vload(u[0] + J);
+#pragma GCC unroll 5
+                for (int t = 1; t < ns; t++) z += kv[t] * sb_vload(u[t] + J);
+                sb_vstore(zs + J, z);
+            }
         }
     }
+}
+
+static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, double *hess)
+{
+    const int k = b[0].k, kp = round_up(k, KPAD);
+    const size_t zstride = (size_t)5 * w->nqmax * kp;
+    int row = 0;
+    for (int p = 0; p < nq; p++) {
+        const double *kd = w->kd + (size_t)KD * p, *h = kd + 45;
+        const int pd_ok = kd[KD - 1] != 0.0, ns = pd_ok ? 3 : 5;
+        double *u[5];
+        for (int s = 0; s < ns; s++) u[s] = w->Wt + (size_t)(row + s) * kp;
+        if (pd_ok) {
+            for (int I = 0; I < kp; I++) {
+                u[0][I] = I < k ? b[p].N1[I] : 0.0;
+                u[1][I] = I < k ? b[p].N2[I] : 0.0;
+                /* bending component i = 0, 1, 2 is x,11, x,22, x,12 (sb_shell.c bslot) */
+                u[2][I] = I < k ? h[0] * b[p].N11[I] + h[1] * b[p].N22[I] + h[2] * b[p].N12[I] : 0.0;
+            }
+        } else {
+            const double *src[5] = { b[p].N1, b[p].N2, b[p].N11, b[p].N12, b[p].N22 };
+            for (int s = 0; s < 5; s++)
+                for (int I = 0; I < kp; I++) u[s][I] = I < k ? src[s][I] : 0.0;
+        }
+#if SB_VL == 2
+        for (int s = 0; s < ns; s++) {
+            double *rb = w->Wb + (size_t)2 * (row + s) * kp;
+            for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = u[s][I];
+        }
+#endif
+        /* the point's difference matrix, blocks on and above the block diagonal:
+         * 3-slot (s, t): (0,0) B11, (0,1) B12, (0,2) M1, (1,1) B22, (1,2) -M2, (2,2) 0 */
+        double Kd[15][15];
+        if (pd_ok) {
+            const double *blk[3][3] = { { kd, kd + 9, kd + 27 }, { NULL, kd + 18, kd + 36 }, { NULL, NULL, NULL } };
+            for (int s = 0; s < 3; s++)
+                for (int t = s; t < 3; t++)
+                    for (int a = 0; a < 3; a++)
+                        for (int c = 0; c < 3; c++) Kd[3 * s + a][3 * t + c] = blk[s][t] ? blk[s][t][3 * a + c] : 0.0;
+        } else {
+            double Jx[6][2][3], n[3], dD[6][6];
+            memcpy(Jx, kd + 48, sizeof Jx);
+            memcpy(n, kd + 84, sizeof n);
+            memcpy(dD, kd + 87, sizeof dD);
+            jtdj(Jx, n, dD, Kd);
+            for (int a = 0; a < 3; a++)
+                for (int c = 0; c < 3; c++) {
+                    Kd[3 * S_X1 + a][3 * S_X1 + c] += kd[3 * a + c];
+                    Kd[3 * S_X1 + a][3 * S_X2 + c] += kd[9 + 3 * a + c];
+                    Kd[3 * S_X2 + a][3 * S_X2 + c] += kd[18 + 3 * a + c];
+                    for (int i = 0; i < 3; i++) {
+                        Kd[3 * S_X1 + a][3 * bslot[i] + c] += h[i] * kd[27 + 3 * a + c];
+                        Kd[3 * S_X2 + a][3 * bslot[i] + c] += h[i] * kd[36 + 3 * a + c];
+                    }
+                }
+        }
+        if (pd_ok) zrows(3, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
+        else zrows(5, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
+        row += ns;
+    }
+    products(row, kp, w);
+    scatter(k, kp, w, hess, -1.0);
+}
+
+/* kind PSD with the fast kernel (issue 30; see sb_shell.h) */
+double sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                            const double *q, double *grad, double *hess, const double *Kx, int kx_used,
+                            sb_shell_batch *w, double *work, int *path)
+{
+    int pth = 0;
+    if (!w || !hess || !b || nq < 1 || nq > w->nqmax) {
+        if (path) *path = -1;
+        return NAN;
+    }
+    w->keep = 1;
+    const double e = element(m, nq, r, b, q, grad, hess, SB_HESS_EXACT, w);
+    w->keep = 0;
+    const int n = 3 * b[0].k;
+    if (kx_used)
+        for (size_t i = 0; i < (size_t)n * n; i++) hess[i] += Kx[i];
+    if (!isfinite(e) || sb_psd_check(n, hess, work)) {
+        pth = 0;   /* PSD already: kept exactly (or non-finite: reported by the energy) */
+    } else if (!kx_used || sb_psd_check(n, Kx, work)) {
+        /* the other terms are PSD: the shell part by the strain-space projection */
+        psd_difference(nq, b, w, hess);
+        pth = 1;
+    } else {
+        sb_psd_project(n, hess, work);   /* indefinite other terms: clamp the whole element */
+        pth = 2;
+    }
+    if (path) *path = pth;
     return e;
 }
 

@@ -61,13 +61,10 @@ static void bhem_compute(void *ctx, int thread, int e, sb_elem_out *o)
         if (a->p_follow != 0.0) E += sb_shell_external(&S->mat, &ref[q], &b, qe, gzero, a->p_follow, 1, ge, Kt);
     }
     if (L->n_mq) E += bhem_moment_element(S, L, e, qe, ge, Kt);
-    o->terms[nt++] = sb_shell_element(&S->mat, BHEM_NQP, ref, T->b, qe, ge, Ke, a->kind, T->batch);
+    o->terms[nt++] = psd ? sb_shell_element_psd(&S->mat, BHEM_NQP, ref, T->b, qe, ge, Ke, Kt,
+                                                a->p_follow != 0.0 || L->n_mq, T->batch, T->psd, NULL)
+                         : sb_shell_element(&S->mat, BHEM_NQP, ref, T->b, qe, ge, Ke, a->kind, T->batch);
     o->terms[nt++] = E;
-    if (psd) {
-        for (int i = 0; i < BHEM_NED * BHEM_NED; i++) Ke[i] += Kt[i];
-        sb_shell_element_psd(&S->mat, BHEM_NQP, ref, T->b, qe, Ke, Kt, a->p_follow != 0.0 || L->n_mq, T->batch,
-                             T->psd);
-    }
     o->n_terms = nt;
 }
 

@@ -81,12 +81,9 @@ static int terms_fast(cc_asm *a, sb_elem_scratch *T, int el, int k, double *ge, 
     }
     kx_used |= a->L->ept[el + 1] > a->L->ept[el];
     E += cc_points_energy(S, a->L, el, qe, ge, Kt);
-    terms[0] = sb_shell_element(&S->mat, Q->nq, r, T->b, qe, ge, Ke, a->hk, T->batch);
+    terms[0] = psd ? sb_shell_element_psd(&S->mat, Q->nq, r, T->b, qe, ge, Ke, Kt, kx_used, T->batch, T->psd, NULL)
+                   : sb_shell_element(&S->mat, Q->nq, r, T->b, qe, ge, Ke, a->hk, T->batch);
     terms[1] = E;
-    if (psd) {
-        for (size_t i = 0; i < (size_t)n * n; i++) Ke[i] += Kt[i];
-        sb_shell_element_psd(&S->mat, Q->nq, r, T->b, qe, Ke, Kt, kx_used, T->batch, T->psd);
-    }
     return 2;
 }
 
