@@ -40,46 +40,14 @@
  * (W (x) I3)^T (J^T D+ J + S+ (x) I3) (W (x) I3), a sum of congruences of
  * PSD matrices: the element Hessian is PSD by construction.  The methods
  * use it only for elements whose exact Hessian fails sb_psd_check(), so
- * that a PSD element Hessian is kept exactly (sb_psd.c). */
-#include "sb_shell.h"
-#include "sb_simd.h"
+ * that a PSD element Hessian is kept exactly (sb_shell_elem_psd.c). */
+#include "sb_shell_batch.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* register tile: MR rows x NV vectors of SB_VL columns (8 accumulators) */
-#if SB_VL <= 4
-#define MR 4
-#define NV 2
-#else
-#define MR 8
-#define NV 1
-#endif
-#define NR (NV * SB_VL)
-#define KPAD (MR > NR ? MR : NR)   /* both are powers of two: a multiple of each */
-#define SB_SHELL_MAX_QP 64
-
-struct sb_shell_batch {
-    int kmax, nqmax, kpmax;
-    double *Wt;   /* 5 nq x kp: basis derivative rows, zero padded */
-    double *Wb;   /* SB_VL == 2: Wt with every entry twice, the tiles' broadcast operand */
-    double *Z;    /* 6 x 5 nq x kp: K^cd W per point */
-    double *Hc;   /* 6 x kp x kp: H^cd */
-    double *Gt;   /* 5 nq x 3: local gradient de/dy per point */
-    double *qd;   /* 3 x kp: control values by component */
-    double *gd;   /* 3 x kp: gradient by component */
-    int keep;     /* sb_shell_element_psd's exact pass: keep what the PSD difference needs */
-    double *kd;   /* nq x KD: per point the PSD difference (see point()) */
-};
-/* per point: 5 blocks of 3 x 3 (0..44), h (45..47); where the section
- * tangent is not positive definite also Jx (48..83), n (84..86) and the
- * clamped-away part dD of D (87..122); the flag "positive definite" (127) */
-#define KD 128
-
 const char *const sb_kernel_names[] = { "fast", "reference", NULL };
-
-static int round_up(int k, int m) { return (k + m - 1) / m * m; }
 
 static void *alloc64(size_t ndouble)
 {
@@ -96,7 +64,7 @@ sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax)
     if (!w) return NULL;
     w->kmax = kmax;
     w->nqmax = nqmax;
-    w->kpmax = round_up(kmax, KPAD);
+    w->kpmax = sb_elem_round_up(kmax, KPAD);
     const size_t kp = (size_t)w->kpmax, r = 5 * (size_t)nqmax;
     w->Wt = alloc64(r * kp);
     w->Wb = alloc64(2 * r * kp);
@@ -127,115 +95,9 @@ void sb_shell_batch_free(sb_shell_batch *w)
     free(w);
 }
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-static inline void skew3(const double *v, double S[9])
-{
-    S[0] = 0;     S[1] = -v[2]; S[2] = v[1];
-    S[3] = v[2];  S[4] = 0;     S[5] = -v[0];
-    S[6] = -v[1]; S[7] = v[0];  S[8] = 0;
-}
-static inline void mul33(const double *A, const double *B, double *C)
-{
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-            C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
-}
-
-/* slots of the local jet and the bending component -> slot map (sb_shell.c) */
-enum { S_X1 = 0, S_X2 = 1, S_X11 = 2, S_X12 = 3, S_X22 = 4 };
-static const int bslot[3] = { S_X11, S_X22, S_X12 };
-/* the 6 component pairs c <= d: diagonal ones first */
-static const int pc[6] = { 0, 1, 2, 0, 0, 1 }, pd[6] = { 0, 1, 2, 1, 2, 2 };
-
-/* ---- section tangent and membrane stress projections (kind PSD) ---------- */
-
-/* Eigenvalues of the symmetric n x n A (row-major, n <= 6) by cyclic Jacobi
- * rotations; V (n x n, row-major) gets the eigenvectors as columns. */
-static void jacobi_eig(int n, double *A, double *V)
-{
-    for (int i = 0; i < n * n; i++) V[i] = 0.0;
-    for (int i = 0; i < n; i++) V[i * n + i] = 1.0;
-    for (int sweep = 0; sweep < 50; sweep++) {
-        double off = 0.0, diag = 0.0;
-        for (int i = 0; i < n; i++) {
-            diag += A[i * n + i] * A[i * n + i];
-            for (int j = i + 1; j < n; j++) off += A[i * n + j] * A[i * n + j];
-        }
-        if (!(off > 1e-30 * diag)) break;   /* converged to ~1e-15 relative (also for NaN: give up) */
-        for (int p = 0; p < n; p++)
-            for (int q = p + 1; q < n; q++) {
-                const double apq = A[p * n + q];
-                if (apq == 0.0) continue;
-                /* Golub & Van Loan, Algorithm 8.4.1 (symmetric Schur 2 x 2) */
-                const double tau = (A[q * n + q] - A[p * n + p]) / (2.0 * apq);
-                const double t = (tau >= 0 ? 1.0 : -1.0) / (fabs(tau) + sqrt(1.0 + tau * tau));
-                const double c = 1.0 / sqrt(1.0 + t * t), s = t * c;
-                for (int k = 0; k < n; k++) {   /* A <- A J (columns p, q) */
-                    const double akp = A[k * n + p], akq = A[k * n + q];
-                    A[k * n + p] = c * akp - s * akq;
-                    A[k * n + q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < n; k++) {   /* A <- J^T A (rows p, q) */
-                    const double apk = A[p * n + k], aqk = A[q * n + k];
-                    A[p * n + k] = c * apk - s * aqk;
-                    A[q * n + k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < n; k++) {
-                    const double vkp = V[k * n + p], vkq = V[k * n + q];
-                    V[k * n + p] = c * vkp - s * vkq;
-                    V[k * n + q] = s * vkp + c * vkq;
-                }
-            }
-    }
-}
-
-/* 1 when the LDL^T pivots of the symmetric n x n C (n <= 6) are all
- * positive: C is positive definite */
-static int pos_def(int n, const double *C)
-{
-    double L[36];
-    memcpy(L, C, sizeof(double) * n * n);
-    for (int j = 0; j < n; j++) {
-        const double piv = L[j * n + j];
-        if (!(piv > 0.0)) return 0;
-        for (int i = j + 1; i < n; i++) {
-            const double l = L[i * n + j] / piv;
-            for (int k = j + 1; k <= i; k++) L[i * n + k] -= l * L[k * n + j];
-            L[i * n + j] = l;
-        }
-    }
-    return 1;
-}
-
-/* C (n x n symmetric, n <= 6) <- its positive semidefinite part.  A matrix
- * whose LDL^T pivots are all positive is positive definite and kept as it
- * is (every StVK section, denim where it is convex). */
-static void psd_part(int n, double *C)
-{
-    if (pos_def(n, C)) return;
-    double A[36], V[36];
-    memcpy(A, C, sizeof(double) * n * n);
-    jacobi_eig(n, A, V);
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++) {
-            double s = 0.0;
-            for (int l = 0; l < n; l++) {
-                const double lam = A[l * n + l];
-                if (lam > 0.0) s += V[i * n + l] * lam * V[j * n + l];
-            }
-            C[i * n + j] = s;
-        }
-}
-
 /* D = dA blockdiag(T, T)^T C6 blockdiag(T, T): the material-frame section
  * tangent in covariant strain components (a congruence: PSD stays PSD) */
-static void congruence6(const double *C6, const double *T, double dA, double D[6][6])
+void sb_elem_congruence6(const double *C6, const double *T, double dA, double D[6][6])
 {
     double CT[6][6];
     for (int i = 0; i < 6; i++)
@@ -272,7 +134,7 @@ static void jacobian_x(const double *x1, const double *x2, double gv[3][3], doub
 
 /* K = J^T D J in the local jet, the blocks on and above the block diagonal
  * (slot s <= t), exploiting J's sparsity */
-static void jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15])
+void sb_elem_jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15])
 {
     /* DJx[r][s][d] = sum_r' D[r][r'] Jx[r'][s][d] */
     double DJx[6][2][3];
@@ -391,20 +253,20 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
     if (!need_h) return e;
 
     /* 4c. K = J^T D J + membrane and bending second derivatives (15 x 15) */
-    if (kind == SB_HESS_PSD) psd_part(6, C6);   /* section tangent in the material frame */
+    if (kind == SB_HESS_PSD) sb_elem_psd_part(6, C6);   /* section tangent in the material frame */
     double D[6][6], Jx[6][2][3], K[15][15];
-    congruence6(C6, T, dA, D);
+    sb_elem_congruence6(C6, T, dA, D);
     jacobian_x(x1, x2, gv, Jx);
-    jtdj(Jx, n, D, K);
+    sb_elem_jtdj(Jx, n, D, K);
     double *kd = w->keep ? w->kd + (size_t)KD * p : NULL;
     if (kd) {   /* what the strain-space projection takes away from J^T D J */
-        kd[KD - 1] = pos_def(6, C6);
+        kd[KD - 1] = sb_elem_pos_def(6, C6);
         if (kd[KD - 1] == 0.0) {
             double Cp[36], dC[36], dD[6][6];
             memcpy(Cp, C6, sizeof Cp);
-            psd_part(6, Cp);
+            sb_elem_psd_part(6, Cp);
             for (int i = 0; i < 36; i++) dC[i] = C6[i] - Cp[i];
-            congruence6(dC, T, dA, dD);
+            sb_elem_congruence6(dC, T, dA, dD);
             memcpy(kd + 48, Jx, sizeof Jx);
             memcpy(kd + 84, n, 3 * sizeof *n);
             memcpy(kd + 87, dD, sizeof dD);
@@ -586,7 +448,7 @@ static inline void tile(int R, int kp, const double *A, const double *Ab, const 
         for (int v = 0; v < NV; v++) sb_vstore(C + (size_t)(I0 + i) * kp + J0 + v * SB_VL, acc[i][v]);
 }
 
-static void products(int R, int kp, sb_shell_batch *w)
+void sb_elem_products(int R, int kp, sb_shell_batch *w)
 {
     const size_t zstride = (size_t)5 * w->nqmax * kp;
     for (int pr = 0; pr < 6; pr++) {
@@ -603,7 +465,7 @@ static void products(int R, int kp, sb_shell_batch *w)
 /* H (3k x 3k) += sign * the element matrix of the products in w->Hc: entry
  * (3I+c, 3J+d) is H^cd[I][J] for c < d, H^dc[J][I] for c > d and H^cc at
  * (min, max) on the diagonal pairs, so the result is exactly symmetric */
-static void scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
 {
     const int n3 = 3 * k;
     const double *H[3][3];
@@ -628,7 +490,7 @@ static void scatter(int k, int kp, const sb_shell_batch *w, double *hess, double
     }
 }
 
-static double element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
+double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
                       double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
 {
     if (!m || !r || !b || !q || !w || nq < 1 || nq > w->nqmax || m->n_thick < 1 || m->n_thick > 8) return NAN;
@@ -636,7 +498,7 @@ static double element(const sb_material *m, int nq, const sb_shell_ref *r, const
     if (k < 1 || k > w->kmax) return NAN;
     for (int p = 0; p < nq; p++)
         if (b[p].k != k || !b[p].N1 || !b[p].N2 || !b[p].N11 || !b[p].N12 || !b[p].N22) return NAN;
-    const int kp = round_up(k, KPAD), need_g = grad || hess, need_h = hess != NULL;
+    const int kp = sb_elem_round_up(k, KPAD), need_g = grad || hess, need_h = hess != NULL;
 
     /* control values by component, zero padded */
     for (int cc = 0; cc < 3; cc++) {
@@ -682,8 +544,8 @@ static double element(const sb_material *m, int nq, const sb_shell_ref *r, const
             for (int cc = 0; cc < 3; cc++) grad[3 * I + cc] += w->gd[(size_t)cc * kp + I];
     }
     if (!hess) return e;
-    products(5 * nq, kp, w);
-    scatter(k, kp, w, hess, 1.0);
+    sb_elem_products(5 * nq, kp, w);
+    sb_elem_scatter(k, kp, w, hess, 1.0);
     return e;
 }
 
@@ -691,7 +553,7 @@ double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, con
                         const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
 {
     if (w) w->keep = 0;
-    return element(m, nq, r, b, q, grad, hess, kind, w);
+    return sb_elem_element(m, nq, r, b, q, grad, hess, kind, w);
 }
 
 /* The exact minus the strain-space Hessian of an element (what the exact
@@ -702,119 +564,6 @@ double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, con
  * in the full 5-slot jet.  The product's inner dimension is 3 per point
  * (5 where clamped) instead of 5, and the section law is not evaluated
  * again. */
-/* the Z rows of one point for ns = 3 or 5 slots (a constant once inlined) */
-static inline void zrows(int ns, double Kd[15][15], double *const *u, int kp, double *Z0, size_t zstride)
-{
-    for (int pr = 0; pr < 6; pr++) {
-        const int cc = pc[pr], d = pd[pr];
-#pragma GCC unroll 5
-        for (int s = 0; s < ns; s++) {
-            sb_vd kv[5];
-#pragma GCC unroll 5
-            for (int t = 0; t < ns; t++) kv[t] = sb_vbcast(s <= t ? Kd[3 * s + cc][3 * t + d] : Kd[3 * t + d][3 * s + cc]);
-            double *zs = Z0 + pr * zstride + (size_t)s * kp;
-            for (int J = 0; J < kp; J += SB_VL) {
-                sb_vd z = kv[0] * sb_vload(u[0] + J);
-#pragma GCC unroll 5
-                for (int t = 1; t < ns; t++) z += kv[t] * sb_vload(u[t] + J);
-                sb_vstore(zs + J, z);
-            }
-        }
-    }
-}
-
-static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, double *hess)
-{
-    const int k = b[0].k, kp = round_up(k, KPAD);
-    const size_t zstride = (size_t)5 * w->nqmax * kp;
-    int row = 0;
-    for (int p = 0; p < nq; p++) {
-        const double *kd = w->kd + (size_t)KD * p, *h = kd + 45;
-        const int pd_ok = kd[KD - 1] != 0.0, ns = pd_ok ? 3 : 5;
-        double *u[5];
-        for (int s = 0; s < ns; s++) u[s] = w->Wt + (size_t)(row + s) * kp;
-        if (pd_ok) {
-            for (int I = 0; I < kp; I++) {
-                u[0][I] = I < k ? b[p].N1[I] : 0.0;
-                u[1][I] = I < k ? b[p].N2[I] : 0.0;
-                /* bending component i = 0, 1, 2 is x,11, x,22, x,12 (sb_shell.c bslot) */
-                u[2][I] = I < k ? h[0] * b[p].N11[I] + h[1] * b[p].N22[I] + h[2] * b[p].N12[I] : 0.0;
-            }
-        } else {
-            const double *src[5] = { b[p].N1, b[p].N2, b[p].N11, b[p].N12, b[p].N22 };
-            for (int s = 0; s < 5; s++)
-                for (int I = 0; I < kp; I++) u[s][I] = I < k ? src[s][I] : 0.0;
-        }
-#if SB_VL == 2
-        for (int s = 0; s < ns; s++) {
-            double *rb = w->Wb + (size_t)2 * (row + s) * kp;
-            for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = u[s][I];
-        }
-#endif
-        /* the point's difference matrix, blocks on and above the block diagonal:
-         * 3-slot (s, t): (0,0) B11, (0,1) B12, (0,2) M1, (1,1) B22, (1,2) -M2, (2,2) 0 */
-        double Kd[15][15];
-        if (pd_ok) {
-            const double *blk[3][3] = { { kd, kd + 9, kd + 27 }, { NULL, kd + 18, kd + 36 }, { NULL, NULL, NULL } };
-            for (int s = 0; s < 3; s++)
-                for (int t = s; t < 3; t++)
-                    for (int a = 0; a < 3; a++)
-                        for (int c = 0; c < 3; c++) Kd[3 * s + a][3 * t + c] = blk[s][t] ? blk[s][t][3 * a + c] : 0.0;
-        } else {
-            double Jx[6][2][3], n[3], dD[6][6];
-            memcpy(Jx, kd + 48, sizeof Jx);
-            memcpy(n, kd + 84, sizeof n);
-            memcpy(dD, kd + 87, sizeof dD);
-            jtdj(Jx, n, dD, Kd);
-            for (int a = 0; a < 3; a++)
-                for (int c = 0; c < 3; c++) {
-                    Kd[3 * S_X1 + a][3 * S_X1 + c] += kd[3 * a + c];
-                    Kd[3 * S_X1 + a][3 * S_X2 + c] += kd[9 + 3 * a + c];
-                    Kd[3 * S_X2 + a][3 * S_X2 + c] += kd[18 + 3 * a + c];
-                    for (int i = 0; i < 3; i++) {
-                        Kd[3 * S_X1 + a][3 * bslot[i] + c] += h[i] * kd[27 + 3 * a + c];
-                        Kd[3 * S_X2 + a][3 * bslot[i] + c] += h[i] * kd[36 + 3 * a + c];
-                    }
-                }
-        }
-        if (pd_ok) zrows(3, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
-        else zrows(5, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
-        row += ns;
-    }
-    products(row, kp, w);
-    scatter(k, kp, w, hess, -1.0);
-}
-
-/* kind PSD with the fast kernel (issue 30; see sb_shell.h) */
-double sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
-                            const double *q, double *grad, double *hess, const double *Kx, int kx_used,
-                            sb_shell_batch *w, double *work, int *path)
-{
-    int pth = 0;
-    if (!w || !hess || !b || nq < 1 || nq > w->nqmax) {
-        if (path) *path = -1;
-        return NAN;
-    }
-    w->keep = 1;
-    const double e = element(m, nq, r, b, q, grad, hess, SB_HESS_EXACT, w);
-    w->keep = 0;
-    const int n = 3 * b[0].k;
-    if (kx_used)
-        for (size_t i = 0; i < (size_t)n * n; i++) hess[i] += Kx[i];
-    if (!isfinite(e) || sb_psd_check(n, hess, work)) {
-        pth = 0;   /* PSD already: kept exactly (or non-finite: reported by the energy) */
-    } else if (!kx_used || sb_psd_check(n, Kx, work)) {
-        /* the other terms are PSD: the shell part by the strain-space projection */
-        psd_difference(nq, b, w, hess);
-        pth = 1;
-    } else {
-        sb_psd_project(n, hess, work);   /* indefinite other terms: clamp the whole element */
-        pth = 2;
-    }
-    if (path) *path = pth;
-    return e;
-}
-
 /* ---- per-thread scratch of a method ------------------------------------------------ */
 
 int sb_elem_scratch_init(sb_elem_scratch *s, int kmax, int nqmax)
