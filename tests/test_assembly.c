@@ -12,6 +12,7 @@
 #include "sb_method.h"
 #include "sb_solver.h"
 #include "sb_sparse.h"
+#include "sb_assemble.h"
 #include "../methods/rmtr/cc_method.h"
 #include "../methods/bhem/bhem.h"
 
@@ -250,7 +251,7 @@ SB_TEST(reference_kernel_is_the_old_arithmetic)
         snprintf(hess, sizeof hess, "method.hessian=%s", s->hess);
         fgh first;
         memset(&first, 0, sizeof first);
-        for (int threads = 1; threads <= 3; threads++) {
+        for (int threads = 1; threads <= (sb_assemble_have_threads() ? 3 : 1); threads++) {
             char th[32];
             snprintf(th, sizeof th, "run.threads=%d", threads);
             const char *sets[] = { "method.kernel=reference", hess, th, NULL };
@@ -300,7 +301,7 @@ SB_TEST(fast_kernel_threads_and_agreement)
         fgh first;
         memset(&first, 0, sizeof first);
         asm_case c0;
-        for (int threads = 1; threads <= 3; threads++) {
+        for (int threads = 1; threads <= (sb_assemble_have_threads() ? 3 : 1); threads++) {
             char th[32];
             snprintf(th, sizeof th, "run.threads=%d", threads);
             const char *sets[] = { "method.kernel=fast", hess, th, NULL };
@@ -362,7 +363,7 @@ SB_TEST(runs_identical_for_any_thread_count)
         sb_record_summary first;
         sb_record_setup xfirst;
         char msg[1024];
-        for (int threads = 1; threads <= 3; threads++) {
+        for (int threads = 1; threads <= (sb_assemble_have_threads() ? 3 : 1); threads++) {
             char scene[1024], th[32], out[1100];
             snprintf(scene, sizeof scene, "%s/tests/scenes/%s", sb_test_root(), runs[k][0]);
             snprintf(th, sizeof th, "run.threads=%d", threads);
@@ -418,10 +419,25 @@ SB_TEST(runs_identical_for_any_thread_count)
     rmdir(dir);
 }
 
+/* a build without OpenMP refuses run.threads > 1 before any work; any build
+ * refuses an out-of-range count */
+SB_TEST(threads_refused_when_unavailable)
+{
+    const char *sets2[] = { "run.threads=2", NULL };
+    asm_case c;
+    const int rc = case_open(&c, "bench/scenes/plate_clamped.json", "rmtr", 4, 1e-3, sets2);
+    CHECK_EQ_INT(rc == 0, sb_assemble_have_threads());
+    case_close(&c);
+    const char *sets0[] = { "run.threads=0", NULL };
+    CHECK(case_open(&c, "bench/scenes/plate_clamped.json", "rmtr", 4, 1e-3, sets0) != 0);
+    case_close(&c);
+}
+
 static const sb_test_case cases[] = {
     SB_CASE(reference_kernel_is_the_old_arithmetic),
     SB_CASE(fast_kernel_threads_and_agreement),
     SB_CASE(runs_identical_for_any_thread_count),
+    SB_CASE(threads_refused_when_unavailable),
     SB_END
 };
 
