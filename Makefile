@@ -4,9 +4,20 @@
 
 CC      ?= cc
 CXX     ?= c++
+# `make NATIVE=1`: -O3 -march=native (with FMA contraction) in its own build
+# directory, recorded in every record's build_id as "+native"; the default
+# build is the portable x86-64 baseline whose round-off is the same on every
+# machine (docs/performance.md, docs/reproducibility.md)
+ifeq ($(NATIVE),1)
+BUILD   ?= build-native
+OPT     ?= -O3 -march=native -ffp-contract=fast
+else
 BUILD   ?= build
 OPT     ?= -O2
+endif
 SAN     ?=
+# element assembly on run.threads threads (OpenMP); `make OPENMP=` builds without
+OPENMP  ?= -fopenmp
 PKGS    := hdf5-serial jansson gsl
 PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
@@ -16,11 +27,11 @@ CFLAGS  ?= $(OPT) -g
 CORE_DIRS := base scene mesh problem linalg shell solvers record report render cli
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
-           $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) -MMD -MP
+           $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) $(OPENMP) -MMD -MP
 CXXFLAGS ?= $(OPT) -g
 CXXFLAGS += -std=c++14 -Wall -Wextra $(CORE_INC) $(SAN) -MMD -MP
 LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -lstdc++ -lz -lm
-LDFLAGS += $(SAN)
+LDFLAGS += $(SAN) $(OPENMP)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
@@ -59,7 +70,7 @@ $(BUILD)/%.o: %.cpp | $(DEPS_STAMP)
 	$(CXX) $(CXXFLAGS) -c $< -o $@
 
 # build id (git describe) for the records; the header changes only when the id does
-BUILD_ID := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+BUILD_ID := $(shell git describe --always --dirty 2>/dev/null || echo unknown)$(if $(filter 1,$(NATIVE)),+native(-O3 -march=native))
 $(BUILD)/build_id.h: FORCE | $(DEPS_STAMP)
 	@mkdir -p $(BUILD)
 	@echo '#define SB_BUILD_ID "$(BUILD_ID)"' > $@.new

@@ -126,6 +126,11 @@ typedef struct bhem_state {
     double qe[BHEM_NED], ge[BHEM_NED];
     double *Ke;               /* 48*48 */
     double *psd_work;
+    /* assembly (issue 30): method.kernel, run.threads, per-thread scratch */
+    sb_kernel_kind kernel;
+    int threads;
+    sb_elem_scratch *tw;
+    struct sb_assembler *assembler;
 } bhem_state;
 
 /* error helper: stores the message in the context (if any) and returns status */

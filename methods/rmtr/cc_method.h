@@ -86,6 +86,11 @@ typedef struct cc_state {
     /* element workspace (allocated once) */
     sb_shell_work *work;
     double *Ke, *ge, *qe, *psd;
+    /* assembly (issue 30): method.kernel, run.threads, per-thread scratch */
+    sb_kernel_kind kernel;
+    int threads;
+    sb_elem_scratch *tw;
+    struct sb_assembler *assembler;
 } cc_state;
 
 extern const sb_param_def cc_params[];
