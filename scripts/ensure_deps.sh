@@ -10,6 +10,7 @@ have_hdr /usr/include/hdf5/serial/hdf5.h          || need+=(libhdf5-dev)
 command -v h5dump >/dev/null 2>&1                 || need+=(hdf5-tools)
 have_hdr /usr/include/gsl/gsl_math.h              || need+=(libgsl-dev)
 have_hdr /usr/include/jansson.h                   || need+=(libjansson-dev)
+have_hdr /usr/include/zlib.h                      || need+=(zlib1g-dev)      # PNG output of shellbench render
 have_hdr /usr/include/opensubdiv/version.h        || need+=(libosd-dev)
 command -v gnuplot >/dev/null 2>&1                || need+=(gnuplot-nox)
 command -v pkg-config >/dev/null 2>&1             || need+=(pkg-config)

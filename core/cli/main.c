@@ -9,6 +9,7 @@
  *   shellbench report [--format md|csv] [--plot FILE] FILE.h5...
  *   shellbench inspect [--format md|csv] FILE.h5...
  *   shellbench help [COMMAND] | --version
+ *   shellbench render FILE.h5 [options]   (core/render/sb_render_cli.c, docs/render.md)
  * Exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input
  * error, 3 internal error, 4 stopped by --stop-after-steps, 5 converged but
  * validation failed (--strict). */
@@ -16,6 +17,7 @@
 #include "sb_inspect.h"
 #include "sb_output.h"
 #include "sb_record.h"
+#include "sb_render.h"
 #include "sb_scene.h"
 
 #include <stdlib.h>
@@ -163,7 +165,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) return sb_cli_help(n > 0 ? rest[0] : NULL, stdout);
     static const struct { const char *name; int (*fn)(int, char **); } cmds[] = {
         { "list", sb_cli_list }, { "check", cmd_check }, { "run", cmd_run }, { "sweep", sb_cli_sweep },
-        { "report", cmd_report }, { "inspect", cmd_inspect },
+        { "report", cmd_report }, { "inspect", cmd_inspect }, { "render", sb_render_main },
     };
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++)
         if (!strcmp(cmd, cmds[i].name)) {

@@ -2,6 +2,7 @@
  * (sb_cli.h).  The full reference is docs/cli.md. */
 #include "sb_cli.h"
 #include "sb_record.h"
+#include "sb_render.h"
 #include "sb_sysinfo.h"
 
 #include <string.h>
@@ -14,6 +15,7 @@ static const char overview[] =
     "  sweep --scenes A,B --methods M,N --solvers V,W [...]   many runs, validated up front\n"
     "  report [--format md|csv] [--plot FILE] FILE.h5...     tables (and a plot) from records\n"
     "  inspect [--format md|csv] FILE.h5...          material state of recorded states\n"
+    "  render FILE.h5 [--out FILE.png] [...]         a ray-traced picture of a record (docs/render.md)\n"
     "  help [COMMAND], --version\n"
     "exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error,\n"
     "            3 internal error, 4 stopped by --stop-after-steps (resumable),\n"
@@ -108,6 +110,11 @@ int sb_cli_help(const char *cmd, FILE *f)
             fputs(topics[i].text, f);
             return 0;
         }
+    if (!strcmp(cmd, "render")) {   /* render's options live beside it (core/render/sb_render_cli.c) */
+        char opt[] = "--help";
+        char *argv[] = { opt, NULL };
+        return sb_render_main(1, argv);
+    }
     if (!strcmp(cmd, "help") || !strcmp(cmd, "version")) {
         fputs(overview, f);
         return 0;

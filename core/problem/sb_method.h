@@ -20,6 +20,7 @@
 
 struct sb_context;
 struct sb_csr;
+struct sb_surface;
 
 enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
@@ -133,6 +134,14 @@ typedef struct sb_method_type {
 
     /* optional: one line describing the discretization ("8x8 Hermite patches") */
     void (*describe)(const void *state, char *buf, size_t len);
+
+    /* optional: the surface of x on `level` for rendering (sb_surface.h):
+     * the discretization's exact primitives (bicubic Bézier patches or
+     * triangles) with the reference configuration in the same
+     * parametrization; out starts zeroed, the caller frees it with
+     * sb_surface_free().  NULL: `shellbench render` triangulates eval_points
+     * on a grid instead (docs/render.md). */
+    int  (*surface)(void *state, int level, const double *x, struct sb_surface *out);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

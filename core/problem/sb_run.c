@@ -38,6 +38,7 @@ static void run_cleanup(run_state *R)
     free(R->rec.probe_traj); free(R->rec.probe_expected); free(R->rec.probe_rel_error);
     free(R->rec.sample_st); free(R->rec.sample_ref); free(R->rec.sample_pos); free(R->rec.tris);
     free(R->rec.checks);
+    free(R->rec.sample_traj);
     free(R->probe_names);
     if (R->scene_loaded) sb_scene_free(&R->scene);
     sb_context_free(&R->ctx);
@@ -183,6 +184,11 @@ static int prepare_run(run_state *R, int levels)
     R->probe_names = calloc(np, sizeof *R->probe_names);
     if (!R->x || !R->xn || !R->v || !R->xref || !R->bp.x || !R->bp.v || !R->rec.probe_traj || !R->rec.probe_expected ||
         !R->rec.probe_rel_error || !R->probe_names || sb_run_build_samples(R))
+        goto nomem;
+    /* the sample grid of every step (the record's time series), unless it
+     * would exceed 2^22 points (about 100 MB) */
+    if (R->mt->eval_points && ((size_t)sc->time.steps + 1) * (size_t)R->rec.n_samples <= ((size_t)1 << 22) &&
+        !(R->rec.sample_traj = malloc(((size_t)sc->time.steps + 1) * ((size_t)R->rec.n_samples ? (size_t)R->rec.n_samples : 1) * 3 * sizeof(double))))
         goto nomem;
     R->mt->initial(R->ms, F, R->x);
     sb_copy(n, R->x, R->xref);

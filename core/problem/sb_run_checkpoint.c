@@ -23,6 +23,7 @@ void sb_run_remove_partial(run_state *R)
     if (!R->partial_path[0]) return;
     unlink(R->partial_path);
     if (sb_record_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
+    if (sb_record_steps_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
 }
 
 /* Write the record so far (steps done, the iteration history including the
@@ -117,6 +118,13 @@ int sb_run_resume(run_state *R, int quiet)
     }
     sb_copy(rp.n_x, rp.x, R->x);
     sb_copy(rp.n_x, rp.v, R->v);
+    /* the time series so far; a checkpoint without it (older build) gives a
+     * record without one */
+    if (rec->sample_traj && sb_record_read_sample_traj(R->partial_path, rp.step, rec->n_samples, rec->sample_traj,
+                                                       msg, sizeof msg)) {
+        free(rec->sample_traj);
+        rec->sample_traj = NULL;
+    }
     rec->steps_done = rp.step;
     rec->reason = rp.step > 0 ? rp.stats.steps[rp.step - 1].reason : SB_REASON_NONE;
     char item[32];

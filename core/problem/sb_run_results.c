@@ -77,10 +77,17 @@ double sb_run_probe_rel_error(const sb_probe *p, const double u[3])
 int sb_run_record_probes(run_state *R, int step_slot)
 {
     const sb_scene *sc = &R->scene;
-    if (!sc->n_probes || !R->mt->eval_points) return SB_OK;
+    if (!R->mt->eval_points) return SB_OK;
+    int F = sb_problem_finest(R->prob);
+    /* the sample grid of this step: the record's time series (sb_record_steps.c) */
+    sb_run *rec = &R->rec;
+    if (rec->sample_traj && rec->n_samples > 0 &&
+        R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st,
+                           rec->sample_traj + (size_t)step_slot * rec->n_samples * 3))
+        return SB_ERR_INTERNAL;
+    if (!sc->n_probes) return SB_OK;
     double st[2 * SB_SCENE_MAX_PROBES];
     for (int p = 0; p < sc->n_probes; p++) { st[2 * p] = sc->probes[p].st[0]; st[2 * p + 1] = sc->probes[p].st[1]; }
-    int F = sb_problem_finest(R->prob);
     return R->mt->eval_points(R->ms, F, R->x, sc->n_probes, st, R->rec.probe_traj + (size_t)step_slot * sc->n_probes * 3);
 }
 

@@ -92,6 +92,10 @@ typedef struct sb_run {
     /* surface for output: triangles over the sample grid */
     int n_tris;
     int *tris;                 /* 3 * n_tris, indices into samples */
+    /* the sample grid at every step (time series): row k = positions after
+     * step k (row 0 = reference), rows 0..steps_done filled; NULL = not kept
+     * (written as /steps/sample_pos/NNNNNN, played by the XDMF sidecar) */
+    double *sample_traj;       /* (steps_planned + 1) * n_samples * 3 */
     /* where the final state strains the material (methods with material_state) */
     int has_material;
     sb_material_state material;
@@ -150,8 +154,14 @@ void sb_run_init(sb_run *run);
  * Returns SB_OK or SB_ERR_INPUT when buf is too small. */
 int sb_record_xdmf_path(const char *h5path, char *buf, size_t len);
 
+/* The time-series sidecar of a record: PATH with ".h5" replaced by
+ * ".steps.xdmf" (appended otherwise); SB_OK or SB_ERR_INPUT. */
+int sb_record_steps_xdmf_path(const char *h5path, char *buf, size_t len);
+
 /* Write atomically: to PATH.tmp.<pid>, then rename. Also writes PATH minus
- * ".h5" plus ".xdmf".  Returns SB_OK or SB_ERR_IO with a message in err. */
+ * ".h5" plus ".xdmf", and, when the run keeps its time series
+ * (sample_traj), PATH minus ".h5" plus ".steps.xdmf" (removed otherwise).
+ * Returns SB_OK or SB_ERR_IO with a message in err. */
 int sb_record_write(const sb_run *run, const char *path, char *err, size_t errlen);
 
 /* A flat summary read back from a record (for reports and comparisons). */
@@ -237,6 +247,20 @@ int  sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_
  * what is wrong. */
 int  sb_reference_check(const sb_scene *sc, const double *sample_st, int n_samples, char *err, size_t errlen);
 void sb_record_setup_free(sb_record_setup *s);
+
+/* The sample-grid surface of a record at one step (sb_record_steps.c):
+ * step -1 = the final state (/final/sample_pos), k >= 0 = after step k
+ * (/steps/sample_pos/NNNNNN; records written before it was kept have none). */
+typedef struct sb_record_samples {
+    int n, n_tris, n_steps;    /* samples, triangles, steps in /steps/sample_pos (0 = none) */
+    double *st, *ref, *pos;    /* 2n, 3n, 3n (owned) */
+    int *tris;                 /* 3 n_tris (owned) */
+} sb_record_samples;
+int  sb_record_read_step_samples(const char *path, int step, sb_record_samples *s, char *err, size_t errlen);
+void sb_record_samples_free(sb_record_samples *s);
+/* Steps 0..step of /steps/sample_pos of the checkpoint PATH into traj (n
+ * samples each) for --resume; SB_ERR_INPUT when the file has none. */
+int  sb_record_read_sample_traj(const char *path, int step, int n, double *traj, char *err, size_t errlen);
 
 /* Report: Markdown (format "md") or CSV table of the files, and, when
  * png_path is non-NULL, a gnuplot PNG of ||g|| against iteration. */

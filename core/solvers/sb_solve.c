@@ -55,6 +55,9 @@ const sb_param_def sb_solve_params[] = {
       "it is refused before any work (0 = the machine's physical memory)" },
     { "lifting", SB_PARAM_INT, 1, 0, 1, NULL,
       "start a step with moving boundaries from the linear lifting of the boundary increment (0 = off)" },
+    { "threads", SB_PARAM_INT, 1, 1, 64, NULL,
+      "threads assembling energy, gradient and Hessian over elements (rmtr, bhem; OpenMP): the reduction is in "
+      "element order, so every count and record is bit-identical for any number (docs/performance.md)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 

@@ -3,6 +3,7 @@
  * operation table `sb_method_bhem`. */
 #include "bhem.h"
 #include "sb_context.h"
+#include "sb_assemble.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +20,9 @@ const sb_param_def bhem_params[] = {
       "(symmetry breaking for buckling scenes; 0 = none)" },
     { "cells_t", SB_PARAM_INT, 0, 0, SB_SCENE_MAX_RESOLUTION, NULL,
       "patches along t on the finest level (0 = same as --res; --res NxM says the same)" },
+    { "kernel", SB_PARAM_CHOICE, 0, 0, 0, sb_kernel_names,
+      "shell kernel: fast (patch-batched, sb_shell_element) or reference (per point, the arithmetic of the "
+      "committed records; docs/reproducibility.md)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
 
@@ -31,6 +35,11 @@ static void bhem_destroy(void *state)
     free(S->psd_work);
     S->work = NULL;
     S->Ke = S->psd_work = NULL;
+    for (int t = 0; S->tw && t < S->threads; t++) sb_elem_scratch_free(&S->tw[t]);
+    free(S->tw);
+    S->tw = NULL;
+    sb_assembler_free(S->assembler);
+    S->assembler = NULL;
 }
 
 static int read_params(bhem_state *S, const sb_method_config *cfg, int *cells_t)
@@ -38,7 +47,13 @@ static int read_params(bhem_state *S, const sb_method_config *cfg, int *cells_t)
     S->hess = SB_HESS_EXACT;
     S->imperfection = 0.0;
     *cells_t = 0;
+    S->kernel = SB_KERNEL_FAST;
+    S->threads = sb_param_int_or(cfg->params, "run.threads", 1);
+    if (S->threads > 1 && !sb_assemble_have_threads())
+        return bhem_fail(S, SB_ERR_INPUT, "run.threads = %d: this build has no OpenMP (build with make OPENMP=-fopenmp)",
+                         S->threads);
     if (!cfg->params) return SB_OK;
+    if (strcmp(sb_param_choice(cfg->params, "method.kernel"), "reference") == 0) S->kernel = SB_KERNEL_REFERENCE;
     const char *h = sb_param_choice(cfg->params, "method.hessian");
     if (strcmp(h, "pseudo") == 0) S->hess = SB_HESS_PSEUDO;
     else if (strcmp(h, "psd") == 0) S->hess = SB_HESS_PSD;
@@ -134,6 +149,13 @@ static int bhem_create(void *state, const sb_scene *scene, const sb_method_confi
     S->psd_work = malloc(sizeof(double) * (sb_psd_work_size(BHEM_NED) + 1));
     S->work = sb_shell_work_new();
     if (!S->Ke || !S->psd_work || !S->work) { bhem_destroy(S); return SB_ERR_NOMEM; }
+    /* assembly: per-thread scratch; terms per patch: shell and follower
+     * pressure per point, end moments */
+    S->tw = calloc((size_t)S->threads, sizeof *S->tw);
+    if (!S->tw) { bhem_destroy(S); return SB_ERR_NOMEM; }
+    for (int t = 0; t < S->threads; t++)
+        if (sb_elem_scratch_init(&S->tw[t], BHEM_NB, BHEM_NQP)) { bhem_destroy(S); return SB_ERR_NOMEM; }
+    if (!(S->assembler = sb_assembler_new(S->threads, BHEM_NED, 2 * BHEM_NQP + 2))) { bhem_destroy(S); return SB_ERR_NOMEM; }
     if ((rc = bhem_detect_periodic(S))) { bhem_destroy(S); return rc; }
     for (int l = 0; l < levels && rc == SB_OK; l++) {
         bhem_level *L = &S->lv[l];
@@ -273,4 +295,5 @@ const sb_method_type sb_method_bhem = {
     .project = bhem_project_op,
     .estimate = bhem_estimate,
     .describe = bhem_describe,
+    .surface = bhem_surface,
 };

@@ -212,6 +212,9 @@ void lf_level_free(lf_level *L);
 int  lf_tri_dofs(const lf_state *S, const lf_level *L, int t, int *d);
 void lf_gather(const lf_state *S, const lf_level *L, int t, const double *x, double *qe);
 int  lf_eval(const lf_state *S, const lf_level *L, const double *x, int np, const double *st, double *pos);
+/* The mesh of x on `level` as render triangles (lf_render.c, sb_surface.h). */
+struct sb_surface;
+int  lf_surface(void *state, int level, const double *x, struct sb_surface *out);
 
 /* ---- elements (lf_element.c) ----------------------------------------------- */
 /* Triangle element: membrane (+ midedge bending unless hinge model), the

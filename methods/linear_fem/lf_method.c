@@ -298,4 +298,5 @@ const sb_method_type sb_method_linear_fem = {
     .prolong_matrix = lf_prolong_matrix_op,
     .material_state = lf_material_state_op,
     .describe = lf_describe,
+    .surface = lf_surface,
 };

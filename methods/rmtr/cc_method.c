@@ -22,6 +22,7 @@
  * solves on a coarser top level, the fine problem restricted (finest) or the
  * level's own discretization (level, the classical full-multigrid choice). */
 #include "cc_method.h"
+#include "sb_assemble.h"
 #include "sb_context.h"
 #include "sb_galerkin.h"
 
@@ -58,6 +59,9 @@ const sb_param_def cc_params[] = {
     { "subdiv", SB_PARAM_CHOICE, 0, 0, 0, subdiv_choices,
       "subdivision matrix from OpenSubdiv (RMTR §6) or from the rules (5.12)-(5.15) in C (identical, tested)" },
     { "n_thick", SB_PARAM_INT, 0, 0, 8, NULL, "Gauss points through the thickness (0 = material default)" },
+    { "kernel", SB_PARAM_CHOICE, 0, 0, 0, sb_kernel_names,
+      "shell kernel: fast (element-batched, sb_shell_element) or reference (per point, the arithmetic of the "
+      "committed records; docs/reproducibility.md)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
 
@@ -82,6 +86,11 @@ static void cc_destroy(void *state)
     free(S->psd);
     S->work = NULL;
     S->Ke = S->ge = S->qe = S->psd = NULL;
+    for (int t = 0; S->tw && t < S->threads; t++) sb_elem_scratch_free(&S->tw[t]);
+    free(S->tw);
+    S->tw = NULL;
+    sb_assembler_free(S->assembler);
+    S->assembler = NULL;
 }
 
 static double param(const sb_method_config *cfg, const char *name)
@@ -190,6 +199,11 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     S->use_osd = (int)param(cfg, "subdiv") == 0;
     S->beta_finest = (int)param(cfg, "penalty_h") == 0;
     S->beta_paper = (int)param(cfg, "beta_rule") == 1;
+    S->kernel = (sb_kernel_kind)(int)param(cfg, "kernel");
+    S->threads = sb_param_int_or(cfg->params, "run.threads", 1);
+    if (S->threads > 1 && !sb_assemble_have_threads())
+        return cc_state_fail(S, SB_ERR_INPUT, "run.threads = %d: this build has no OpenMP (build with make OPENMP=-fopenmp)",
+                             S->threads);
     char msg[256];
     if (sb_material_init_msg(&S->mat, &scene->material, (int)param(cfg, "n_thick"), msg, sizeof msg) != SB_OK)
         return cc_state_fail(S, SB_ERR_INPUT, "material: %s", msg);
@@ -221,6 +235,17 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
         S->psd = malloc((sb_psd_work_size(nm) + 1) * sizeof *S->psd);
         S->work = sb_shell_work_new();
         if (!S->Ke || !S->ge || !S->qe || !S->psd || !S->work) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+        /* assembly: per-thread scratch, and energy terms per element of the
+         * reference order (shell, gravity, each pressure load per point; points) */
+        int n_press = 0;
+        for (int i = 0; i < scene->n_loads; i++) n_press += scene->loads[i].kind == SB_LOAD_PRESSURE;
+        const int nq = S->ng * S->ng, max_terms = nq * (2 + n_press) + 2;
+        S->tw = calloc((size_t)S->threads, sizeof *S->tw);
+        if (!st && !S->tw) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+        for (int t = 0; !st && t < S->threads; t++)
+            if (sb_elem_scratch_init(&S->tw[t], kmax, nq)) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+        if (!st && !(S->assembler = sb_assembler_new(S->threads, nm, max_terms)))
+            st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
     }
     if (st) {
         cc_state_fail(S, st, "%s", e.msg[0] ? e.msg : "cannot build the subdivision hierarchy");
@@ -393,4 +418,5 @@ const sb_method_type sb_method_subdiv = {
     .estimate = cc_estimate,
     .penalty_violation = cc_penalty_violation_op,
     .describe = cc_describe,
+    .surface = cc_surface,
 };
