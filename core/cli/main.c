@@ -15,6 +15,7 @@
 #include "sb_run.h"
 #include "sb_scene.h"
 #include "sb_solver.h"
+#include "sb_study.h"
 
 #include <dirent.h>
 #include <stdio.h>
@@ -36,6 +37,9 @@ static void usage(FILE *f)
             "            its checkpoint OUT.partial (same scene, method, solver, sizes and parameters)\n"
             "  shellbench report [--format md|csv] [--plot FILE.png|FILE.svg] FILE.h5...\n"
             "  shellbench inspect [--format md|csv] FILE.h5...   (material state of the recorded final state)\n"
+            "  shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan]   (docs/study.md)\n"
+            "  shellbench report --study FILE [--out DIR] [--deterministic]\n"
+            "  shellbench reference SCENE [--method M] [--solver S] [--res N | --dofs N] [--levels L] [--set k=v]...\n"
             "exit codes: 0 converged, 1 did not converge, 2 usage or input error, 3 internal error,\n"
             "            4 stopped by --stop-after-steps (resumable)\n");
 }
@@ -195,6 +199,8 @@ static int split(char *s, char **tok, int max)
 
 static int cmd_sweep(int argc, char **argv)
 {
+    for (int i = 0; i < argc; i++)
+        if (!strcmp(argv[i], "--study")) return sb_study_cmd_sweep(argc, argv);   /* docs/study.md */
     cli_run c;
     memset(&c, 0, sizeof c);
     int rc = parse_run_args(argc, argv, &c, 1);
@@ -243,6 +249,8 @@ static int cmd_sweep(int argc, char **argv)
 
 static int cmd_report(int argc, char **argv)
 {
+    for (int i = 0; i < argc; i++)
+        if (!strcmp(argv[i], "--study")) return sb_study_cmd_report(argc, argv);  /* docs/study.md */
     const char *format = "md", *plot = NULL;
     char **files = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *files);
     int nf = 0;
@@ -315,6 +323,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "sweep")) return cmd_sweep(argc - 2, argv + 2);
     if (!strcmp(cmd, "report")) return cmd_report(argc - 2, argv + 2);
     if (!strcmp(cmd, "inspect")) return cmd_inspect(argc - 2, argv + 2);
+    if (!strcmp(cmd, "reference")) return sb_study_cmd_reference(argc - 2, argv + 2);
     if (!strcmp(cmd, "help") || !strcmp(cmd, "--help") || !strcmp(cmd, "-h")) { usage(stdout); return 0; }
     fprintf(stderr, "shellbench: unknown command \"%s\"\n", cmd);
     usage(stderr);

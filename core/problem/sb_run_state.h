@@ -51,6 +51,8 @@ char  *sb_run_summary_json(run_state *R, const char *out_path);
 void   sb_run_compute_error(run_state *R, FILE *err);
 /* rec->material of the current state (methods with material_state). */
 void   sb_run_record_material(run_state *R);
+/* rec->energy_final: the method's energy of the current state (uncounted). */
+void   sb_run_record_energy(run_state *R);
 
 /* ---- checkpoints and resume (sb_run_checkpoint.c) ------------------------ */
 int    sb_run_partial_path(const char *out_path, char *buf, size_t len);

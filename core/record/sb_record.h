@@ -79,6 +79,11 @@ typedef struct sb_run {
     double error_rms, error_max;   /* relative to the domain diameter (field) */
     double error_probe;            /* max probe relative error (probes) */
     char error_kind[16];           /* "none", "probes", "field" */
+    /* the method's energy E(x) (elastic + external + boundary penalty, no
+     * inertia) of the final state at the last step's loads: what a local
+     * minimum found on a nonconvex scene is compared by (docs/study.md) */
+    int has_energy;
+    double energy_final;           /* J */
     sb_resume_log resumed;
     /* checkpoints only: the last step boundary, written as /resume (NULL in
      * a final record); its stats' history pointers are not used, the
@@ -117,6 +122,7 @@ typedef struct sb_record_summary {
     int has_error;
     double error_rms, error_max, error_probe;
     char error_kind[16];
+    double energy_final;       /* J; NaN when the record has none (written before it was kept) */
     /* convergence history of all iterations (for plots) */
     int n_hist;
     double *hist_gnorm;        /* owned */

@@ -66,6 +66,7 @@ static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_attr_long(w, f, "reason_code", r->reason);
     bad |= sb_h5w_attr_long(w, f, "steps_planned", r->steps_planned);
     bad |= sb_h5w_attr_long(w, f, "steps_done", r->steps_done);
+    bad |= sb_h5w_attr_dbl(w, f, "energy_final", r->has_energy ? r->energy_final : NAN);
     return bad ? -1 : 0;
 }
 
