@@ -114,7 +114,7 @@ static int try_sets(sbj_ctx *c, const sb_study *st, const sb_study_sets *sets, i
         if (sb_paramset_set(&ps, sets->kv[i], msg, sizeof msg)) {
             char key[SB_NAME_LEN];
             snprintf(key, sizeof key, "%.*s", (int)strcspn(sets->kv[i], "="), sets->kv[i]);
-            size_t mark = sbj_push(c, member);
+            size_t mark = member ? sbj_push(c, member) : strlen(c->ptr);
             int r = sbj_fail(c, key, 0, "%s (with method %s and solver %s)", msg, st->methods[m].name, st->solvers[s].name);
             sbj_pop(c, mark);
             return r;
@@ -187,7 +187,7 @@ int sbs_check(sbj_ctx *c, const json_t *root, sb_study *st)
             sb_study_sets one = { 1, { "" } };
             snprintf(one.kv[0], SB_STUDY_SET_LEN, "%s=%s", st->vary_key[q], st->vary_value[q][v]);
             size_t mark = sbj_push(c, "vary");
-            r = check_sets(c, st, &one, st->vary_key[q], 0, st->n_methods, 0, st->n_solvers);
+            r = check_sets(c, st, &one, NULL, 0, st->n_methods, 0, st->n_solvers);
             sbj_pop(c, mark);
             if (r) return r;
         }

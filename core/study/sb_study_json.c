@@ -38,7 +38,7 @@ int sbs_parse_sets(sbj_ctx *c, const json_t *obj, const char *key, const char *c
         }
         if (out->n >= SB_STUDY_MAX_SETS) { r = sbj_fail(c, k, 1, "too many parameters (at most %d)", SB_STUDY_MAX_SETS); break; }
         char val[256];
-        if (json_is_number(v)) snprintf(val, sizeof val, "%.17g", json_number_value(v));
+        if (json_is_number(v)) snprintf(val, sizeof val, "%.15g", json_number_value(v));
         else if (json_is_string(v) && json_string_length(v) < 200) snprintf(val, sizeof val, "%s", json_string_value(v));
         else { r = sbj_fail(c, k, 0, "must be a number or a choice name, got %s", sbj_type_name(v)); break; }
         if (strlen(k) >= SB_NAME_LEN) { r = sbj_fail(c, k, 1, "parameter name too long"); break; }
@@ -306,7 +306,7 @@ static int parse_vary(sbj_ctx *c, const json_t *root, sb_study *st)
         json_array_foreach(a, i, v) {
             char tok[32];
             snprintf(tok, sizeof tok, "%zu", i);
-            if (json_is_number(v)) snprintf(st->vary_value[q][i], SB_NAME_LEN, "%.17g", json_number_value(v));
+            if (json_is_number(v)) snprintf(st->vary_value[q][i], SB_NAME_LEN, "%.15g", json_number_value(v));
             else if (json_is_string(v) && json_string_length(v) < SB_NAME_LEN) snprintf(st->vary_value[q][i], SB_NAME_LEN, "%s", json_string_value(v));
             else { r = sbj_fail(c, tok, 0, "must be a number or a choice name"); break; }
             for (size_t j = 0; j < i; j++)
