@@ -153,7 +153,7 @@ int sb_fig_profile(int np, int ns, const double *ratio, char (*labels)[128], con
     sb_gp_quoted(body, title);
     fprintf(body, "\nset logscale x 2\nset xrange [1:%g]\nset yrange [0:1.05]\nset xlabel 'tau: within this factor of the "
                   "cheapest configuration'\nset ylabel 'share of scenes (rho(tau))'\nset grid\n"
-                  "set key outside right top vertical Left reverse width -2\nplot ", tmax);
+                  "set key outside right top vertical Left reverse\nplot ", tmax);
     double *r = malloc((size_t)np * sizeof *r);
     for (int s = 0; s < ns && r; s++) {
         FILE *f = sb_gp_data(&g, path, sizeof path);
@@ -217,7 +217,7 @@ int sb_fig_convergence(const sb_study_data *d, int i, const char *stem, const ch
     fprintf(body, "set title ");
     sb_gp_quoted(body, title);
     fprintf(body, "\nset xlabel 'cumulative iteration over all steps'\nset ylabel 'log10 ||g||'\nset grid\n"
-                  "set key outside right top vertical Left reverse width -2\nplot ");
+                  "set key outside right top vertical Left reverse\nplot ");
     int lines = 0;
     for (int c = 0; c < d->n_configs; c++) {
         int k = run_near(d, i, c, mid);

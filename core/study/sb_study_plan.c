@@ -144,14 +144,36 @@ static int resolutions(const sb_study *st, sb_dofs_cache *cache, int i, int m, i
         int r = 0;
         long d = 0;
         char why[512] = "";
-        /* one resolution per scene and method for all its solvers: the one
-         * valid for the most levels any of them uses (solvers compare at equal dofs) */
-        int levels = 1;
-        for (int q = 0; q < st->n_solvers; q++)
-            if (sb_study_applicable(st, m, q, NULL, 0) && st->solvers[q].levels > levels) levels = st->solvers[q].levels;
-        (void)s;
-        int rc = by_dofs ? sb_study_res_for_dofs(st, cache, i, m, levels, list[k], &r, &d, why, sizeof why)
-                         : sb_study_dofs_at(st, cache, i, m, st->solvers[s].levels, (int)list[k], &d, why, sizeof why);
+        /* a dofs target: the resolution the method's solvers share when the
+         * one valid for the most levels any of them uses is within a factor
+         * 1.5 of the target (solvers compare at equal dofs); else each level
+         * count its own, a multilevel one only within a factor 2 */
+        int rc;
+        if (by_dofs) {
+            int L = 1, rl = 0;
+            long dl = 0;
+            char w2[512];
+            for (int q = 0; q < st->n_solvers; q++)
+                if (sb_study_applicable(st, m, q, NULL, 0) && st->solvers[q].levels > L) L = st->solvers[q].levels;
+            int rcl = L > 1 ? sb_study_res_for_dofs(st, cache, i, m, L, list[k], &rl, &dl, w2, sizeof w2) : 1;
+            if (rcl < 0) {
+                snprintf(err, errlen, "%s", w2);
+                return rcl;
+            }
+            if (rcl == 0 && fabs(log((double)dl / (double)list[k])) <= log(1.5)) {
+                rc = 0, r = rl, d = dl;
+            } else {
+                const int lv = st->solvers[s].levels;
+                rc = sb_study_res_for_dofs(st, cache, i, m, lv, list[k], &r, &d, why, sizeof why);
+                if (rc == 0 && lv > 1 && fabs(log((double)d / (double)list[k])) > log(2.0)) {
+                    snprintf(why, sizeof why, "method %s on scene %s: no resolution within a factor 2 of %ld dofs allows "
+                             "%d levels (nearest: res %d, %ld dofs)", st->methods[m].name, st->scenes[i].name, list[k], lv, r, d);
+                    rc = 1;
+                }
+            }
+        } else {
+            rc = sb_study_dofs_at(st, cache, i, m, st->solvers[s].levels, (int)list[k], &d, why, sizeof why);
+        }
         if (!by_dofs) r = (int)list[k];
         if (rc < 0) {
             snprintf(err, errlen, "%s", why);
