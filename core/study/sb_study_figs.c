@@ -59,9 +59,9 @@ int sb_fig_work_precision(const sb_study_data *d, int i, int cost, const char *s
     snprintf(title, sizeof title, "%s: error against %s (one curve per method/solver, points labelled by dofs)",
              st->scenes[i].name, sb_cost_name(cost));
     sb_gp_quoted(body, title);
-    fprintf(body, "\nset logscale xy\n"
+    fprintf(body, "\nset logscale xy\nset format x '%%g'\nset format y '%%g'\n"
                   "set xlabel '%s'\nset ylabel '%s'\nset grid\nset key outside right top vertical Left reverse "
-                  "spacing 1.1 width -2\nset mxtics 10\nset mytics 10\n",
+                  "spacing 1.1\nset mxtics 10\nset mytics 10\n",
             sb_cost_axis(cost), error_axis(st->scenes[i].error));
     for (int t = 0; t < st->n_targets; t++)
         fprintf(body, "set arrow from graph 0, first %g to graph 1, first %g nohead dt 2 lc rgb '#888888'\n"
