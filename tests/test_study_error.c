@@ -286,6 +286,36 @@ SB_TEST(a_run_against_its_reference_record_has_a_field_error)
     free(text);
 }
 
+/* shellbench reference: the record, its self-check at half the resolution,
+ * the provenance; an existing reference is not replaced without --force; a
+ * run that does not converge leaves no reference */
+SB_TEST(the_reference_command_writes_a_record_its_check_and_provenance)
+{
+    char cmd[1500], p[600];
+    snprintf(cmd, sizeof cmd, "%s reference tests/scenes/trampoline_1step.json --method rmtr --solver tr --res 4 "
+             "--out %s/refs/t.h5 > %s/refout.txt 2>&1", sb_test_bin(), tmpdir, tmpdir);
+    CHECK_EQ_INT(WEXITSTATUS(system(cmd)), 0);
+    snprintf(p, sizeof p, "%s/refs/t.h5", tmpdir);
+    CHECK(access(p, F_OK) == 0);
+    snprintf(p, sizeof p, "%s/refs/t-check.h5", tmpdir);
+    CHECK(access(p, F_OK) == 0);
+    snprintf(p, sizeof p, "%s/refs/t.json", tmpdir);
+    char *j = slurp(p);
+    CHECK(j && strstr(j, "\"self_check\"") && strstr(j, "\"res\": 2") && strstr(j, "\"rms\": ") && !strstr(j, "\"rms\": null") &&
+          strstr(j, "\"run.gtol=1e-8\""));
+    free(j);
+    snprintf(p, sizeof p, "%s/refout.txt", tmpdir);
+    j = slurp(p);
+    CHECK(j && strstr(j, "point the scene at it: \"reference\": {\"type\": \"file\", \"file\": \""));
+    free(j);
+    CHECK_EQ_INT(WEXITSTATUS(system(cmd)), 2);   /* exists: not replaced */
+    snprintf(cmd, sizeof cmd, "%s reference tests/scenes/trampoline_1step.json --method rmtr --solver tr --res 4 "
+             "--set run.max_iter=1 --out %s/refs/u.h5 > /dev/null 2>&1", sb_test_bin(), tmpdir);
+    CHECK_EQ_INT(WEXITSTATUS(system(cmd)), 1);
+    snprintf(p, sizeof p, "%s/refs/u.h5", tmpdir);
+    CHECK(access(p, F_OK) != 0);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_study_err_XXXXXX");
@@ -295,7 +325,8 @@ int main(int argc, char **argv)
         SB_CASE(every_method_samples_the_material_point_of_the_scene),
         SB_CASE(two_discretizations_of_one_exact_surface_differ_at_round_off),
         SB_CASE(a_reference_that_does_not_fit_is_refused_with_a_sentence),
-        SB_CASE(a_run_against_its_reference_record_has_a_field_error), SB_END,
+        SB_CASE(a_run_against_its_reference_record_has_a_field_error),
+        SB_CASE(the_reference_command_writes_a_record_its_check_and_provenance), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];

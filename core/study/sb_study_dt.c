@@ -318,7 +318,8 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
                 "stopping test the other solvers meet (‖g‖ < max(1e-7, 1e-9 ‖g₀‖), Eq. 7.1).  Bisection: dt = %g first "
                 "(the cap), then dt = %g, then %d geometric midpoints between the largest converging and the smallest "
                 "failing dt; it assumes that convergence at dt implies convergence at smaller dt.  Study file `%s`, "
-                "records under `%s`.\n\n", st->dt.steps, st->dt.max_iter, st->dt.dt_max, st->dt.dt_min,
+                "records under `%s`.  The RMTR paper's other robustness studies, the condition numbers and the penalty "
+                "parameter (Fig. 9), are reproduced in results/rmtr/cond.md and results/rmtr/cond_sigma.md.\n\n", st->dt.steps, st->dt.max_iter, st->dt.dt_max, st->dt.dt_min,
             st->dt.bisections, st->path, st->records);
     for (int i = 0; i < st->n_scenes; i++) {
         fprintf(md, "## %s\n\n| method | solver | dofs | largest converging dt (s) | outcome at dt = %g | probes |\n|---|---|--:|---|---|--:|\n",

@@ -367,7 +367,8 @@ static void convergence(rep *R)
         snprintf(name, sizeof name, "convergence-%s", st->scenes[i].name);
         snprintf(stem, sizeof stem, "%s/%s", R->dir, name);
         if (sb_fig_convergence(R->d, i, stem, R->o->gnuplot, msg, sizeof msg) == 0) {
-            fprintf(R->md, "### %s\n\n", st->scenes[i].name);
+            fprintf(R->md, "### %s%s\n\n", st->scenes[i].name,
+                    st->scenes[i].solution == SB_SOLUTION_MULTIPLE ? " (several solutions: runs may end in different minima)" : "");
             figure(R, name, name);
         } else {
             fprintf(R->err, "shellbench report: warning: %s\n", msg);
