@@ -89,7 +89,7 @@ $(BUILD)/bench/%: bench/%.c $(LIB) | $(DEPS_STAMP)
 
 # The BLAS kernel set: OpenBLAS's generic x86-64 kernels (Prescott) by
 # default, so that every x86-64 machine computes the same round-off and
-# iteration counts on nonconvex scenes reproduce (README "Perturbed starts");
+# iteration counts on nonconvex scenes reproduce (docs/reproducibility.md);
 # `make bench SB_BLAS_CORE=Haswell` trades that for faster dense factorizations.
 SB_BLAS_CORE ?= Prescott
 BLAS_ENV = OPENBLAS_NUM_THREADS=1 OPENBLAS_CORETYPE=$(SB_BLAS_CORE)

@@ -89,7 +89,7 @@ SB_TEST(rmtr_converges_and_matches_tr)
  * (RMTR paper Eqs. 7.3-7.4) than single-level TR with the same Steihaug–Toint
  * CG subproblem solver (the paper's §7.3 "TR configured with ST-CG").  It does
  * NOT beat TR with the direct dogleg on this scene: exact Newton steps need
- * about 9 iterations here (README, "RMTR"). */
+ * about 9 iterations here (docs/rmtr.md). */
 SB_TEST(rmtr_trampoline_subdivision)
 {
     static const char *const stcg[] = { "solver.trs=stcg" };
@@ -152,7 +152,7 @@ SB_TEST(rmtr_fewer_work_units_than_tr_drooping)
 
 /* Every smoother preconditioner must leave RMTR converging to the same
  * minimizer; the paper's unpreconditioned smoother is not tested for
- * convergence here (it needs thousands of V-cycles, README "RMTR"). */
+ * convergence here (it needs thousands of V-cycles, docs/rmtr.md). */
 SB_TEST(rmtr_smoother_preconditioners)
 {
     static const char *const pc[] = { "solver.smoother_precond=jacobi", "solver.smoother_precond=block",
@@ -418,7 +418,7 @@ SB_TEST(preconditioned_stcg_reaches_newton_step)
     direct_close(&D);
 }
 
-/* The smoother's stopping rules (README "RMTR smoother stopping rule"): with
+/* The smoother's stopping rules (docs/rmtr.md "Smoother stopping rule"): with
  * rtol = 0.1 Schwarz-preconditioned ST-CG stops at the first iterate with
  * ||g + H s|| <= 0.1 ||g|| (and not one iteration later); with rtol = 0 it
  * runs exactly max_iter iterations (the paper's 10). */
@@ -531,7 +531,7 @@ SB_TEST(rmtr_nested_start)
  * changes only the coarse energies f^l.  With Galerkin coarse models (the
  * default) no f^l enters a V-cycle, so without the nested start the two
  * choices run bit-identical solves; with it the coarse top levels solve
- * different problems (README "RMTR nested start"). */
+ * different problems (docs/rmtr.md "Nested start"). */
 SB_TEST(rmtr_penalty_h_only_reaches_the_nested_start)
 {
     double f[2][2], wu[2][2], its[2][2];
@@ -558,7 +558,7 @@ SB_TEST(rmtr_penalty_h_only_reaches_the_nested_start)
 
 /* solver.coarse_radius=own: the top level's coarse corrections get a radius
  * of their own (never below the fine one), so a smooth correction is not
- * held to the fine level's radius of about one element (README "RMTR coarse
+ * held to the fine level's radius of about one element (docs/rmtr.md "Coarse
  * radius").  On the trampoline (one minimum) both choices reach the same
  * minimizer; on drooping's first step (the cloth falls and buckles) the own
  * radius needs fewer V-cycles (measured at 363 dofs, 2 levels: 69 against

@@ -89,7 +89,7 @@ print("A run that hit its iteration cap or failed is shown as — with the reaso
 
 def provenance():
     """where the records come from: BLAS kernel sets, builds, machines and dates (counts on the nonconvex
-    scenes depend on the kernel set's round-off, README "Perturbed starts")"""
+    scenes depend on the kernel set's round-off, docs/reproducibility.md)"""
     if not rows:
         return
     def tally(key):
@@ -542,7 +542,7 @@ if perf:
     print("Seconds per V-cycle against the seconds of one fine-level Hessian assembly (energy, gradient and")
     print("Hessian of the finest level, from the record's per-level event timers); total time relative to 4 levels (3,675 dofs).")
     print("Seconds compare only within one configuration: the records were not all made under the same machine load.\n")
-    print("A `stalled` run stopped at the limiting accuracy (README, \"Stopping rule\"); its V-cycles include the")
+    print("A `stalled` run stopped at the limiting accuracy (docs/stopping.md); its V-cycles include the")
     print("stall_iter cycles spent there; the run then stops (a step that did not converge ends a run), so")
     print("the 51,483-dof case is also run with run.gtol = 1e-6, above its limiting accuracy.\n")
     print_perf(perf, "coarse models")

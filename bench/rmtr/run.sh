@@ -39,7 +39,7 @@ OUT=results/rmtr/runs
 mkdir -p "$OUT"
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 # OpenBLAS's generic x86-64 kernels unless set: the same round-off on every
-# x86-64 machine, so counts on the nonconvex scenes reproduce (README "Perturbed starts")
+# x86-64 machine, so counts on the nonconvex scenes reproduce (docs/reproducibility.md)
 export OPENBLAS_CORETYPE=${SB_BLAS_CORE:-Prescott}   # not the environment's: some machines preset another set
 CAP=2000
 CAP_PAPER=400

@@ -19,7 +19,8 @@ enum {
     /* outcomes / warnings (> 0) */
     SB_NOT_POSDEF = 1,       /* factorization found a non-positive-definite matrix */
     SB_NONFINITE = 2,        /* NaN or Inf met in an energy, gradient or Hessian */
-    SB_DIVERGED = 3
+    SB_DIVERGED = 3,
+    SB_NOT_CONVERGED = 4     /* an iterative library routine (GSL) stopped short of its tolerance */
 };
 
 /* Why an outer solve stopped.  Recorded per step; names in sb_reason_name(). */

@@ -1,5 +1,6 @@
 /* sb_context.c — one context per run: parameters, cholmod_common, statistics, errors. */
 #include "sb_context.h"
+#include "sb_gsl.h"
 
 #include <cholmod.h>
 #include <stdarg.h>
@@ -12,6 +13,8 @@ int sb_context_init(sb_context *ctx)
     memset(ctx, 0, sizeof *ctx);
     sb_paramset_init(&ctx->params);
     sb_stats_init(&ctx->stats);
+    /* GSL errors return codes that the caller maps, never abort (sb_gsl.h) */
+    sb_gsl_errors_off();
     cholmod_common *cm = malloc(sizeof *cm);
     if (!cm) return SB_ERR_NOMEM;
     cholmod_start(cm);

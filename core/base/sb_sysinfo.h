@@ -19,7 +19,7 @@ void sb_sysinfo_build_id(char *buf, size_t len);
  * "SkylakeX", or "Prescott", its generic fallback on CPUs it does not
  * recognize) when the process has loaded OpenBLAS, else "unknown".  The
  * kernel changes round-off and so, on nonconvex scenes, iteration counts
- * (README "Perturbed starts"); records keep it beside the thread count. */
+ * (docs/reproducibility.md); records keep it beside the thread count. */
 void sb_sysinfo_blas_core(char *buf, size_t len);
 /* Host name ("unknown" when unavailable). */
 void sb_sysinfo_hostname(char *buf, size_t len);

@@ -1,4 +1,4 @@
-/* main.c — the shellbench command line (README "Command line").
+/* main.c — the shellbench command line (docs/running.md).
  *   shellbench list [scenes|methods|solvers]
  *   shellbench check SCENE...
  *   shellbench run --scene NAME|PATH --method NAME --solver NAME [--res N] [--levels L]

@@ -293,7 +293,7 @@ static void eliminate_hessian(const level_data *L, sb_matrix *H)
     for (long i = 0; i < L->n_diag; i++) H->val[L->diag_pos[i]] = 1.0;
 }
 
-/* Lifting of prescribed boundary motion (assumption, README "Moving
+/* Lifting of prescribed boundary motion (assumption, docs/problem.md "Moving
  * boundaries"): when constrained values jump from x_n to their new values,
  * the elimination start x0 moves those dofs alone, which can tear the first
  * ring of elements (a denim state beyond its admissible strain, or a huge

@@ -55,7 +55,11 @@ static int mkdir_p(const char *path)
 /* run.perturb: each dof of the start gets an offset uniform in [-a, a], from
  * a SplitMix64 stream seeded by run.seed (Steele, Lea & Flood 2014; local
  * state, so runs with the same seed are bit-identical).  Round-off-sized
- * offsets sample how much a count on a nonconvex scene owes to round-off. */
+ * offsets sample how much a count on a nonconvex scene owes to round-off.
+ * Kept instead of a gsl_rng (issue 31): the committed perturbed-start records
+ * (results/rmtr/runs/rmtrd-SCENE-lL-p1e-10-sN.h5) were drawn from this
+ * stream, and GSL has no SplitMix64; a new stream uses sb_rng_for_run
+ * (sb_gsl.h) and records its generator's name. */
 static void perturb_start(int n, double *x, double a, unsigned long long seed)
 {
     if (!(a > 0)) return;

@@ -1,5 +1,5 @@
 /* sb_scene.h — what is simulated: plain data read from a JSON scene file.
- * Every method receives an identical sb_scene.  See README "Scene files".
+ * Every method receives an identical sb_scene.  See docs/scene_format.md.
  *
  * Coordinates.  A scene lives on a domain in material coordinates
  * xi = (xi1, xi2) in metres.  Structured methods use the *grid parameter*
@@ -60,12 +60,12 @@ typedef struct sb_denim_params {
     /* RMTR paper Eq. (3.3)-(3.4), Table 1.  k in Pa (Table 1 gives MPa; the
      * parser converts), mu/alpha dimensionless.  mu[j][0] is NOT in Table 1:
      * it is taken as 1 - sum_{i>=2} mu[j][i] so that phi_j'(0) = 1 (assumption,
-     * see README).  A scene may override any entry. */
+     * see docs/scene_format.md).  A scene may override any entry. */
     double k[4];
     int d[4];
     double mu[4][SB_DENIM_MAX_TERMS];
     double alpha[4][SB_DENIM_MAX_TERMS];
-    /* beyond the fitted range (README "Denim beyond the fit"): 0 extend each
+    /* beyond the fitted range (docs/denim.md "Denim beyond the fit"): 0 extend each
      * phi_j linearly past the maximum of phi_j' (default), 1 inadmissible (NaN) */
     int beyond_fit;
 } sb_denim_params;

@@ -17,7 +17,18 @@
 /* Nodes by Newton's method on P_n with the three-term recurrence
  * (n+1) P_{n+1} = (2n+1) x P_n - n P_{n-1}; weights 2 / ((1-x^2) P_n'(x)^2).
  * Converges to machine precision in a few steps from the Chebyshev-like
- * initial guess cos(pi (i + 3/4) / (n + 1/2)). */
+ * initial guess cos(pi (i + 3/4) / (n + 1/2)).
+ *
+ * Kept instead of GSL's gsl_integration_glfixed_table (issue 31) because
+ * the committed records depend on these exact bits.  GSL's tabulated rules
+ * are correctly rounded; for every n in 2..8 these differ from them in the
+ * last bits (nodes by up to 1 ulp, weights by up to 6 ulp = 3.7 eps
+ * relative; n = 1 is identical; n = 2: w = 1 + 2^-52 here, 1 in GSL).  With
+ * GSL's bits the drooping scene at 363 dofs (RMTR, defaults) takes 156
+ * V-cycles instead of the recorded 167 and ends at f = -10.5638 instead of
+ * -10.5671 J (measured; round-off moves counts on nonconvex scenes,
+ * docs/reproducibility.md).  tests/test_material.c (gauss_rules_match_gsl)
+ * checks every rule against GSL's: nodes to 2 eps, weights to 8 eps. */
 int sb_gauss_legendre(int n, double *x, double *w)
 {
     if (n < 1 || n > SB_MAX_THICK || !x || !w) return SB_ERR_INPUT;
@@ -372,7 +383,17 @@ static double first_nonmonotone(const sb_material *m, int j, double dir, double 
 }
 
 /* Where phi_j' is largest on the admissible side [0, bound] (bound finite):
- * scanned on a grid, an interior maximum refined by bisection on phi_j'' = 0. */
+ * scanned on a grid, an interior maximum refined by bisection on phi_j'' = 0.
+ *
+ * The bisections here are kept instead of GSL's Brent solver (issue 31)
+ * because the committed records depend on their exact bits.  Both run to
+ * the last bit, but phi_j' and phi_j'' change sign noisily in their last
+ * bits near a root, so the two methods stop at different doubles: for
+ * Table 1's weft law Brent (sb_root_brent) gives u_max 15 ulp and the join
+ * u_join_hi 2 ulp away from the bisection, and with Brent's join the drape
+ * at 1,083 dofs (RMTR, defaults) takes 782 V-cycles instead of the recorded
+ * 679 (measured).  tests/test_material.c
+ * (denim_range_matches_brent) checks both points against Brent's. */
 static double argmax_slope(const sb_material *m, int j, double bound)
 {
     const int n = 2000;

@@ -14,9 +14,9 @@
  * iterations, so the smoothing keeps pace with the conditioning of the level
  * (Fig. 9: cond(H) grows like h^-4); with a fixed 10 iterations the
  * V-cycle's contraction near a solution degrades from level to level
- * (README "RMTR smoother stopping rule").
+ * (docs/rmtr.md "Smoother stopping rule").
  *
- * Assumptions where the paper is silent or ambiguous (README "RMTR"):
+ * Assumptions where the paper is silent or ambiguous (docs/rmtr.md):
  *  - Alg. 4.3 line 4 as printed ("if ||x_i - x_0||_l > (1-eps) Delta^{l+1}
  *    then delta = Delta^{l+1} - ||x_i - x_0||_l", delta = 0 otherwise)
  *    contradicts §4.3.1, which says delta is zero when the condition is NOT
@@ -51,13 +51,13 @@
  *    1-3, the fine radius the smoothing steps only.  Reason: in the
  *    nonconvex first step of the hard scenes the fine radius settles at about
  *    one element, and under the paper's rule the coarse corrections are held
- *    to it too (README "RMTR coarse radius").  ASSUMPTION: the own radius
+ *    to it too (docs/rmtr.md "Coarse radius").  ASSUMPTION: the own radius
  *    starts at Delta_0 whenever the fine one does (every step, every level of
  *    the nested start); acceptance still needs rho > eta1.
  *  - solver.nested (not in the paper; default: the first step of a run):
  *    nested iteration over the levels before the finest V-cycles, see
  *    promote(); its V-cycles on coarser top levels are outer iterations
- *    reported with their level (README "RMTR nested start"). */
+ *    reported with their level (docs/rmtr.md "Nested start"). */
 #include "sb_solver.h"
 #include "sb_trs.h"
 #include "sb_context.h"

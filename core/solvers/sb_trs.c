@@ -381,7 +381,7 @@ static void stcg_free(void *st)
 /* Steihaug (1983) / Toint (1981) truncated CG (Nocedal & Wright Alg. 7.2),
  * stopped at max_iter iterations (RMTR paper §7.3: 10 as a smoother), at
  * ||r|| <= rtol ||g|| (rtol < 0: the forcing min(0.5, sqrt||g||); RMTR's
- * smoother default 0.1, README "RMTR smoother stopping rule"), at negative
+ * smoother default 0.1, docs/rmtr.md "Smoother stopping rule"), at negative
  * curvature or at the boundary.  Starts from s = 0, so without a preconditioner the first iterate
  * is the Cauchy point.  With a preconditioner M (Steihaug's original form)
  * the directions are M-conjugate; ASSUMPTION: the boundary test stays in the

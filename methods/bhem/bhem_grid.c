@@ -80,7 +80,9 @@ int bhem_detect_periodic(bhem_state *S)
  * It is added along the reference node normal n: x += delta n, hs x_s +=
  * hs delta_s n, ...  (the derivative of n is neglected: exact for flat
  * sheets, O(A * curvature) otherwise).  The imperfect surface IS the stress
- * free reference. */
+ * free reference.  The LCG is kept instead of a gsl_rng (issue 31): its
+ * draws define the imperfect reference surface of the scenes in
+ * results/bhem_report.md, and another stream would be another scene. */
 enum { BHEM_IMP_MODES = 32 };
 static double lcg01(unsigned long long *st)
 {
