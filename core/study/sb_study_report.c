@@ -13,7 +13,7 @@
  *
  * With `deterministic`, wall-clock figures and the machine are left out and
  * costs are work units: the same records give the same bytes. */
-#include "sb_study_fig.h"
+#include "sb_study_rep.h"
 #include "sb_sysinfo.h"
 
 #include <errno.h>
@@ -23,16 +23,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-typedef struct rep {
-    const sb_study *st;
-    const sb_study_data *d;
-    const sb_study_report_options *o;
-    FILE *md, *err;
-    char dir[1024];
-    int n_costs, costs[2];     /* the cost measures shown (seconds first) */
-} rep;
-
-static void g3(char *buf, size_t len, double v)
+void sb_rep_g3(char *buf, size_t len, double v)
 {
     if (!isfinite(v)) snprintf(buf, len, "—");
     else snprintf(buf, len, "%.3g", v);
@@ -54,7 +45,7 @@ static const char *error_words(sb_error_kind e)
 }
 
 /* cost to reach target on scene i for config c; bracket text */
-static double reach(const rep *R, int i, int c, int cost, double target, char *how, size_t len)
+static double reach(const sb_rep *R, int i, int c, int cost, double target, char *how, size_t len)
 {
     long lo, hi;
     double best;
@@ -68,7 +59,7 @@ static double reach(const rep *R, int i, int c, int cost, double target, char *h
     return v;
 }
 
-static void selection_table(rep *R, int cost)
+static void selection_table(sb_rep *R, int cost)
 {
     const sb_study *st = R->st;
     const sb_study_data *d = R->d;
@@ -96,12 +87,12 @@ static void selection_table(rep *R, int cost)
             char a[128] = "—", b[128] = "—", ca[64] = "—", cb[64] = "—", ratio[32] = "—", v[32];
             if (nfin >= 1) {
                 sb_study_config_label(d, ord[0], a, sizeof a);
-                g3(v, sizeof v, cst[ord[0]]);
+                sb_rep_g3(v, sizeof v, cst[ord[0]]);
                 snprintf(ca, sizeof ca, "%s (%s)", v, how[ord[0]]);
             }
             if (nfin >= 2) {
                 sb_study_config_label(d, ord[1], b, sizeof b);
-                g3(v, sizeof v, cst[ord[1]]);
+                sb_rep_g3(v, sizeof v, cst[ord[1]]);
                 snprintf(cb, sizeof cb, "%s (%s)", v, how[ord[1]]);
                 snprintf(ratio, sizeof ratio, "%.2f", cst[ord[1]] / cst[ord[0]]);
             }
@@ -124,12 +115,12 @@ out:
     free(how);
 }
 
-static void figure(rep *R, const char *stem_name, const char *alt)
+static void figure(sb_rep *R, const char *stem_name, const char *alt)
 {
     fprintf(R->md, "![%s](%s.png)  \n[SVG](%s.svg)\n\n", alt, stem_name, stem_name);
 }
 
-static void work_precision(rep *R)
+static void work_precision(sb_rep *R)
 {
     const sb_study *st = R->st;
     char stem[1200], name[256], msg[1024];
@@ -150,7 +141,7 @@ static void work_precision(rep *R)
     }
 }
 
-static void profiles(rep *R)
+static void profiles(sb_rep *R)
 {
     const sb_study *st = R->st;
     const sb_study_data *d = R->d;
@@ -205,91 +196,7 @@ out:
     free(cfg);
 }
 
-static void status_words(const sb_study_point *q, char *buf, size_t len)
-{
-    if (q->status == 0) snprintf(buf, len, "converged");
-    else snprintf(buf, len, "**not converged** (%s, %d of %d steps)", q->reason, q->steps, q->steps_planned);
-}
-
-/* distance between two starts' final surfaces / diameter (RMS) */
-static double start_distance(const sb_study_data *d, int i, const sb_study_point *a, const sb_study_point *b)
-{
-    if (!a->pos || !b->pos || a->n_samples != b->n_samples || a->n_samples == 0) return NAN;
-    double rms, mx;
-    sb_field_error(a->n_samples, a->pos, b->pos, d->diameter[i], &rms, &mx);
-    return mx;
-}
-
-static void multiple_scenes(rep *R)
-{
-    const sb_study *st = R->st;
-    const sb_study_data *d = R->d;
-    int any = 0;
-    for (int i = 0; i < st->n_scenes; i++) any |= st->scenes[i].n_seeds > 0 || st->scenes[i].solution == SB_SOLUTION_MULTIPLE;
-    if (!any) return;
-    fprintf(R->md, "## Scenes with several solutions, and perturbed starts\n\n"
-                   "The buckled, nonconvex cloth scenes have many local minima: a method that lands in another minimum "
-                   "than the reference has not made an error, so these scenes are **not ranked by distance to the "
-                   "reference** and take no part in the selection table or the profiles.  What is compared instead: "
-                   "whether the run converged and at what cost, the energy E of the minimum it found against the "
-                   "reference's (ΔE = (E − E_ref)/|E_ref|, negative: a lower minimum than the reference's), and the "
-                   "spread over perturbed starts (`run.perturb`, `run.seed`): how far apart in energy (ΔE spread) and in "
-                   "shape (max |x_a − x_b| / diameter between the starts' final surfaces) the minima reached from nearby "
-                   "starts are.  On a scene with a unique solution the same columns check uniqueness: the starts should "
-                   "agree to the solver tolerance.\n\n");
-    for (int i = 0; i < st->n_scenes; i++) {
-        const sb_study_scene *sc = &st->scenes[i];
-        if (!(sc->n_seeds > 0 || sc->solution == SB_SOLUTION_MULTIPLE)) continue;
-        double eref = d->has_ref[i] ? d->ref[i].energy : NAN;
-        char v[32];
-        g3(v, sizeof v, eref);
-        fprintf(R->md, "### %s (%s solution%s)\n\nE_ref = %s J%s.  Starts: the unperturbed one", sc->name,
-                sc->solution == SB_SOLUTION_UNIQUE ? "unique" : "several", sc->solution == SB_SOLUTION_UNIQUE ? "" : "s", v,
-                d->has_ref[i] ? "" : " (no reference record: ΔE is left out)");
-        if (sc->n_seeds) fprintf(R->md, " and %d perturbed by ±%g per dof (seeds", sc->n_seeds, sc->perturb);
-        for (int k = 0; k < sc->n_seeds; k++) fprintf(R->md, "%s%ld", k ? ", " : " ", sc->seeds[k]);
-        fprintf(R->md, "%s.\n\n", sc->n_seeds ? ")" : "");
-        fprintf(R->md, "| configuration | dofs | unperturbed start | iterations | %s WU | E (J) | ΔE | starts converged | ΔE spread | max shape distance between starts |\n",
-                R->o->deterministic ? "" : "seconds |");
-        fprintf(R->md, "|---|--:|---|--:|%s--:|--:|--:|--:|--:|--:|\n", R->o->deterministic ? "" : "--:|");
-        for (int k = 0; k < d->plan.n; k++) {
-            const sb_plan_run *r = &d->plan.runs[k];
-            const sb_study_point *q = &d->pt[k];
-            if (r->scene != i || r->start != 0 || q->state != SB_POINT_RECORDED) continue;
-            char label[128], stw[128], sec[32], wu[32], e[32], de[32], spread[32], dist[32];
-            sb_study_config_label(d, q->config, label, sizeof label);
-            status_words(q, stw, sizeof stw);
-            g3(sec, sizeof sec, q->seconds);
-            g3(wu, sizeof wu, q->work);
-            snprintf(e, sizeof e, isfinite(q->energy) ? "%.6g" : "—", q->energy);
-            g3(de, sizeof de, isfinite(eref) && q->status == 0 ? (q->energy - eref) / fabs(eref) : NAN);
-            /* the other starts of this configuration and resolution */
-            int conv = q->status == 0, total = 1;
-            double emin = q->status == 0 ? q->energy : INFINITY, emax = q->status == 0 ? q->energy : -INFINITY, dmax = 0;
-            int have_d = 0;
-            for (int j = 0; j < d->plan.n; j++) {
-                const sb_plan_run *rj = &d->plan.runs[j];
-                if (rj->scene != i || rj->start == 0 || d->pt[j].config != q->config || rj->res != r->res) continue;
-                total++;
-                if (d->pt[j].state != SB_POINT_RECORDED || d->pt[j].status != 0) continue;
-                conv++;
-                emin = fmin(emin, d->pt[j].energy), emax = fmax(emax, d->pt[j].energy);
-                if (q->status == 0) {
-                    double dd = start_distance(d, i, q, &d->pt[j]);
-                    if (isfinite(dd)) dmax = fmax(dmax, dd), have_d = 1;
-                }
-            }
-            double scale = isfinite(eref) ? fabs(eref) : fabs(q->energy);
-            g3(spread, sizeof spread, total > 1 && conv > 1 ? (emax - emin) / scale : NAN);
-            g3(dist, sizeof dist, have_d ? dmax : NAN);
-            fprintf(R->md, "| %s | %ld | %s | %d | %s%s%s | %s | %s | %d of %d | %s | %s |\n", label, q->dofs, stw,
-                    q->iterations, R->o->deterministic ? "" : sec, R->o->deterministic ? "" : " | ", wu, e, de, conv, total, spread, dist);
-        }
-        fprintf(R->md, "\n");
-    }
-}
-
-static void references(rep *R)
+static void references(sb_rep *R)
 {
     const sb_study *st = R->st;
     const sb_study_data *d = R->d;
@@ -306,58 +213,7 @@ static void references(rep *R)
     fprintf(R->md, "\nWhy each bundled scene has the reference it has: docs/study.md \"References\".\n\n");
 }
 
-static void run_tables(rep *R)
-{
-    const sb_study *st = R->st;
-    const sb_study_data *d = R->d;
-    fprintf(R->md, "## Runs\n\nEvery record of the study (the unperturbed start); errors as defined per scene above "
-                   "(probe: relative to the analytic value or, with a reference record, distance / diameter).\n\n");
-    for (int i = 0; i < st->n_scenes; i++) {
-        fprintf(R->md, "### %s\n\n| configuration | res | dofs | status | steps | iterations | %sassembly WU | probe error | RMS field error | max field error |\n"
-                       "|---|--:|--:|---|--:|--:|%s--:|--:|--:|--:|\n", st->scenes[i].name, R->o->deterministic ? "" : "seconds | ",
-                R->o->deterministic ? "" : "--:|");
-        for (int k = 0; k < d->plan.n; k++) {
-            const sb_plan_run *r = &d->plan.runs[k];
-            const sb_study_point *q = &d->pt[k];
-            if (r->scene != i || r->start != 0 || q->state != SB_POINT_RECORDED) continue;
-            char label[128], stw[160], sec[32], wu[32], ep[32], er[32], em[32];
-            sb_study_config_label(d, q->config, label, sizeof label);
-            status_words(q, stw, sizeof stw);
-            g3(sec, sizeof sec, q->seconds);
-            g3(wu, sizeof wu, q->work);
-            g3(ep, sizeof ep, q->err_probe);
-            g3(er, sizeof er, q->err_rms);
-            g3(em, sizeof em, q->err_max);
-            fprintf(R->md, "| %s | %d | %ld | %s | %d | %d | %s%s%s | %s | %s | %s |\n", label, r->res, q->dofs, stw, q->steps,
-                    q->iterations, R->o->deterministic ? "" : sec, R->o->deterministic ? "" : " | ", wu, ep, er, em);
-        }
-        fprintf(R->md, "\n");
-    }
-}
-
-static void without_records(rep *R)
-{
-    const sb_study *st = R->st;
-    const sb_study_data *d = R->d;
-    int any = 0;
-    for (int k = 0; k < d->plan.n; k++) {
-        const sb_study_point *q = &d->pt[k];
-        const sb_plan_run *r = &d->plan.runs[k];
-        if (q->state == SB_POINT_RECORDED) continue;
-        if (!any++) fprintf(R->md, "## Runs without a record\n\n| scene | configuration | res | start | state | why |\n|---|---|--:|--:|---|---|\n");
-        char label[128];
-        sb_study_config_label(d, q->config, label, sizeof label);
-        static const char *const words[] = { "recorded", "refused", "missing", "skipped", "not applicable" };
-        char res[16] = "—";
-        if (r->res) snprintf(res, sizeof res, "%d", r->res);
-        fprintf(R->md, "| %s | %s | %s | %d | %s | %s |\n", st->scenes[r->scene].name, label, res, r->start,
-                words[q->state], q->why);
-    }
-    if (any) fprintf(R->md, "\nRefused: the method or solver cannot honour the scene (the sentence is its own); "
-                            "missing: not run yet or failed without a record (run the sweep again).\n\n");
-}
-
-static void convergence(rep *R)
+static void convergence(sb_rep *R)
 {
     const sb_study *st = R->st;
     char name[256], stem[1200], msg[1024];
@@ -376,7 +232,7 @@ static void convergence(rep *R)
     }
 }
 
-static void header(rep *R)
+static void header(sb_rep *R)
 {
     const sb_study *st = R->st;
     const sb_study_data *d = R->d;
@@ -431,7 +287,7 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
     sb_study_data d;
     if (st->kind == SB_STUDY_DT_STABILITY) return sb_study_dt_report(st, o, err);
     if (sb_study_data_load(st, &d, err)) return SB_EXIT_INPUT;
-    rep R = { st, &d, o, NULL, err, "", 0, { 0, 0 } };
+    sb_rep R = { st, &d, o, NULL, err, "", 0, { 0, 0 } };
     snprintf(R.dir, sizeof R.dir, "%s", o->out_dir ? o->out_dir : st->records);
     if (o->deterministic) R.costs[R.n_costs++] = SB_COST_WORK;
     else R.costs[R.n_costs++] = SB_COST_SECONDS, R.costs[R.n_costs++] = SB_COST_WORK;
@@ -457,10 +313,10 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
     }
     work_precision(&R);
     profiles(&R);
-    multiple_scenes(&R);
+    sb_rep_multiple_scenes(&R);
     references(&R);
-    run_tables(&R);
-    without_records(&R);
+    sb_rep_run_tables(&R);
+    sb_rep_without_records(&R);
     convergence(&R);
     fprintf(R.md, "## How to read this report\n\nSee docs/study.md: the study file, the reference policy per scene, how the "
                   "cost to reach a target is interpolated, and how to read the diagrams, profiles and the selection table.\n");
