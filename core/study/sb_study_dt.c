@@ -132,6 +132,7 @@ typedef struct dt_walk {
     int probes;
     double next;            /* the next dt to probe (0: done) */
     char at_max[64];        /* outcome at dt_max */
+    char at_hi[64];         /* why the smallest failing dt fails */
     double tried[DT_MAX_PROBES];
     int ok[DT_MAX_PROBES];
 } dt_walk;
@@ -159,7 +160,10 @@ static void walk(const sb_study *st, const sb_plan_run *base, dt_walk *w)
         w->ok[w->probes++] = o;
         if (w->probes == 1) snprintf(w->at_max, sizeof w->at_max, "%s", why);
         if (o) w->lo = fmax(w->lo, dt);
-        else w->hi = fmin(w->hi, dt);
+        else if (dt < w->hi) {
+            w->hi = dt;
+            snprintf(w->at_hi, sizeof w->at_hi, "%s", why);
+        }
         /* the next probe */
         if (w->probes == 1) dt = o ? 0 : round6(D->dt_min);
         else if (w->lo == 0) dt = 0;                       /* fails at dt_min too */
@@ -255,10 +259,17 @@ static int dt_figure(const sb_study *st, const sb_plan *plan, int i, const char 
     fprintf(body, "\nset logscale y\nset yrange [%g:%g]\nset ylabel 'largest converging dt (s)'\nset grid ytics\n"
                   "set key outside right top vertical Left reverse\nset xrange [-0.5:%d.5]\nset xtics (", st->dt.dt_min / 2,
             st->dt.dt_max * 2, st->n_solvers - 1);
-    for (int s = 0; s < st->n_solvers; s++) fprintf(body, "%s'%s%s' %d", s ? ", " : "", st->solvers[s].name, st->solvers[s].levels > 1 ? " L2+" : "", s);
+    for (int s = 0; s < st->n_solvers; s++) {
+        char lv[16] = "";
+        if (st->solvers[s].levels > 1) snprintf(lv, sizeof lv, " L%d", st->solvers[s].levels);
+        fprintf(body, "%s'%s%s' %d", s ? ", " : "", st->solvers[s].name, lv, s);
+    }
     fprintf(body, ")\nset arrow from graph 0, first %g to graph 1, first %g nohead dt 2 lc rgb '#888888'\n"
-                  "set label 'cap %g s' at graph 0.01, first %g offset 0,0.6 tc rgb '#666666'\nplot ", st->dt.dt_max, st->dt.dt_max,
-            st->dt.dt_max, st->dt.dt_max);
+                  "set label 'cap %g s' at graph 0.01, first %g offset 0,0.6 tc rgb '#666666'\n"
+                  "set arrow from graph 0, first %g to graph 1, first %g nohead dt 3 lc rgb '#aaaaaa'\n"
+                  "set label 'smallest dt tried: points below do not converge there' at graph 0.01, first %g offset 0,-0.8 "
+                  "tc rgb '#666666' font ',8'\nplot ", st->dt.dt_max, st->dt.dt_max, st->dt.dt_max, st->dt.dt_max,
+            st->dt.dt_min, st->dt.dt_min, st->dt.dt_min);
     int curves = 0;
     for (int m = 0; m < st->n_methods; m++) {
         FILE *f = sb_gp_data(&g, path, sizeof path);
@@ -322,22 +333,22 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
                 "parameter (Fig. 9), are reproduced in results/rmtr/cond.md and results/rmtr/cond_sigma.md.\n\n", st->dt.steps, st->dt.max_iter, st->dt.dt_max, st->dt.dt_min,
             st->dt.bisections, st->path, st->records);
     for (int i = 0; i < st->n_scenes; i++) {
-        fprintf(md, "## %s\n\n| method | solver | dofs | largest converging dt (s) | outcome at dt = %g | probes |\n|---|---|--:|---|---|--:|\n",
-                st->scenes[i].name, st->dt.dt_max);
+        fprintf(md, "## %s\n\n| method | solver | dofs | largest converging dt (s) | outcome at dt = %g | why the smallest "
+                    "failing dt fails | probes |\n|---|---|--:|---|---|---|--:|\n", st->scenes[i].name, st->dt.dt_max);
         for (int k = 0; k < plan.n; k++) {
             const sb_plan_run *r = &plan.runs[k];
             if (r->scene != i) continue;
             char label[128], txt[128];
             sb_plan_config_label(st, r, label, sizeof label);
             if (r->state != SB_PLAN_RUN) {
-                fprintf(md, "| %s | %s | — | %s | — | 0 |\n", st->methods[r->method].name, strchr(label, '/') + 1, r->why);
+                fprintf(md, "| %s | %s | — | %s | — | — | 0 |\n", st->methods[r->method].name, strchr(label, '/') + 1, r->why);
                 continue;
             }
             dt_walk w;
             walk(st, r, &w);
             dt_text(st, &w, txt, sizeof txt);
-            fprintf(md, "| %s | %s | %ld | %s | %s | %d |\n", st->methods[r->method].name, strchr(label, '/') + 1, r->dofs, txt,
-                    w.probes ? w.at_max : "—", w.probes);
+            fprintf(md, "| %s | %s | %ld | %s | %s | %s | %d |\n", st->methods[r->method].name, strchr(label, '/') + 1, r->dofs,
+                    txt, w.probes ? w.at_max : "—", w.at_hi[0] ? w.at_hi : "—", w.probes);
         }
         char name[256], stem[1300];
         snprintf(name, sizeof name, "dt-%s", st->scenes[i].name);
