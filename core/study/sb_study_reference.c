@@ -165,7 +165,12 @@ int sb_study_cmd_reference(int argc, char **argv)
         fprintf(stderr, "shellbench reference: %s exists (--force replaces it; scenes and studies may point at it)\n", out);
         goto out;
     }
-    if (force) unlink(out), unlink(check_out);
+    if (force) {   /* and their checkpoints: a replaced reference starts afresh */
+        char part[1200];
+        unlink(out), unlink(check_out);
+        snprintf(part, sizeof part, "%s.partial", out), unlink(part);
+        snprintf(part, sizeof part, "%s.partial", check_out), unlink(part);
+    }
     printf("reference of %s: %s/%s on %d level%s, res %d (%ld dofs), %s -> %s\n", sc->name, mt->name, solver, levels,
            levels > 1 ? "s" : "", res, got, REF_GTOL, out);
     fflush(stdout);
