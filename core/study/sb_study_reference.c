@@ -195,6 +195,13 @@ int sb_study_cmd_reference(int argc, char **argv)
         while (lv > 1 && cres % (1 << (lv - 1))) lv--;
         if (stype->flags & SB_SOLVER_NEEDS_HIERARCHY && lv < 2) lv = 2;
         code = run_at(sc->path, mt->name, solver, cres, lv, sets, n_sets, samples, check_out);
+        if (code == 2 && (lv > 1 || strcmp(solver, "tr"))) {
+            /* the method refuses the hierarchy at half the resolution: the
+             * check is about the discretization, so single-level TR will do */
+            fprintf(stderr, "shellbench reference: the self-check with %s on %d levels was refused; "
+                            "running it with tr on 1 level\n", solver, lv);
+            code = run_at(sc->path, mt->name, "tr", cres, 1, sets, n_sets, samples, check_out);
+        }
         if (code == 0) {
             int n = 0;
             double *grid = NULL, *pos = NULL;
@@ -212,7 +219,8 @@ int sb_study_cmd_reference(int argc, char **argv)
             free(grid);
             free(pos);
         } else {
-            fprintf(stderr, "shellbench reference: warning: the self-check run at res %d did not converge (exit %d)\n", cres, code);
+            fprintf(stderr, "shellbench reference: warning: the self-check run at res %d %s (exit %d): no self-check\n", cres,
+                    code == 1 ? "did not converge" : code == 2 ? "was refused" : "failed", code);
         }
     }
     /* provenance */
