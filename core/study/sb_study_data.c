@@ -14,6 +14,7 @@
 #include "sb_geometry.h"
 #include "sb_record.h"
 
+#include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,6 +88,20 @@ static double probe_distance(const char *rec, const char *ref, double diam, FILE
     return worst;
 }
 
+/* self_check.rms of the provenance REF.json beside REF.h5 (NaN: none) */
+static double self_check(const char *ref)
+{
+    char p[1100];
+    size_t n = strlen(ref);
+    snprintf(p, sizeof p, "%.*s.json", (int)(n > 3 && !strcmp(ref + n - 3, ".h5") ? n - 3 : n), ref);
+    json_error_t e;
+    json_t *o = json_load_file(p, 0, &e);
+    json_t *v = o ? json_object_get(json_object_get(o, "self_check"), "rms") : NULL;
+    double r = json_is_number(v) ? json_number_value(v) : NAN;
+    json_decref(o);
+    return r;
+}
+
 static void read_point(sb_study_data *d, sb_study_point *q, FILE *err)
 {
     const sb_study *st = d->st;
@@ -122,8 +137,10 @@ static void read_point(sb_study_data *d, sb_study_point *q, FILE *err)
         /* the scene's reference, checked against the first record's grid */
         const sb_study_scene *sc = &st->scenes[i];
         if (sb_refrec_load(sc->reference, sc->name, sc->scene->json_text, q->n_samples, st_grid, &d->ref[i],
-                           d->ref_why[i], sizeof d->ref_why[i]) == SB_OK)
+                           d->ref_why[i], sizeof d->ref_why[i]) == SB_OK) {
             d->has_ref[i] = 1;
+            d->ref_check[i] = self_check(sc->reference);
+        }
         else
             d->has_ref[i] = 0;
     }
@@ -161,6 +178,7 @@ int sb_study_data_load(const sb_study *st, sb_study_data *d, FILE *err)
     d->n_configs = st->n_methods * st->n_solvers * d->plan.n_variants;
     for (int i = 0; i < st->n_scenes; i++) {
         d->has_ref[i] = -1;   /* not tried yet */
+        d->ref_check[i] = NAN;
         d->diameter[i] = sb_domain_diameter(&st->scenes[i].scene->domain);
         if (!st->scenes[i].reference[0])
             snprintf(d->ref_why[i], sizeof d->ref_why[i], "%s", st->scenes[i].error == SB_ERRKIND_PROBE ? "analytic (probes)" : "none");

@@ -46,6 +46,10 @@ typedef struct sb_study_data {
     int has_ref[SB_STUDY_MAX_SCENES];
     sb_refrec ref[SB_STUDY_MAX_SCENES];
     char ref_why[SB_STUDY_MAX_SCENES][1024];
+    /* the reference's self-check (its provenance REF.json, shellbench
+     * reference): field RMS / diameter against its run at half the
+     * resolution; NaN when there is none */
+    double ref_check[SB_STUDY_MAX_SCENES];
     double diameter[SB_STUDY_MAX_SCENES];
 } sb_study_data;
 

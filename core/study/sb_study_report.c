@@ -131,6 +131,9 @@ static void work_precision(sb_rep *R)
     for (int i = 0; i < st->n_scenes; i++) {
         if (!unique_ranked(st, i)) continue;
         fprintf(R->md, "### %s — %s\n\n", st->scenes[i].name, error_words(st->scenes[i].error));
+        if (R->d->has_ref[i] && isfinite(R->d->ref_check[i]) && st->scenes[i].error != SB_ERRKIND_PROBE)
+            fprintf(R->md, "Reference: %ld dofs; its own run at half the resolution differs by %.2g (RMS / diameter), so field "
+                           "errors below about %.1g are not resolved.\n\n", R->d->ref[i].dofs, R->d->ref_check[i], R->d->ref_check[i] / 3);
         for (int k = 0; k < R->n_costs; k++) {
             int cost = R->costs[k];
             snprintf(name, sizeof name, "wp-%s-%s", st->scenes[i].name, cost == SB_COST_SECONDS ? "seconds" : "work");
@@ -204,8 +207,13 @@ static void references(sb_rep *R)
     for (int i = 0; i < st->n_scenes; i++) {
         const sb_study_scene *sc = &st->scenes[i];
         char ref[1400];
-        if (d->has_ref[i]) snprintf(ref, sizeof ref, "`%s`: %s/%s, %ld dofs (res %d, %d level%s)", d->ref[i].path, d->ref[i].method,
-                                    d->ref[i].solver, d->ref[i].dofs, d->ref[i].res, d->ref[i].levels, d->ref[i].levels > 1 ? "s" : "");
+        if (d->has_ref[i]) {
+            int u = snprintf(ref, sizeof ref, "`%s`: %s/%s, %ld dofs (res %d, %d level%s)", d->ref[i].path, d->ref[i].method,
+                             d->ref[i].solver, d->ref[i].dofs, d->ref[i].res, d->ref[i].levels, d->ref[i].levels > 1 ? "s" : "");
+            if (isfinite(d->ref_check[i]) && sc->solution == SB_SOLUTION_UNIQUE && u > 0 && (size_t)u < sizeof ref)
+                snprintf(ref + u, sizeof ref - u, "; its run at half the resolution differs by %.2g (RMS / diameter): field "
+                         "errors below about a third of that are not resolved", d->ref_check[i]);
+        }
         else snprintf(ref, sizeof ref, "%s", d->ref_why[i][0] ? d->ref_why[i] : "none");
         fprintf(R->md, "| %s | %s | %s | %s |\n", sc->name, sc->solution == SB_SOLUTION_UNIQUE ? "unique" : "several (not ranked)",
                 sc->solution == SB_SOLUTION_UNIQUE ? error_words(sc->error) : "energy, convergence, cost", ref);
