@@ -4,23 +4,34 @@
 
 CC      ?= cc
 CXX     ?= c++
+# `make NATIVE=1`: -O3 -march=native (with FMA contraction) in its own build
+# directory, recorded in every record's build_id as "+native"; the default
+# build is the portable x86-64 baseline whose round-off is the same on every
+# machine (docs/performance.md, docs/reproducibility.md)
+ifeq ($(NATIVE),1)
+BUILD   ?= build-native
+OPT     ?= -O3 -march=native -ffp-contract=fast
+else
 BUILD   ?= build
 OPT     ?= -O2
+endif
 SAN     ?=
+# element assembly on run.threads threads (OpenMP); `make OPENMP=` builds without
+OPENMP  ?= -fopenmp
 PKGS    := hdf5-serial jansson gsl
 PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
 # core/ is the architecture, one folder per part (docs/architecture.md):
-# base -> scene -> problem (method + run) -> linalg -> solvers -> record -> report, study, cli
-CORE_DIRS := base scene problem linalg shell solvers record report study cli
+# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, cli
+CORE_DIRS := base scene mesh problem linalg shell solvers record report render study cli
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
-           $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) -MMD -MP
+           $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) $(OPENMP) -MMD -MP
 CXXFLAGS ?= $(OPT) -g
 CXXFLAGS += -std=c++14 -Wall -Wextra $(CORE_INC) $(SAN) -MMD -MP
-LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -lstdc++ -lm
-LDFLAGS += $(SAN)
+LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -lstdc++ -lz -lm
+LDFLAGS += $(SAN) $(OPENMP)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
@@ -40,7 +51,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan clean
+.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -59,7 +70,7 @@ $(BUILD)/%.o: %.cpp | $(DEPS_STAMP)
 	$(CXX) $(CXXFLAGS) -c $< -o $@
 
 # build id (git describe) for the records; the header changes only when the id does
-BUILD_ID := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+BUILD_ID := $(shell git describe --always --dirty 2>/dev/null || echo unknown)$(if $(filter 1,$(NATIVE)),+native(-O3 -march=native))
 $(BUILD)/build_id.h: FORCE | $(DEPS_STAMP)
 	@mkdir -p $(BUILD)
 	@echo '#define SB_BUILD_ID "$(BUILD_ID)"' > $@.new
@@ -94,9 +105,12 @@ $(BUILD)/bench/%: bench/%.c $(LIB) | $(DEPS_STAMP)
 SB_BLAS_CORE ?= Prescott
 BLAS_ENV = OPENBLAS_NUM_THREADS=1 OPENBLAS_CORETYPE=$(SB_BLAS_CORE)
 
+# HDF5's own leak on malformed files is suppressed (tests/lsan.supp)
+LSAN_ENV = LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0
+
 # Each test binary writes its own result file; the summary sums them.
 $(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN)
-	@SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) $(BLAS_ENV) \
+	@SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) $(BLAS_ENV) $(LSAN_ENV) \
 	  $(abspath $<) > $@.log 2>&1; echo $$? > $@.rc; tail -n 1 $@.log > $@; \
 	  if [ "$$(cat $@.rc)" != 0 ]; then echo "--- $< failed:"; grep -E 'FAIL|not ok|rror|Sanitizer' $@.log | head -n 30; fi
 
@@ -115,7 +129,37 @@ check-asan:
 	$(MAKE) --no-print-directory BUILD=build-asan OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
 
+# Fuzzing (docs/cli.md "Fuzzing"): libFuzzer harnesses of the scene parser and
+# the record readers, built with clang, ASan and UBSan in build-fuzz/; clang is
+# installed by `ensure_deps.sh fuzz` here only (`make test` never needs it).
+# `make fuzz` builds them and their seed corpora; `make fuzz-short` runs each
+# for FUZZ_SECONDS (CI), failing on any crash, sanitizer report or abort.
+FUZZ_BUILD   := build-fuzz
+FUZZ_SAN     := -fsanitize=address,undefined,fuzzer-no-link -fno-sanitize=vptr -fno-omit-frame-pointer \
+                -fno-sanitize-recover=undefined
+FUZZ_SECONDS ?= 60
+
+fuzz: $(BIN)
+	@bash scripts/ensure_deps.sh fuzz
+	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=clang CXX=clang++ OPT=-O1 SAN="$(FUZZ_SAN)" fuzz-build
+	@bash scripts/fuzz_seeds.sh $(BIN) $(FUZZ_BUILD)/seeds
+	@echo "fuzz targets: $(FUZZ_BUILD)/fuzz/fuzz_scene, $(FUZZ_BUILD)/fuzz/fuzz_record (make fuzz-short runs each $(FUZZ_SECONDS) s)"
+
+fuzz-build: $(BUILD)/fuzz/fuzz_scene $(BUILD)/fuzz/fuzz_record
+
+$(BUILD)/fuzz/fuzz_%: fuzz/fuzz_%.c $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fsanitize=fuzzer -o $@ $< $(LIB) $(LDFLAGS) $(LDLIBS)
+
+fuzz-short: fuzz
+	@$(BLAS_ENV) $(LSAN_ENV) bash scripts/fuzz_run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+# ParaView opens every method's XDMF sidecars (installs ParaView if missing;
+# not part of `make test`): scripts/check_paraview.sh
+check-paraview: $(BIN)
+	$(BLAS_ENV) bash scripts/check_paraview.sh $(BIN) $(BUILD)/paraview
+
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan build-fuzz
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

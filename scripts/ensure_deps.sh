@@ -10,6 +10,7 @@ have_hdr /usr/include/hdf5/serial/hdf5.h          || need+=(libhdf5-dev)
 command -v h5dump >/dev/null 2>&1                 || need+=(hdf5-tools)
 have_hdr /usr/include/gsl/gsl_math.h              || need+=(libgsl-dev)
 have_hdr /usr/include/jansson.h                   || need+=(libjansson-dev)
+have_hdr /usr/include/zlib.h                      || need+=(zlib1g-dev)      # PNG output of shellbench render
 have_hdr /usr/include/opensubdiv/version.h        || need+=(libosd-dev)
 command -v gnuplot >/dev/null 2>&1                || need+=(gnuplot-nox)
 command -v pkg-config >/dev/null 2>&1             || need+=(pkg-config)
@@ -18,6 +19,16 @@ command -v c++ >/dev/null 2>&1                    || need+=(g++)
 command -v make >/dev/null 2>&1                   || need+=(make)
 command -v git >/dev/null 2>&1                    || need+=(git)
 command -v python3 >/dev/null 2>&1                || need+=(python3)    # benchmark report scripts (standard library only)
+# `make fuzz` only (`ensure_deps.sh fuzz`): clang with libFuzzer and its sanitizer runtimes
+if [ "${1:-}" = fuzz ]; then
+  probe=$(mktemp -d)
+  echo 'int LLVMFuzzerTestOneInput(const unsigned char *d, unsigned long n) { (void)d; (void)n; return 0; }' > "$probe/f.c"
+  if ! clang -fsanitize=fuzzer,address,undefined "$probe/f.c" -o "$probe/f" >/dev/null 2>&1; then
+    need+=(clang libclang-rt-dev)
+  fi
+  command -v clang++ >/dev/null 2>&1 || need+=(clang)
+  rm -rf "$probe"
+fi
 if [ ${#need[@]} -eq 0 ]; then
   exit 0
 fi

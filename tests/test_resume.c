@@ -98,12 +98,13 @@ SB_TEST(stopped_and_resumed_run_equals_uninterrupted_run)
     CHECK_MSG(access(pb, F_OK) != 0, "the finished run left its checkpoint %s", pb);
     CHECK(A.summary && B.summary);
     if (!A.summary || !B.summary) return;
-    /* the counts: equal, except one more symbolic analysis per resume */
-    const char *events[] = { "energy", "gradient", "hessian", "factorize", "solve", "cg_iter", "qp", "transfer", "galerkin" };
-    for (int e = 0; e < 9; e++)
+    /* the counts: equal (a resumed process's repeat of a symbolic analysis is
+     * set-up, in the resume log), but for checkpoint, which follows the clock */
+    const char *events[] = { "energy", "gradient", "hessian", "analyze", "factorize", "solve", "cg_iter", "qp",
+                             "transfer", "galerkin", "record" };
+    for (int e = 0; e < 11; e++)
         CHECK_MSG(count_of(A.summary, events[e]) == count_of(B.summary, events[e]), "%s: %ld uninterrupted, %ld resumed",
                   events[e], count_of(A.summary, events[e]), count_of(B.summary, events[e]));
-    CHECK_EQ_INT(count_of(B.summary, "analyze"), count_of(A.summary, "analyze") + 2);
     CHECK(num(A.summary, "work_units", "assembly") == num(B.summary, "work_units", "assembly"));
     CHECK(num(A.summary, "work_units", "qp") == num(B.summary, "work_units", "qp"));
     CHECK(num(A.summary, "iterations", NULL) == num(B.summary, "iterations", NULL) && num(A.summary, "iterations", NULL) > 5);
@@ -139,7 +140,7 @@ SB_TEST(stopped_and_resumed_run_equals_uninterrupted_run)
     char *files[1] = { b };
     CHECK(mem && sb_report(1, files, "csv", mem, NULL, msg, sizeof msg) == SB_OK);
     if (mem) fclose(mem);
-    CHECK_MSG(csv && strstr(csv, ",resumes,resume_steps,resume_point\n") && strstr(csv, ",2,\"2,3\",\n"), "CSV: %s", csv ? csv : "");
+    CHECK_MSG(csv && strstr(csv, ",resumes,resume_steps,resume_point,res,parameters\n") && strstr(csv, ",2,\"2,3\",,"), "CSV: %s", csv ? csv : "");
     free(csv);
     /* a resume of a recorded run does not run it again */
     struct stat before;

@@ -9,7 +9,10 @@ import glob, json, math, os, subprocess, sys
 
 RUNS = sys.argv[1] if len(sys.argv) > 1 else "results/bhem/runs"
 PROFILE = os.path.join(os.path.dirname(RUNS.rstrip("/")), "bhem_profile")
-MASTER = "../shared/reference/cantilever_master_curve.csv"
+# the shared reference data beside the repository (../shared from /work/main; ../../shared from a worktree)
+MASTER = os.path.join(next((d for d in (os.environ.get("SB_SHARED", ""), "../shared", "../../shared")
+                            if d and os.path.isdir(os.path.join(d, "reference"))), "../shared"),
+                      "reference", "cantilever_master_curve.csv")
 
 
 def load(tag):
@@ -162,5 +165,24 @@ for d in sorted((d for d in rmtr if d), key=lambda d: (d["scene"], d["solver"], 
     P("| %s | %s | %d² | %d | %d/%d | %s | %s | %d | %.1f | %.2f | %s |" % (
         d["scene"], d["solver"], d["res"], d["dofs"], d["steps"], d["steps_planned"], d["status"], d["reason"],
         d["iterations"], d["work_units"]["assembly"], d["seconds"]["total"], pr))
+
+# ---- pictures of final states (bench/render_thumbs.py, `shellbench render`) ----
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from render_thumbs import thumbnails  # noqa: E402
+
+BIN = os.environ.get("SB_BIN", "build/shellbench")
+PICS = [("clamped plate, 16×16", "plate_clamped_r16"), ("Scordelis–Lo roof, full load, 16×16", "scordelis_full_r16"),
+        ("heavy cantilever Γ = 5, 32×1", "cantilever_G5_r32"), ("full roll-up, 16×1", "rollup_full_r16"),
+        ("wrinkled sheet, 15×15, mean curvature", "wrinkled_r15", ("--color", "curvature")),
+        ("twisting cloth, 30×30, mean curvature", "twisting_r30", ("--color", "curvature")),
+        ("draped cloth, 30×30", "draped_r30")]
+# (wrinkles of 0.35 mm and the twist's dimple do not show in plain shading: their curvature does)
+rows = thumbnails(BIN, [(p[0], os.path.join(RUNS, p[1] + ".h5")) + tuple(p[2:]) for p in PICS],
+                  os.path.join(os.path.dirname(RUNS.rstrip("/")), "images"), "bhem/images")
+if rows:
+    P("\n### Final states\n")
+    P("Drawn from the records' final states by `shellbench render` (the Hermite patches traced directly, BHEM §5; "
+      "docs/render.md).  Ray tracing the patches, the paper's Table 1: results/bhem_table1.md.\n")
+    out.extend(rows)
 
 print("\n".join(out))

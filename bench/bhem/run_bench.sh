@@ -24,17 +24,21 @@ SC=bench/bhem/scenes
 # the profile tool reads /final/x of a record (wrinkle statistics)
 LIB=${LIB:-build/libshellbench.a}
 if [ -e "$LIB" ]; then
-  cc -std=c11 -O2 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Icore -I/usr/include/suitesparse \
-     $(pkg-config --cflags hdf5-serial jansson gsl) bench/bhem/bhem_profile.c "$LIB" -o "$OUT/../bhem_profile" \
-     -lcholmod -lsuitesparseconfig $(pkg-config --libs hdf5-serial jansson gsl) -llapack -lblas -lm || true
+  cc -std=c11 -O2 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(for d in core/*/; do printf -- "-I%s " "$d"; done) -I/usr/include/suitesparse \
+     $(pkg-config --cflags hdf5-serial jansson gsl) -fopenmp bench/bhem/bhem_profile.c "$LIB" -o "$OUT/../bhem_profile" \
+     -lcholmod -lsuitesparseconfig $(pkg-config --libs hdf5-serial jansson gsl) -llapack -lblas -losdCPU -lstdc++ -lm || true
 fi
+
+# the reference shell kernel (per point, the arithmetic results/bhem_report.md
+# was made with; docs/reproducibility.md); KERNEL=fast for the default one
+KERNEL=${KERNEL:-reference}
 
 # run TAG SCENE SOLVER RES [--set ...]: one run, summary to $OUT/TAG.json
 run() {
   local tag=$1 scene=$2 solver=$3 res=$4; shift 4
   echo "== $tag: $scene $solver --res $res $*" >&2
   "$BIN" run --scene "$scene" --method bhem --solver "$solver" --res "$res" --out "$OUT/$tag.h5" \
-    --summary json "$@" > "$OUT/$tag.json" 2> "$OUT/$tag.log"
+    --summary json --set method.kernel=$KERNEL "$@" > "$OUT/$tag.json" 2> "$OUT/$tag.log"
   echo "   exit $?" >&2
 }
 

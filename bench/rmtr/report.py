@@ -107,6 +107,31 @@ def provenance():
 provenance()
 print()
 
+
+def final_states():
+    """a picture of each scene's final state: its converged record with the most dofs (bench/render_thumbs.py,
+    `shellbench render`)"""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from render_thumbs import thumbnails
+    items = []
+    for sc in SCENES:
+        best = [(int(r["dofs"]), k) for k, r in rows.items() if ("-%s-" % sc) in k and ok(r)]
+        if best:
+            dofs, k = max(best)
+            # the trampoline sags by centimetres: its shape shows in the mean curvature
+            extra = ("--color", "curvature", "--camera", "-60,12") if sc == "trampoline" else ()
+            items.append(("%s: %s, %s dofs%s" % (NAMES[sc], k, num(dofs), ", mean curvature" if extra else ""),
+                          path_of(k), extra))
+    lines = thumbnails(BIN, items, os.path.join(os.path.dirname(RUNS.rstrip("/")), "images"), "rmtr/images", per_row=2)
+    if lines:
+        print("## Final states\n")
+        print("Each scene's converged record with the most dofs, drawn from its final state by `shellbench render`")
+        print("(the limit surface, its regular Catmull-Clark faces traced as Bézier patches; docs/render.md).\n")
+        print("\n".join(lines))
+
+
+final_states()
+
 print("## Table 3 — single-level TR (dogleg), nonlinear iterations\n")
 print("\"ours\" uses the paper's dogleg (Cauchy point on an indefinite Hessian); \"ours, shift\" uses our default")
 print("(`solver.indefinite=shift`: Newton point of H + τI on an indefinite Hessian).\n")

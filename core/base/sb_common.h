@@ -49,6 +49,16 @@ const char *sb_reason_name(sb_reason r);
 /* 1 when the reason counts as convergence (grad/f/x tolerances, single step). */
 int sb_reason_converged(sb_reason r);
 
+/* Rewrite the NUL-terminated message s (buffer of cap bytes) so that it is
+ * safe to print on a terminal and stays one line: control characters
+ * become \n, \r, \t or \xNN, C1 controls (U+0080..U+009F) and the
+ * invisible byte-order mark \uNNNN, invalid UTF-8 bytes \xNN; truncated to
+ * cap.  Returns the number of characters escaped.  Every message that can
+ * carry text from a scene file or a command line passes through it. */
+size_t sb_escape_controls(char *s, size_t cap);
+/* s copied into buf (len bytes) and escaped likewise; returns buf. */
+const char *sb_escape_copy(const char *s, char *buf, size_t len);
+
 #define SB_MAX_LEVELS 8
 #define SB_NAME_LEN 64
 

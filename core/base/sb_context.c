@@ -41,9 +41,11 @@ void sb_context_free(sb_context *ctx)
 int sb_error(sb_context *ctx, int status, const char *fmt, ...)
 {
     va_list ap;
+    if (!ctx) return status;   /* callers without a context (tests, estimates) get the status alone */
     va_start(ap, fmt);
     vsnprintf(ctx->err, sizeof ctx->err, fmt, ap);
     va_end(ap);
+    sb_escape_controls(ctx->err, sizeof ctx->err);   /* names from scene files reach a terminal */
     ctx->status = status;
     return status;
 }

@@ -129,6 +129,12 @@ int sb_param_int(const sb_paramset *ps, const char *key)
     return isfinite(x) ? (int)x : 0;
 }
 
+int sb_param_int_or(const sb_paramset *ps, const char *key, int def)
+{
+    const sb_param_value *v = ps ? cfind(ps, key) : NULL;
+    return v && isfinite(v->value) ? (int)v->value : def;
+}
+
 const char *sb_param_choice(const sb_paramset *ps, const char *key)
 {
     const sb_param_value *v = cfind(ps, key);

@@ -46,6 +46,10 @@ int sb_paramset_set(sb_paramset *ps, const char *assignment, char *err, size_t e
  * was never declared (a programming error, caught by tests). */
 double sb_param(const sb_paramset *ps, const char *key);
 int sb_param_int(const sb_paramset *ps, const char *key);
+/* The value of key if ps (may be NULL) declares it, else def: for a
+ * component that reads another's parameter and may run without it (a
+ * method created by a test or a tool without the run's table: run.threads). */
+int sb_param_int_or(const sb_paramset *ps, const char *key, int def);
 /* Name of a CHOICE value. */
 const char *sb_param_choice(const sb_paramset *ps, const char *key);
 /* Formats a value for printing/recording ("0.1", "dogleg"). */

@@ -7,7 +7,7 @@
 
 static const char *const event_names[SB_EV_COUNT] = {
     "energy", "gradient", "hessian", "analyze", "factorize", "solve",
-    "cg_iter", "qp", "transfer", "adapt", "collide", "record", "galerkin",
+    "cg_iter", "qp", "transfer", "adapt", "collide", "record", "galerkin", "checkpoint",
 };
 
 const char *sb_event_name(sb_event e)

@@ -23,6 +23,8 @@ typedef enum {
     SB_EV_COLLIDE,
     SB_EV_RECORD,       /* recording (harness overhead)                */
     SB_EV_GALERKIN,     /* Galerkin coarse Hessian I^T H I             */
+    SB_EV_CHECKPOINT,   /* a checkpoint written (run.checkpoint, --stop-after-steps): how many
+                           depends on wall-clock time and interruptions, unlike every other count */
     SB_EV_COUNT
 } sb_event;
 

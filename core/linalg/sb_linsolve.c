@@ -5,6 +5,7 @@
 #include "sb_context.h"
 
 #include <cholmod.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +25,9 @@ int sb_linsolve_create(sb_context *ctx, int level, sb_matrix *H, sb_linsolve **o
     const sb_pattern *pat = H->pat;
     cholmod_common *cm = ctx->cholmod;
     *out = NULL;
+    if (pat->nnz > INT_MAX)   /* cholmod_* (not cholmod_l_*) indexes entries with int */
+        return sb_error(ctx, SB_ERR_INPUT, "a %d x %d matrix of %ld entries exceeds the %d entries of CHOLMOD's int "
+                        "interface", pat->n, pat->n, pat->nnz, INT_MAX);
     sb_linsolve *ls = calloc(1, sizeof *ls);
     if (!ls) return SB_ERR_NOMEM;
     ls->ctx = ctx;

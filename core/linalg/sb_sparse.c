@@ -3,6 +3,7 @@
 #include "sb_sparse.h"
 
 #include <math.h>
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,7 +17,8 @@ struct sb_pattern_builder {
 
 sb_pattern_builder *sb_pattern_builder_new(int n_nodes, int bs)
 {
-    if (n_nodes < 0 || bs < 1) return NULL;
+    /* the dimension bs * n_nodes is an int (CHOLMOD's int interface) */
+    if (n_nodes < 0 || bs < 1 || n_nodes > INT_MAX / bs) return NULL;
     sb_pattern_builder *pb = calloc(1, sizeof *pb);
     if (!pb) return NULL;
     pb->n_nodes = n_nodes;

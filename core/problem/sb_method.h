@@ -20,6 +20,7 @@
 
 struct sb_context;
 struct sb_csr;
+struct sb_surface;
 
 enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
@@ -50,6 +51,20 @@ typedef struct sb_dirichlet {
     const double *values;       /* prescribed values at the current step */
 } sb_dirichlet;
 
+
+/* The size of the discretization `create` would build, from the scene and
+ * the config alone (no allocation): the core refuses a run that cannot fit
+ * before any work (sb_memory.h).  Counts are doubles so that an absurd
+ * request is measured, not overflowed. */
+typedef struct sb_method_size {
+    int levels;
+    int bs;                          /* dofs per node */
+    double nodes[SB_MAX_LEVELS];     /* per level, coarsest first */
+    double elements[SB_MAX_LEVELS];
+    int nodes_per_element;           /* the most nodes an element couples (4 Hermite, 16 B-spline) */
+    int stencil;                     /* the most nodes one node couples with, itself included */
+    double method_bytes;             /* the method's own data: geometry, quadrature, transfers */
+} sb_method_size;
 
 typedef struct sb_method_type {
     const char *name;
@@ -98,8 +113,21 @@ typedef struct sb_method_type {
      * SB_OK, or SB_NONFINITE when some point could not be evaluated */
     int  (*material_state)(void *state, int level, const double *x, sb_material_state *ms);
 
+    /* optional: the sizes create() would build (sb_method_size); SB_OK, or
+     * SB_ERR_INPUT with a sentence in cfg->ctx when the request cannot be
+     * built at all.  NULL: the core measures the created method instead. */
+    int  (*estimate)(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *size);
+
     /* optional: one line describing the discretization ("8x8 Hermite patches") */
     void (*describe)(const void *state, char *buf, size_t len);
+
+    /* optional: the surface of x on `level` for rendering (sb_surface.h):
+     * the discretization's exact primitives (bicubic Bézier patches or
+     * triangles) with the reference configuration in the same
+     * parametrization; out starts zeroed, the caller frees it with
+     * sb_surface_free().  NULL: `shellbench render` triangulates eval_points
+     * on a grid instead (docs/render.md). */
+    int  (*surface)(void *state, int level, const double *x, struct sb_surface *out);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

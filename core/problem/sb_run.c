@@ -3,8 +3,11 @@
  * function of its own:
  *
  *   resolve_request   scene, method, solver, parameters; refuse what cannot work
+ *   sb_run_resolve_res, sb_run_check_memory (sb_run_limits.c)
+ *                     the resolution used; refuse what cannot fit in memory
+ *   sb_run_prepare_output (sb_run_output.c)
+ *                     where the record and its checkpoint go: checked, locked
  *   prepare_run       method -> problem -> solver, work vectors, record identity
- *   prepare_output    where the record and its checkpoint go
  *   start_or_resume   step 1, a checkpoint's last completed step, or nothing to do
  *   run_steps         the time / load steps
  *   finish_run        probes, samples, error, material, record, summary
@@ -14,11 +17,9 @@
 #include "sb_run_state.h"
 #include "sb_sysinfo.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 enum { RUN_GO_ON = -1 };
@@ -34,22 +35,11 @@ static void run_cleanup(run_state *R)
     sb_resume_point_free(&R->bp);
     free(R->rec.probe_traj); free(R->rec.probe_expected); free(R->rec.probe_rel_error);
     free(R->rec.sample_st); free(R->rec.sample_ref); free(R->rec.sample_pos); free(R->rec.tris);
+    free(R->rec.sample_traj);
     free(R->probe_names);
     if (R->scene_loaded) sb_scene_free(&R->scene);
     sb_context_free(&R->ctx);
-}
-
-static int mkdir_p(const char *path)
-{
-    char tmp[1024];
-    snprintf(tmp, sizeof tmp, "%s", path);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    return 0;
+    sb_output_lock_release(&R->lock);
 }
 
 /* run.perturb: each dof of the start gets an offset uniform in [-a, a], from
@@ -80,9 +70,10 @@ static void perturb_start(int n, double *x, double a, unsigned long long seed)
 static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
 {
     FILE *err = R->err;
-    char path[1024], msg[2048];
+    char path[1024], msg[2048], e1[256];
     if (sb_scene_resolve(req->scene, path, sizeof path)) {
-        fprintf(err, "shellbench: scene \"%s\" not found (neither a file nor a name in bench/scenes; try `shellbench list scenes`)\n", req->scene);
+        fprintf(err, "shellbench: scene \"%s\" not found (neither a file nor a name in bench/scenes; try `shellbench list scenes`)\n",
+                sb_escape_copy(req->scene, e1, sizeof e1));
         return SB_EXIT_INPUT;
     }
     if (sb_scene_load(path, &R->scene, msg, sizeof msg)) {
@@ -95,50 +86,21 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
     R->stype = sb_solver_find(req->solver);
     if (!R->mt || !R->stype) {
         fprintf(err, "shellbench: unknown %s \"%s\" (see `shellbench list %s`)\n", !R->mt ? "method" : "solver",
-                !R->mt ? req->method : req->solver, !R->mt ? "methods" : "solvers");
+                sb_escape_copy(!R->mt ? req->method : req->solver, e1, sizeof e1), !R->mt ? "methods" : "solvers");
         return SB_EXIT_INPUT;
     }
     *levels = req->levels > 0 ? req->levels : 1;
-    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
-        fprintf(err, "shellbench: solver %s needs a level hierarchy (prolongation, restriction, projection), "
-                     "but method %s provides none\n", R->stype->name, R->mt->name);
-        return SB_EXIT_INPUT;
+    int rc = sb_run_combination_check(R->mt, R->stype, *levels, msg, sizeof msg);
+    if (!rc) rc = sb_run_paramset(&R->ctx.params, R->mt, R->stype, req->n_sets, req->sets, msg, sizeof msg);
+    if (rc) {
+        fprintf(err, "shellbench: %s\n", msg);
+        return rc == SB_ERR_INTERNAL ? SB_EXIT_INTERNAL : SB_EXIT_INPUT;
     }
-    if ((R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) && *levels < 2) {
-        fprintf(err, "shellbench: solver %s needs at least 2 levels, but --levels is %d\n", R->stype->name, *levels);
-        return SB_EXIT_INPUT;
-    }
-    if (*levels > 1 && !(R->mt->flags & SB_METHOD_HIERARCHY)) {
-        fprintf(err, "shellbench: --levels %d asks for a hierarchy, but method %s has none\n", *levels, R->mt->name);
-        return SB_EXIT_INPUT;
-    }
-    if (*levels > SB_MAX_LEVELS || req->res < 0) {
-        fprintf(err, "shellbench: --levels must be in [1, %d] and --res >= 0\n", SB_MAX_LEVELS);
-        return SB_EXIT_INPUT;
-    }
-    if (!(R->mt->flags & SB_METHOD_POTENTIAL) && !(R->stype->flags & SB_SOLVER_SINGLE_STEP)) {
-        fprintf(err, "shellbench: method %s has no energy potential (lagged forces); solver %s needs one: use linearized\n",
-                R->mt->name, R->stype->name);
-        return SB_EXIT_INPUT;
-    }
-
-    /* parameters: declared tables, then overrides */
-    sb_paramset *ps = &R->ctx.params;
-    if (sb_paramset_add(ps, "run", sb_solve_params) || sb_paramset_add(ps, "solver", R->stype->params) ||
-        sb_paramset_add(ps, "method", R->mt->params)) {
-        fprintf(err, "shellbench: internal error: too many parameters\n");
-        return SB_EXIT_INTERNAL;
-    }
-    for (int i = 0; i < req->n_sets; i++)
-        if (sb_paramset_set(ps, req->sets[i], msg, sizeof msg)) {
-            fprintf(err, "shellbench: %s\n", msg);
-            return SB_EXIT_INPUT;
-        }
     return RUN_GO_ON;
 }
 
 /* The record's identity: what ran, where, with which build. */
-static void record_identity(run_state *R, const sb_run_request *req)
+static void record_identity(run_state *R)
 {
     const sb_scene *sc = &R->scene;
     sb_run *rec = &R->rec;
@@ -149,7 +111,7 @@ static void record_identity(run_state *R, const sb_run_request *req)
     snprintf(rec->solver, sizeof rec->solver, "%s", R->stype->name);
     if (R->mt->describe) R->mt->describe(R->ms, rec->method_info, sizeof rec->method_info);
     if (R->stype->describe) R->stype->describe(R->ss, rec->solver_info, sizeof rec->solver_info);
-    rec->res = req->res;
+    rec->res = R->res;   /* the resolution used, also when --res was absent */
     rec->levels = sb_problem_levels(R->prob);
     rec->n_dofs = R->rec.n_x;
     rec->params = &R->ctx.params;
@@ -173,14 +135,14 @@ static void record_identity(run_state *R, const sb_run_request *req)
 
 /* method -> problem -> solver, the work vectors, the record's identity and
  * the reference state (probes, sample grid), then run.perturb's start. */
-static int prepare_run(run_state *R, const sb_run_request *req, int levels)
+static int prepare_run(run_state *R, int levels)
 {
     FILE *err = R->err;
     sb_paramset *ps = &R->ctx.params;
     int rc;
     R->ms = calloc(1, R->mt->state_size);
     if (!R->ms) goto nomem;
-    sb_method_config cfg = { req->res, levels, ps, &R->ctx };
+    sb_method_config cfg = { R->res, levels, ps, &R->ctx };
     rc = R->mt->create(R->ms, &R->scene, &cfg);
     R->ms_created = 1;
     if (rc) {
@@ -188,6 +150,7 @@ static int prepare_run(run_state *R, const sb_run_request *req, int levels)
                 R->ctx.err[0] ? R->ctx.err : "set-up failed");
         return rc == SB_ERR_INPUT || rc == SB_ERR_UNSUPPORTED ? SB_EXIT_INPUT : SB_EXIT_INTERNAL;
     }
+    if ((rc = sb_run_check_created(R)) != RUN_GO_ON) return rc;
     rc = sb_problem_create(&R->ctx, R->mt, R->ms, &R->scene, &R->prob);
     if (rc) {
         fprintf(err, "shellbench: %s\n", R->ctx.err);
@@ -218,10 +181,15 @@ static int prepare_run(run_state *R, const sb_run_request *req, int levels)
     if (!R->x || !R->xn || !R->v || !R->xref || !R->bp.x || !R->bp.v || !R->rec.probe_traj || !R->rec.probe_expected ||
         !R->rec.probe_rel_error || !R->probe_names || sb_run_build_samples(R))
         goto nomem;
+    /* the sample grid of every step (the record's time series), unless it
+     * would exceed 2^22 points (about 100 MB) */
+    if (R->mt->eval_points && ((size_t)sc->time.steps + 1) * (size_t)R->rec.n_samples <= ((size_t)1 << 22) &&
+        !(R->rec.sample_traj = malloc(((size_t)sc->time.steps + 1) * ((size_t)R->rec.n_samples ? (size_t)R->rec.n_samples : 1) * 3 * sizeof(double))))
+        goto nomem;
     R->mt->initial(R->ms, F, R->x);
     sb_copy(n, R->x, R->xref);
     R->rec.n_x = n;
-    record_identity(R, req);
+    record_identity(R);
     sb_run *rec = &R->rec;
     if (R->mt->eval_points) {
         if (sb_run_record_probes(R, 0) ||
@@ -240,40 +208,6 @@ static int prepare_run(run_state *R, const sb_run_request *req, int levels)
 nomem:
     fprintf(err, "shellbench: out of memory\n");
     return SB_EXIT_INTERNAL;
-}
-
-/* Where the record goes (*out_path, NULL for --out none): its directory is
- * made now, so that a run that cannot be recorded fails before it computes
- * anything; the checkpoint monitor is installed when checkpoints are on. */
-static int prepare_output(run_state *R, const sb_run_request *req, const char **out_path, char *auto_path, size_t len)
-{
-    FILE *err = R->err;
-    const sb_scene *sc = &R->scene;
-    *out_path = NULL;
-    if (!req->out) {
-        snprintf(auto_path, len, "results/runs/%s-%s-%s-r%d-l%d.h5", sc->name, R->mt->name, R->stype->name,
-                 req->res, R->rec.levels);
-        *out_path = auto_path;
-    } else if (strcmp(req->out, "none") != 0) {
-        *out_path = req->out;
-    }
-    if (!*out_path && (req->resume || req->stop_after_steps > 0)) {
-        fprintf(err, "shellbench: %s needs a record path (--out), not --out none\n",
-                req->resume ? "--resume" : "--stop-after-steps");
-        return SB_EXIT_INPUT;
-    }
-    if (*out_path && mkdir_p(*out_path)) {
-        fprintf(err, "shellbench: cannot create the directory of %s: %s\n", *out_path, strerror(errno));
-        return SB_EXIT_INPUT;
-    }
-    R->checkpoint_every = sb_param(&R->ctx.params, "run.checkpoint");
-    if (*out_path && sb_run_partial_path(*out_path, R->partial_path, sizeof R->partial_path)) R->partial_path[0] = 0;
-    if (R->partial_path[0] && R->checkpoint_every > 0) {
-        R->checkpoint_last = sb_now();
-        R->ctx.monitor = sb_run_checkpoint_monitor;
-        R->ctx.monitor_data = R;
-    }
-    return RUN_GO_ON;
 }
 
 /* The first step to run: 1, or (--resume) the one after the checkpoint's
@@ -334,6 +268,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         int iters = 0;
         double f = 0, gn = 0;
         sb_reason reason = sb_solve_step(R->stype, R->ss, R->prob, ps, step, R->x, &iters, &f, &gn);
+        sb_run_progress_clear(R);
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
         double tr0 = sb_now();
@@ -347,6 +282,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             fprintf(err, "step %d/%d: %s after %d iterations, f = %.10g, |g| = %.3g (%.3f s)\n", step, sc->time.steps,
                     sb_reason_name(reason), iters, f, gn, sr.seconds);
         rec->reason = reason;
+        sb_run_fold_resume_setup(R);
         if (!sb_reason_converged(reason)) {
             rec->status = 1;
             break;
@@ -362,7 +298,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
                         step, sc->time.steps, R->partial_path);
             return SB_EXIT_STOPPED;
         }
-        if (R->ctx.monitor && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every)
+        if (R->checkpoints_on && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every)
             sb_run_write_checkpoint(R);
     }
     stats->seconds_total = sb_now() - R->t_start;
@@ -426,18 +362,25 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     if (!R) { fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
     if (sb_context_init(&R->ctx)) { free(R); fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
     R->err = err;
+    sb_output_lock_init(&R->lock);
     R->t_start = sb_now();
-    R->n_grid = req->sample_n > 1 ? req->sample_n : 21;
+    sb_run_progress_init(R, req);
+    R->ctx.monitor = sb_run_monitor;
+    R->ctx.monitor_data = R;
+    R->n_grid = req->sample_n > 0 ? req->sample_n : 21;
 
     int levels = 1, first_step = 1, code;
     const char *out_path = NULL;
     char auto_path[1024];
     if ((code = resolve_request(R, req, &levels)) == RUN_GO_ON &&
-        (code = prepare_run(R, req, levels)) == RUN_GO_ON &&
-        (code = prepare_output(R, req, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
+        (code = sb_run_resolve_res(R, req)) == RUN_GO_ON &&
+        (code = sb_run_check_memory(R, levels)) == RUN_GO_ON &&
+        (code = sb_run_prepare_output(R, req, levels, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
+        (code = prepare_run(R, levels)) == RUN_GO_ON &&
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)
         code = finish_run(R, req, out_path, out, summary);
+    sb_run_progress_clear(R);
     run_cleanup(R);
     free(R);
     return code;

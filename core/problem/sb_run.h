@@ -4,7 +4,11 @@
 #ifndef SB_RUN_H
 #define SB_RUN_H
 
+#include "sb_method.h"
+
 #include <stdio.h>
+
+struct sb_solver_type;
 
 typedef struct sb_run_request {
     const char *scene;        /* name or path */
@@ -17,14 +21,32 @@ typedef struct sb_run_request {
     int n_sets;
     const char *const *sets;  /* "key=value" overrides */
     int quiet;                /* no progress lines */
-    int sample_n;             /* sample grid per side (0 = 21) */
+    int sample_n;             /* sample grid per side (0 = 21, else 2..SB_RUN_MAX_SAMPLES) */
     int resume;               /* continue from the last step boundary of OUT.partial */
     int stop_after_steps;     /* > 0: stop after this step with a checkpoint (exit SB_EXIT_STOPPED) */
+    /* a live progress line on err_stream (step, iteration, f, ||g||, radius or
+     * step length, elapsed): 0 = when err_stream is a terminal and the run is
+     * not quiet, 1 = always (--progress; plain lines, one a second, off a
+     * terminal), -1 = never */
+    int progress;
+    const char *progress_prefix;   /* shown before the line (a sweep's "[3/12, ~2 min left]"), or NULL */
 } sb_run_request;
+
+/* --samples: the sample grid per side is 2 to this */
+#define SB_RUN_MAX_SAMPLES 2001
 
 /* Exit codes of the CLI contract. */
 enum { SB_EXIT_CONVERGED = 0, SB_EXIT_NOT_CONVERGED = 1, SB_EXIT_INPUT = 2, SB_EXIT_INTERNAL = 3,
        SB_EXIT_STOPPED = 4 /* --stop-after-steps: stopped with a resumable checkpoint */ };
+
+/* Whether method, solver and level count fit together: SB_OK, or
+ * SB_ERR_UNSUPPORTED / SB_ERR_INPUT with a sentence (sb_run_check.c). */
+int sb_run_combination_check(const sb_method_type *mt, const struct sb_solver_type *st, int levels, char *err,
+                             size_t errlen);
+/* The run's parameters: run.*, solver.* and method.* declared, then the
+ * "key=value" overrides applied; SB_OK or an error with a sentence. */
+int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const struct sb_solver_type *st, int n_sets,
+                    const char *const *sets, char *err, size_t errlen);
 
 /* Executes the run; returns the exit code.  Messages go to err_stream,
  * the JSON summary (if asked) to out_stream.  When summary is non-NULL it

@@ -23,6 +23,7 @@ void sb_run_remove_partial(run_state *R)
     if (!R->partial_path[0]) return;
     unlink(R->partial_path);
     if (sb_record_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
+    if (sb_record_steps_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
 }
 
 /* Write the record so far (steps done, the iteration history including the
@@ -51,7 +52,7 @@ void sb_run_write_checkpoint(run_state *R)
     rec->status = status;
     rec->reason = reason;
     rec->resume = NULL;
-    sb_stats_event(stats, F, SB_EV_RECORD, t0);
+    sb_stats_event(stats, F, SB_EV_CHECKPOINT, t0);
     R->checkpoint_last = sb_now();
 }
 
@@ -117,6 +118,13 @@ int sb_run_resume(run_state *R, int quiet)
     }
     sb_copy(rp.n_x, rp.x, R->x);
     sb_copy(rp.n_x, rp.v, R->v);
+    /* the time series so far; a checkpoint without it (older build) gives a
+     * record without one */
+    if (rec->sample_traj && sb_record_read_sample_traj(R->partial_path, rp.step, rec->n_samples, rec->sample_traj,
+                                                       msg, sizeof msg)) {
+        free(rec->sample_traj);
+        rec->sample_traj = NULL;
+    }
     rec->steps_done = rp.step;
     rec->reason = rp.step > 0 ? rp.stats.steps[rp.step - 1].reason : SB_REASON_NONE;
     char item[32];
@@ -132,19 +140,29 @@ int sb_run_resume(run_state *R, int quiet)
                 ck_build, rec->build_id);
     }
     R->t_start -= rp.seconds;   /* seconds_total: the boundary's, then this process's */
+    R->resumed = 1;
+    for (int l = 0; l < SB_MAX_LEVELS; l++) R->analyze_at_resume[l] = st->ev[l][SB_EV_ANALYZE];
+    /* iterations as `report` counts them: the steps' outer iterations (the
+     * history also holds each step's iteration-0 record and coarse levels') */
+    long its = 0;
+    for (int i = 0; i < rp.step && (size_t)i < rp.stats.n_steps; i++) its += rp.stats.steps[i].iterations;
     if (!quiet)
-        fprintf(R->err, "shellbench: resuming %s after step %d of %d (%ld iterations recorded)\n", R->partial_path,
-                rp.step, rec->steps_planned, (long)rp.stats.n_iters);
+        fprintf(R->err, "shellbench: resuming %s after step %d of %d (%ld iterations done)\n", R->partial_path,
+                rp.step, rec->steps_planned, its);
     sb_resume_point_free(&rp);
     sb_run_mark_boundary(R, rec->steps_done);
     return rec->steps_done;
 }
 
-/* sb_context.monitor: after every iteration of the outer loop */
-void sb_run_checkpoint_monitor(void *data, const sb_iter_record *r)
+void sb_run_fold_resume_setup(run_state *R)
 {
-    (void)r;
-    run_state *R = data;
-    if (!R->checkpoint_failed && sb_now() - R->checkpoint_last >= R->checkpoint_every) sb_run_write_checkpoint(R);
+    if (!R->resumed) return;
+    for (int l = 0; l < SB_MAX_LEVELS; l++) {
+        sb_event_stat *ev = &R->ctx.stats.ev[l][SB_EV_ANALYZE];
+        const sb_event_stat *b = &R->analyze_at_resume[l];
+        if (b->count > 0 && ev->count > b->count) {
+            R->rec.resumed.setup_seconds += ev->seconds - b->seconds;
+            *ev = *b;
+        }
+    }
 }
-

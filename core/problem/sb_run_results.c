@@ -9,11 +9,13 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 /* Sample grid (n x n in (s,t), points inside the domain) and its triangles. */
 int sb_run_build_samples(run_state *R)
 {
     const int n = R->n_grid;
+    if (n < 2 || n > SB_RUN_MAX_SAMPLES) return SB_ERR_INPUT;   /* n * n * 6 stays far inside int */
     int *idx = malloc((size_t)n * n * sizeof *idx);
     R->rec.sample_st = malloc((size_t)n * n * 2 * sizeof(double));
     R->rec.tris = malloc((size_t)(n - 1) * (n - 1) * 6 * sizeof(int));
@@ -76,10 +78,17 @@ double sb_run_probe_rel_error(const sb_probe *p, const double u[3])
 int sb_run_record_probes(run_state *R, int step_slot)
 {
     const sb_scene *sc = &R->scene;
-    if (!sc->n_probes || !R->mt->eval_points) return SB_OK;
+    if (!R->mt->eval_points) return SB_OK;
+    int F = sb_problem_finest(R->prob);
+    /* the sample grid of this step: the record's time series (sb_record_steps.c) */
+    sb_run *rec = &R->rec;
+    if (rec->sample_traj && rec->n_samples > 0 &&
+        R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st,
+                           rec->sample_traj + (size_t)step_slot * rec->n_samples * 3))
+        return SB_ERR_INTERNAL;
+    if (!sc->n_probes) return SB_OK;
     double st[2 * SB_SCENE_MAX_PROBES];
     for (int p = 0; p < sc->n_probes; p++) { st[2 * p] = sc->probes[p].st[0]; st[2 * p + 1] = sc->probes[p].st[1]; }
-    int F = sb_problem_finest(R->prob);
     return R->mt->eval_points(R->ms, F, R->x, sc->n_probes, st, R->rec.probe_traj + (size_t)step_slot * sc->n_probes * 3);
 }
 
@@ -129,6 +138,12 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     json_set_num(lin, "factor_flops", st->chol_flops[F]);
     json_object_set_new(lin, "not_posdef", json_integer(st->not_posdef));
     json_object_set_new(o, "linear_algebra", lin);
+    /* the up-front estimate (sb_memory.h) beside what the process took */
+    json_t *mem = json_object();
+    struct rusage ru;
+    json_set_num(mem, "estimate_bytes", R->mem_estimate);
+    if (getrusage(RUSAGE_SELF, &ru) == 0) json_set_num(mem, "peak_rss_bytes", 1024.0 * (double)ru.ru_maxrss);
+    json_object_set_new(o, "memory", mem);
     json_t *pr = json_object();
     int last = R->rec.steps_done;
     for (int p = 0; p < R->rec.n_probes; p++) {

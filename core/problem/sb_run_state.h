@@ -5,12 +5,21 @@
 #define SB_RUN_STATE_H
 
 #include "sb_context.h"
+#include "sb_output.h"
 #include "sb_problem.h"
 #include "sb_record.h"
 #include "sb_run.h"
 #include "sb_solver.h"
 
 #include <stdio.h>
+
+/* the live progress line (sb_run_progress.c) */
+typedef struct sb_run_progress {
+    int on, tty, shown;                /* shown: a line is on the terminal now */
+    double interval, last;             /* seconds between updates, time of the last */
+    long iterations;                   /* outer iterations (finest level) so far in this process */
+    const char *prefix;
+} sb_run_progress;
 
 typedef struct run_state {
     sb_context ctx;
@@ -25,16 +34,40 @@ typedef struct run_state {
     sb_run rec;
     char (*probe_names)[SB_NAME_LEN];
     int n_grid;                        /* sample grid per side */
+    int res;                           /* the resolution used: --res, else the scene's */
+    double mem_estimate;               /* bytes (sb_memory.h), 0 before the estimate */
+    sb_output_lock lock;               /* OUT.lock while the run writes OUT */
     /* checkpoints (run.checkpoint): the record so far, written to
      * partial_path every checkpoint_every seconds by the loop's monitor */
     FILE *err;
     double t_start, checkpoint_every, checkpoint_last;
     int checkpoint_failed;
+    int checkpoints_on;                /* run.checkpoint > 0 and a record path */
+    sb_run_progress progress;
     char partial_path[1100];
     /* the last completed step: the resume point the checkpoints carry */
     sb_resume_point bp;
+    /* --resume: the analyze events of the checkpoint's boundary; this
+     * process's repeat of a symbolic factorization done before is set-up
+     * (sb_run_fold_resume_setup) */
+    int resumed;
+    sb_event_stat analyze_at_resume[SB_MAX_LEVELS];
 } run_state;
 
+
+/* ---- sizes (sb_run_limits.c): -1 to go on, else the exit code ---------- */
+/* R->res from --res or the scene; refuses a resolution out of range. */
+int    sb_run_resolve_res(run_state *R, const sb_run_request *req);
+/* The memory estimate of the method's estimate op against the limit. */
+int    sb_run_check_memory(run_state *R, int levels);
+/* The same for a method without one, after its create(). */
+int    sb_run_check_created(run_state *R);
+
+/* ---- output (sb_run_output.c): -1 to go on, else the exit code ---------- */
+/* The record path (*out_path, NULL for none), checked, its directory made
+ * and locked; checkpoints on when run.checkpoint > 0. */
+int    sb_run_prepare_output(run_state *R, const sb_run_request *req, int levels, const char **out_path,
+                             char *auto_path, size_t len);
 
 /* ---- results (sb_run_results.c) ----------------------------------------- */
 /* Sample grid (n x n in (s,t), points inside the domain) and its triangles. */
@@ -59,9 +92,20 @@ int    sb_run_partial_path(const char *out_path, char *buf, size_t len);
 void   sb_run_remove_partial(run_state *R);
 void   sb_run_write_checkpoint(run_state *R);
 void   sb_run_mark_boundary(run_state *R, int step);
+/* After a resume: a level's symbolic factorization (analyze) repeated in
+ * this process, although the interrupted one had done it, moves from the
+ * event counts to the resume log's set-up time, so that every count but
+ * checkpoint equals the uninterrupted run's.  Idempotent; called after each step. */
+void   sb_run_fold_resume_setup(run_state *R);
 /* --resume: steps already done (0: no checkpoint), or -1 on an input error. */
 int    sb_run_resume(run_state *R, int quiet);
-/* sb_context.monitor: a checkpoint when run.checkpoint seconds have passed. */
-void   sb_run_checkpoint_monitor(void *data, const sb_iter_record *r);
+
+/* ---- the monitor (sb_run_progress.c) ------------------------------------- */
+void   sb_run_progress_init(run_state *R, const sb_run_request *req);
+/* Erase the progress line (before any other message on err). */
+void   sb_run_progress_clear(run_state *R);
+/* sb_context.monitor, after every iteration: a checkpoint when run.checkpoint
+ * seconds have passed, then the progress line. */
+void   sb_run_monitor(void *data, const sb_iter_record *r);
 
 #endif

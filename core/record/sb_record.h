@@ -71,6 +71,10 @@ typedef struct sb_run {
     /* surface for output: triangles over the sample grid */
     int n_tris;
     int *tris;                 /* 3 * n_tris, indices into samples */
+    /* the sample grid at every step (time series): row k = positions after
+     * step k (row 0 = reference), rows 0..steps_done filled; NULL = not kept
+     * (written as /steps/sample_pos/NNNNNN, played by the XDMF sidecar) */
+    double *sample_traj;       /* (steps_planned + 1) * n_samples * 3 */
     /* where the final state strains the material (methods with material_state) */
     int has_material;
     sb_material_state material;
@@ -91,6 +95,15 @@ typedef struct sb_run {
     const sb_resume_point *resume;
 } sb_run;
 
+/* Call first thing in main() of a program that reads records it did not
+ * write: HDF5 (1.10 to at least 1.14, HDFGroup/hdf5#6677) can be left by a
+ * malformed file with internal state its at-exit shutdown cannot release
+ * ("HDF5: infinite loop closing library", a bounded leak LeakSanitizer
+ * reports) although every handle the readers opened is closed.  This turns
+ * that shutdown off (H5dont_atexit): files are always closed explicitly, and
+ * what HDF5 holds stays reachable until the process ends. */
+void sb_record_library_init(void);
+
 /* Zero the run and fill the machine/build fields (build_id, cpu_model,
  * n_cores, started = now) from sb_sysinfo.h. */
 void sb_run_init(sb_run *run);
@@ -108,8 +121,14 @@ void sb_run_init(sb_run *run);
  * Returns SB_OK or SB_ERR_INPUT when buf is too small. */
 int sb_record_xdmf_path(const char *h5path, char *buf, size_t len);
 
+/* The time-series sidecar of a record: PATH with ".h5" replaced by
+ * ".steps.xdmf" (appended otherwise); SB_OK or SB_ERR_INPUT. */
+int sb_record_steps_xdmf_path(const char *h5path, char *buf, size_t len);
+
 /* Write atomically: to PATH.tmp.<pid>, then rename. Also writes PATH minus
- * ".h5" plus ".xdmf".  Returns SB_OK or SB_ERR_IO with a message in err. */
+ * ".h5" plus ".xdmf", and, when the run keeps its time series
+ * (sample_traj), PATH minus ".h5" plus ".steps.xdmf" (removed otherwise).
+ * Returns SB_OK or SB_ERR_IO with a message in err. */
 int sb_record_write(const sb_run *run, const char *path, char *err, size_t errlen);
 
 /* A flat summary read back from a record (for reports and comparisons). */
@@ -137,9 +156,15 @@ typedef struct sb_record_summary {
     int resumes;               /* times the run was resumed (0 in records written before resumes existed) */
     char resume_steps[256];    /* after which completed steps, "2,3" */
     int resume_point;          /* a checkpoint: the completed step --resume continues after; -1 otherwise */
+    int res;                   /* elements per side (0 in records written before the resolution used was kept) */
+    char overrides[1024];      /* the parameters the run was given (--set), "key=value, key=value"; "" none */
 } sb_record_summary;
 
 int  sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen);
+/* The name of a record's status: "converged" (0), "not converged" (1),
+ * "unfinished" (SB_STATUS_UNFINISHED, a checkpoint), "failed" (< 0),
+ * "unknown" otherwise. */
+const char *sb_record_status_name(int status);
 void sb_record_summary_free(sb_record_summary *s);
 /* Read the sampled final positions (for reference-run errors). */
 int  sb_record_read_samples(const char *path, int *n, double **st, double **pos,
@@ -178,6 +203,20 @@ void sb_resume_point_free(sb_resume_point *rp);
 int  sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen);
 void sb_record_setup_free(sb_record_setup *s);
 
+/* The sample-grid surface of a record at one step (sb_record_steps.c):
+ * step -1 = the final state (/final/sample_pos), k >= 0 = after step k
+ * (/steps/sample_pos/NNNNNN; records written before it was kept have none). */
+typedef struct sb_record_samples {
+    int n, n_tris, n_steps;    /* samples, triangles, steps in /steps/sample_pos (0 = none) */
+    double *st, *ref, *pos;    /* 2n, 3n, 3n (owned) */
+    int *tris;                 /* 3 n_tris (owned) */
+} sb_record_samples;
+int  sb_record_read_step_samples(const char *path, int step, sb_record_samples *s, char *err, size_t errlen);
+void sb_record_samples_free(sb_record_samples *s);
+/* Steps 0..step of /steps/sample_pos of the checkpoint PATH into traj (n
+ * samples each) for --resume; SB_ERR_INPUT when the file has none. */
+int  sb_record_read_sample_traj(const char *path, int step, int n, double *traj, char *err, size_t errlen);
+
 /* Report: Markdown (format "md") or CSV table of the files, and, when
  * png_path is non-NULL, a gnuplot PNG of ||g|| against iteration. */
 int sb_report(int n_files, char **files, const char *format, FILE *out,
@@ -188,8 +227,13 @@ int sb_report(int n_files, char **files, const char *format, FILE *out,
  * could not be read (their rows are left out).  err names the cause. */
 enum { SB_REPORT_WARN_PLOT = 1, SB_REPORT_WARN_FILES = 2 };
 
+/* The plot format of a path, from its extension: ".png" (PNG), ".svg"
+ * (SVG), ".jpg"/".jpeg" (JPEG); *format (may be NULL) gets "png", "svg" or
+ * "jpeg".  SB_OK, or SB_ERR_INPUT with a sentence for any other extension. */
+int sb_report_plot_format(const char *path, const char **format, char *err, size_t errlen);
+
 /* sb_report with every option: format "md" (default) or "csv"; plot_path
- * ending in ".svg" gives an SVG, anything else a PNG; gnuplot is the program
+ * in the format of its extension (sb_report_plot_format); gnuplot is the program
  * to run (NULL: $SB_GNUPLOT, else "gnuplot"). */
 typedef struct sb_report_options {
     const char *format;

@@ -140,7 +140,16 @@ int sb_h5r_open(sb_h5r *r, hid_t *file)
         snprintf(r->err, r->errlen, "%s is not an HDF5 file, so not a shellbench record", r->path);
         return SB_ERR_INPUT;
     }
-    hid_t f = H5Fopen(r->path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    /* strong close degree: closing the file closes every object still open
+     * in it, so no error path of a reader (nor of HDF5 itself on a corrupt
+     * file) can leave a handle behind */
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    if (fapl >= 0 && H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0) {
+        H5Pclose(fapl);
+        fapl = -1;
+    }
+    hid_t f = H5Fopen(r->path, H5F_ACC_RDONLY, fapl >= 0 ? fapl : H5P_DEFAULT);
+    if (fapl >= 0) H5Pclose(fapl);
     if (f < 0) {
         snprintf(r->err, r->errlen, "cannot open record %s: HDF5 cannot open it (truncated or corrupt file?)", r->path);
         return SB_ERR_IO;

@@ -21,6 +21,11 @@ const char *sb_record_basename(const char *path);
 int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h5_name,
                          char *err, size_t errlen);
 
+/* The time-series sidecar (RUN.steps.xdmf) of a run that keeps
+ * sample_traj: a temporal collection of its steps.  SB_OK or SB_ERR_IO. */
+int sb_record_write_steps_xdmf(const sb_run *run, const char *path, const char *h5_name,
+                               char *err, size_t errlen);
+
 /* ---- HDF5 writers (sb_record_h5w.c): 0, or -1 after noting the object ---- */
 typedef struct sb_h5w {
     char failed[160];      /* first object that could not be written */
@@ -52,6 +57,8 @@ extern const int sb_record_n_iter_cols, sb_record_n_step_cols;
 
 /* The /resume group of a checkpoint (sb_record_resume.c); 0 or -1. */
 int   sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp);
+/* /steps: the sample grid of every step (sb_record_steps.c); 0 or -1. */
+int   sb_record_write_steps(sb_h5w *w, hid_t f, const sb_run *r);
 /* The resume log as root attributes (every record). */
 int   sb_record_write_resume_log(sb_h5w *w, hid_t f, const sb_resume_log *log);
 
@@ -89,5 +96,14 @@ int  sb_h5r_dset(sb_h5r *r, hid_t loc, const char *name, int rank, hid_t mtype, 
  * when gnuplot is missing or fails or there is nothing to plot. */
 int sb_report_plot(int n, const sb_record_summary *s, const char *plot_path,
                    const char *gnuplot, char *err, size_t errlen);
+
+/* ---- the report (core/report) ------------------------------------------ */
+/* "converged (grad_tol)", "not converged (max_iter)", "unfinished (checkpoint)" */
+void   sb_report_status_text(const sb_record_summary *s, char *buf, size_t len);
+/* The run's error figure (RMS field error or max probe error; *label "rms"
+ * or "probe"), NaN when it has none. */
+double sb_report_error_value(const sb_record_summary *s, const char **label);
+/* The Markdown report of n summaries (sb_report_md.c). */
+void   sb_report_markdown(FILE *out, int n, const sb_record_summary *s);
 
 #endif

@@ -90,6 +90,40 @@ static int read_history(sb_h5r *r, hid_t f, sb_record_summary *s)
     return SB_OK;
 }
 
+/* "key=value, ..." of the /params attributes named in /params/_overridden */
+static int read_overrides(sb_h5r *r, hid_t f, sb_record_summary *s)
+{
+    s->overrides[0] = 0;
+    if (H5Lexists(f, "/params", H5P_DEFAULT) <= 0) return sb_h5r_fail(r, SB_ERR_INPUT, "missing group", "/params");
+    hid_t g = H5Gopen2(f, "/params", H5P_DEFAULT);
+    if (g < 0) return sb_h5r_fail(r, SB_ERR_INPUT, "cannot open group", "/params");
+    char *list = NULL;
+    int rc = H5Aexists(g, "_overridden") > 0 ? sb_h5r_attr_str_alloc(r, g, "_overridden", &list) : SB_OK;
+    size_t used = 0;
+    for (char *key = list ? strtok(list, ",") : NULL; key && !rc; key = strtok(NULL, ",")) {
+        char value[128] = "?";
+        if (H5Aexists(g, key) <= 0) continue;
+        hid_t a = H5Aopen(g, key, H5P_DEFAULT);
+        hid_t t = a < 0 ? -1 : H5Aget_type(a);
+        H5T_class_t c = t < 0 ? H5T_NO_CLASS : H5Tget_class(t);
+        if (t >= 0) H5Tclose(t);
+        if (a >= 0) H5Aclose(a);
+        if (c == H5T_STRING) {
+            rc = sb_h5r_attr_str(r, g, key, value, sizeof value);
+        } else if (c == H5T_INTEGER || c == H5T_FLOAT) {
+            double v = 0;
+            rc = sb_h5r_attr_dbl(r, g, key, &v);
+            snprintf(value, sizeof value, "%.10g", v);
+        }
+        int n = snprintf(s->overrides + used, sizeof s->overrides - used, "%s%s=%s", used ? ", " : "", key, value);
+        if (n < 0 || used + (size_t)n >= sizeof s->overrides) break;
+        used += (size_t)n;
+    }
+    free(list);
+    H5Gclose(g);
+    return rc;
+}
+
 int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen)
 {
     if (!s) return SB_ERR_INPUT;
@@ -106,6 +140,7 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
         if (!rc) rc = sb_h5r_attr_num(&r, f, "n_dofs", H5T_NATIVE_LONG, &dofs_l);
         s->dofs = dofs_l;
         if (!rc) rc = sb_h5r_attr_int(&r, f, "levels", &s->levels);
+        if (!rc) rc = sb_h5r_attr_int(&r, f, "res", &s->res);
         if (!rc) rc = sb_h5r_attr_int(&r, f, "steps_done", &s->steps);
         if (!rc) rc = sb_h5r_attr_int(&r, f, "steps_planned", &s->steps_planned);
         if (!rc) rc = sb_h5r_attr_int(&r, f, "status", &s->status);
@@ -134,6 +169,7 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
     if (!rc) rc = sb_h5r_attr_dbl(&r, gs, "work_qp", &s->work_qp);
     if (!rc) rc = sb_h5r_attr_dbl(&r, gs, "seconds_total", &s->seconds);
     if (!rc) rc = read_event_seconds(&r, f, s);
+    if (!rc) rc = read_overrides(&r, f, s);
     if (!rc) rc = read_history(&r, f, s);
     if (!rc && (ge = H5Gopen2(f, "/error", H5P_DEFAULT)) < 0) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "missing group", "/error");
     if (!rc) rc = sb_h5r_attr_int(&r, ge, "has_error", &s->has_error);
@@ -146,6 +182,14 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
     sb_h5r_close(&r, f);
     if (rc) sb_record_summary_free(s);
     return rc;
+}
+
+void sb_record_library_init(void) { H5dont_atexit(); }
+
+const char *sb_record_status_name(int status)
+{
+    return status == 0 ? "converged" : status == 1 ? "not converged" : status == SB_STATUS_UNFINISHED ? "unfinished"
+         : status < 0 ? "failed" : "unknown";
 }
 
 void sb_record_summary_free(sb_record_summary *s)

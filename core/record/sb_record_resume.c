@@ -79,7 +79,7 @@ static int check_identity(sb_h5r *r, hid_t f, const sb_run *e)
     if (!rc) rc = sb_h5r_attr_str(r, f, "solver", buf, sizeof buf);
     if (!rc && strcmp(buf, e->solver)) return mismatch(r, "solver", buf, e->solver);
     if (!rc) rc = sb_h5r_attr_int(r, f, "res", &res);
-    if (!rc && res != e->res) {
+    if (!rc && res != e->res && res != 0) {   /* 0: an older build's "the scene's resolution"; n_dofs decides */
         snprintf(a, sizeof a, "%d", res);
         snprintf(b, sizeof b, "%d", e->res);
         return mismatch(r, "res", a, b);
@@ -102,8 +102,10 @@ static int check_identity(sb_h5r *r, hid_t f, const sb_run *e)
     return rc;
 }
 
-/* Every resolved parameter of this run has the checkpoint's value
- * (run.checkpoint, the checkpoint interval, may differ). */
+/* Every resolved parameter of this run has the checkpoint's value, but for
+ * those that change where and how a run is kept, not what it computes:
+ * run.checkpoint (the checkpoint interval) and run.max_memory (the memory
+ * limit) may differ, and may be absent from checkpoints of older builds. */
 static int check_params(sb_h5r *r, hid_t f, const sb_paramset *ps)
 {
     hid_t g = H5Gopen2(f, "/params", H5P_DEFAULT);
@@ -111,7 +113,7 @@ static int check_params(sb_h5r *r, hid_t f, const sb_paramset *ps)
     int rc = SB_OK;
     for (int i = 0; ps && i < ps->n && !rc; i++) {
         const sb_param_value *v = &ps->v[i];
-        if (!v->def || strcmp(v->key, "run.checkpoint") == 0) continue;
+        if (!v->def || strcmp(v->key, "run.checkpoint") == 0 || strcmp(v->key, "run.max_memory") == 0) continue;
         char ours[SB_NAME_LEN], theirs[SB_NAME_LEN], field[SB_NAME_LEN + 16];
         snprintf(field, sizeof field, "parameter %s", v->key);
         sb_param_format(v, ours, sizeof ours);
@@ -164,8 +166,10 @@ static int read_log(sb_h5r *r, hid_t f, sb_resume_log *log)
     return rc;
 }
 
-/* events_count / events_seconds of /resume: SB_MAX_LEVELS x SB_EV_COUNT in
- * this build's event order (checked against /stats/event_names). */
+/* events_count / events_seconds of /resume: SB_MAX_LEVELS x the file's
+ * events, matched by name (/stats/event_names); events this build has and
+ * the file does not (a checkpoint of an older build) start at zero, an
+ * event the file has and this build does not is refused. */
 static int read_events(sb_h5r *r, hid_t f, sb_stats *s)
 {
     hsize_t d1[2], d2[2];
@@ -173,25 +177,33 @@ static int read_events(sb_h5r *r, hid_t f, sb_stats *s)
     double *sec = NULL;
     int rc = sb_h5r_dset(r, f, "/resume/events_count", 2, H5T_NATIVE_LONG, sizeof(long), d1, (void **)&cnt);
     if (!rc) rc = sb_h5r_dset(r, f, "/resume/events_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), d2, (void **)&sec);
-    if (!rc && (d1[0] != SB_MAX_LEVELS || d1[1] != SB_EV_COUNT || d2[0] != d1[0] || d2[1] != d1[1]))
+    if (!rc && (d1[0] != SB_MAX_LEVELS || d1[1] < 1 || d1[1] > 64 || d2[0] != d1[0] || d2[1] != d1[1]))
         rc = sb_h5r_fail(r, SB_ERR_INPUT, "event table of another shape (another build's event list) in", "/resume");
     hid_t g = rc ? -1 : H5Gopen2(f, "/stats", H5P_DEFAULT);
     hid_t a = g < 0 ? -1 : H5Aopen(g, "event_names", H5P_DEFAULT);
-    hid_t t = a < 0 ? -1 : H5Aget_type(a);
+    hid_t t = a < 0 ? -1 : H5Aget_type(a), sp = a < 0 ? -1 : H5Aget_space(a);
     size_t width = t < 0 ? 0 : H5Tget_size(t);
-    char *names = width ? calloc(SB_EV_COUNT, width + 1) : NULL;
-    if (!rc && (!names || H5Aread(a, t, names) < 0)) rc = sb_h5r_fail(r, SB_ERR_INPUT, "cannot read", "/stats/event_names");
-    for (int e = 0; !rc && e < SB_EV_COUNT; e++) {
-        const char *ours = sb_event_name((sb_event)e);
-        if (strlen(ours) > width || strncmp(names + (size_t)e * width, ours, width))
-            rc = sb_h5r_fail(r, SB_ERR_INPUT, "event list differs from this build's in", "/stats/event_names");
-    }
-    for (int l = 0; !rc && l < SB_MAX_LEVELS; l++)
-        for (int e = 0; e < SB_EV_COUNT; e++) {
-            s->ev[l][e].count = cnt[l * SB_EV_COUNT + e];
-            s->ev[l][e].seconds = sec[l * SB_EV_COUNT + e];
+    const int ne = rc ? 0 : (int)d1[1];
+    char *names = width && ne ? calloc((size_t)ne, width + 1) : NULL;
+    if (!rc && (!names || sp < 0 || H5Sget_simple_extent_npoints(sp) != ne || H5Tget_class(t) != H5T_STRING ||
+                H5Aread(a, t, names) < 0))
+        rc = sb_h5r_fail(r, SB_ERR_INPUT, "cannot read", "/stats/event_names");
+    for (int c = 0; !rc && c < ne; c++) {
+        char name[64];
+        int e = 0;
+        snprintf(name, sizeof name, "%.*s", (int)(width < 63 ? width : 63), names + (size_t)c * width);
+        while (e < SB_EV_COUNT && strcmp(name, sb_event_name((sb_event)e))) e++;
+        if (e == SB_EV_COUNT) {
+            rc = sb_h5r_fail(r, SB_ERR_INPUT, "event unknown to this build in", "/stats/event_names");
+            break;
         }
+        for (int l = 0; l < SB_MAX_LEVELS; l++) {
+            s->ev[l][e].count = cnt[l * ne + c];
+            s->ev[l][e].seconds = sec[l * ne + c];
+        }
+    }
     free(names);
+    if (sp >= 0) H5Sclose(sp);
     if (t >= 0) H5Tclose(t);
     if (a >= 0) H5Aclose(a);
     if (g >= 0) H5Gclose(g);

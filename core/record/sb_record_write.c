@@ -5,6 +5,7 @@
  * names, so an interrupted run or sweep never leaves a truncated record and
  * never damages an earlier one.  The layout (every group, dataset and
  * attribute, with units) is documented in docs/recorded_figures.md. */
+#include "sb_output.h"
 #include "sb_record_io.h"
 #include "sb_sysinfo.h"
 
@@ -315,6 +316,7 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
     if (!bad) bad = write_probes(w, f, run);
     if (!bad) bad = write_final(w, f, run);
     if (!bad) bad = write_error(w, f, run);
+    if (!bad) bad = sb_record_write_steps(w, f, run);
     if (!bad) bad = sb_record_write_resume_log(w, f, &run->resumed);
     if (!bad && run->resume) bad = sb_record_write_resume(w, f, run->resume);
     if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = sb_h5w_fail(w, -1, "(flush)");
@@ -363,17 +365,30 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
 {
     int rc = validate(run, path, err, errlen);
     if (rc) return rc;
-    char tmp[4096], xpath[4096], xtmp[4096];
+    char tmp[4096], xpath[4096], xtmp[4096], spath[4096], stmp[4096];
     long pid = (long)getpid();
     if (snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, pid) >= (int)sizeof tmp ||
         sb_record_xdmf_path(path, xpath, sizeof xpath) != SB_OK ||
-        snprintf(xtmp, sizeof xtmp, "%s.tmp.%ld", xpath, pid) >= (int)sizeof xtmp) {
+        snprintf(xtmp, sizeof xtmp, "%s.tmp.%ld", xpath, pid) >= (int)sizeof xtmp ||
+        sb_record_steps_xdmf_path(path, spath, sizeof spath) != SB_OK ||
+        snprintf(stmp, sizeof stmp, "%s.tmp.%ld", spath, pid) >= (int)sizeof stmp) {
         snprintf(err, errlen, "cannot record run: output path too long (%zu characters)", strlen(path));
         return SB_ERR_INPUT;
     }
+    /* Only new paths and regular files are replaced (sb_output.h): a device,
+     * FIFO or symbolic link at the path is never renamed over. */
+    sb_output_kind kind;
+    if (sb_output_check(path, "record", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD ||
+        sb_output_check(xpath, "XDMF sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD) {
+        if (kind == SB_OUTPUT_DISCARD) snprintf(err, errlen, "will not write record %s: the null device", path);
+        return SB_ERR_INPUT;
+    }
     /* Create the temp file ourselves first: errno then names the cause
-     * (missing directory, permission, a directory in the way). */
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+     * (missing directory, permission, a directory in the way); a stale one
+     * of an earlier process with our pid is replaced, a link there is not
+     * followed. */
+    unlink(tmp);
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
     if (fd < 0) {
         snprintf(err, errlen, "cannot write record %s: cannot create %s: %s", path, tmp, strerror(errno));
         return SB_ERR_IO;
@@ -405,10 +420,14 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
         unlink(tmp);
         return SB_ERR_IO;
     }
+    unlink(xtmp);   /* fopen below would follow a link left there */
     rc = sb_record_write_xdmf(run, xtmp, sb_record_basename(path), err, errlen);
+    const int steps = run->sample_traj && run->n_samples > 0;
+    if (!rc && steps) rc = sb_record_write_steps_xdmf(run, stmp, sb_record_basename(path), err, errlen);
     if (rc) {
         unlink(tmp);
         unlink(xtmp);
+        if (steps) unlink(stmp);
         return rc;
     }
     /* The record first: a sidecar never points at a record that is not there. */
@@ -422,6 +441,13 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
         snprintf(err, errlen, "record %s written, but its XDMF sidecar %s could not be renamed into place: %s",
                  path, xpath, strerror(errno));
         unlink(xtmp);
+        return SB_ERR_IO;
+    }
+    /* the time series; an older sidecar of a run that kept none would point at nothing */
+    if (steps ? rename(stmp, spath) != 0 : (unlink(spath) != 0 && errno != ENOENT)) {
+        snprintf(err, errlen, "record %s written, but its time-series sidecar %s could not be %s: %s", path, spath,
+                 steps ? "renamed into place" : "removed", strerror(errno));
+        if (steps) unlink(stmp);
         return SB_ERR_IO;
     }
     sb_record_fsync_dir(path);

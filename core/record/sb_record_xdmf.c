@@ -1,11 +1,18 @@
 /* sb_record_xdmf.c — the XDMF sidecar of a run record (lets ParaView open the
- * final and reference surfaces stored in the HDF5 file) and the small file
- * helpers used to replace records atomically.
+ * final and reference surfaces stored in the HDF5 file, and play the run's
+ * steps as a time series) and the small file helpers used to replace
+ * records atomically.
  *
  * The sidecar holds no numbers: it points at /final/triangles,
  * /final/sample_pos, /final/sample_ref and /final/displacement of the HDF5
  * file next to it (referenced by its base name, so the pair can be moved
- * together).  XDMF 3 format, https://www.xdmf.org/index.php/XDMF_Model_and_Format. */
+ * together).  When the record keeps the time series, a second sidecar
+ * RUN.steps.xdmf holds a temporal collection of one grid per step
+ * (/steps/sample_pos/NNNNNN, /steps/displacement/NNNNNN, times /steps/t):
+ * a separate file because ParaView's Xdmf3 readers read no points from a
+ * domain that mixes a temporal collection with uniform grids.  XDMF 3 format,
+ * https://www.xdmf.org/index.php/XDMF_Model_and_Format.  `make check-paraview`
+ * opens it in ParaView (scripts/check_paraview.sh). */
 #include "sb_record_io.h"
 
 #include <errno.h>
@@ -98,14 +105,32 @@ static void grid(FILE *f, const sb_run *run, const char *h5, const char *name,
     fprintf(f, "    </Grid>\n");
 }
 
-int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h5_name,
-                         char *err, size_t errlen)
+int sb_record_steps_xdmf_path(const char *h5path, char *buf, size_t len)
 {
-    FILE *f = fopen(xdmf_path, "w");
-    if (!f) {
-        snprintf(err, errlen, "cannot create XDMF sidecar %s: %s", xdmf_path, strerror(errno));
+    if (!h5path || !buf || len == 0) return SB_ERR_INPUT;
+    size_t n = strlen(h5path);
+    int w;
+    if (n > 3 && strcmp(h5path + n - 3, ".h5") == 0)
+        w = snprintf(buf, len, "%.*s.steps.xdmf", (int)(n - 3), h5path);
+    else
+        w = snprintf(buf, len, "%s.steps.xdmf", h5path);
+    return (w < 0 || (size_t)w >= len) ? SB_ERR_INPUT : SB_OK;
+}
+
+static int close_fsync(FILE *f, const char *path, char *err, size_t errlen)
+{
+    int bad = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
+    int e = errno;
+    if (fclose(f) != 0) bad = 1;
+    if (bad) {
+        snprintf(err, errlen, "cannot write XDMF sidecar %s: %s", path, strerror(e));
         return SB_ERR_IO;
     }
+    return SB_OK;
+}
+
+static void domain_open(FILE *f, const sb_run *run)
+{
     fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n");
     fprintf(f, "<Xdmf Version=\"3.0\">\n  <Domain Name=\"");
     xml_text(f, run->scene_name);
@@ -114,15 +139,51 @@ int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h
     fputc('/', f);
     xml_text(f, run->solver);
     fprintf(f, "\">\n");
+}
+
+int sb_record_write_steps_xdmf(const sb_run *run, const char *path, const char *h5, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        snprintf(err, errlen, "cannot create XDMF sidecar %s: %s", path, strerror(errno));
+        return SB_ERR_IO;
+    }
+    const int rows = run->steps_done + 1, n = run->n_samples;
+    domain_open(f, run);
+    fprintf(f, "    <Grid Name=\"steps\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+    for (int k = 0; k < rows; k++) {
+        double t = k;
+        if (k > 0 && run->stats && (size_t)k <= run->stats->n_steps && run->stats->steps[k - 1].step == k)
+            t = run->stats->steps[k - 1].t;
+        char pos[48], disp[48];
+        snprintf(pos, sizeof pos, "/steps/sample_pos/%06d", k);
+        snprintf(disp, sizeof disp, "/steps/displacement/%06d", k);
+        fprintf(f, "    <Grid Name=\"step %d\" GridType=\"Uniform\">\n", k);
+        fprintf(f, "      <Time Value=\"%.17g\"/>\n", t);
+        fprintf(f, "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n", run->n_tris);
+        data_item(f, h5, "/final/triangles", run->n_tris, 3, "Int", 4);
+        fprintf(f, "      </Topology>\n      <Geometry GeometryType=\"XYZ\">\n");
+        data_item(f, h5, pos, n, 3, "Float", 8);
+        fprintf(f, "      </Geometry>\n");
+        fprintf(f, "      <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n");
+        data_item(f, h5, disp, n, 3, "Float", 8);
+        fprintf(f, "      </Attribute>\n    </Grid>\n");
+    }
+    fprintf(f, "    </Grid>\n  </Domain>\n</Xdmf>\n");
+    return close_fsync(f, path, err, errlen);
+}
+
+int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h5_name,
+                         char *err, size_t errlen)
+{
+    FILE *f = fopen(xdmf_path, "w");
+    if (!f) {
+        snprintf(err, errlen, "cannot create XDMF sidecar %s: %s", xdmf_path, strerror(errno));
+        return SB_ERR_IO;
+    }
+    domain_open(f, run);
     grid(f, run, h5_name, "final", "/final/sample_pos");
     grid(f, run, h5_name, "reference", "/final/sample_ref");
     fprintf(f, "  </Domain>\n</Xdmf>\n");
-    int bad = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
-    int e = errno;
-    if (fclose(f) != 0) bad = 1;
-    if (bad) {
-        snprintf(err, errlen, "cannot write XDMF sidecar %s: %s", xdmf_path, strerror(e));
-        return SB_ERR_IO;
-    }
-    return SB_OK;
+    return close_fsync(f, xdmf_path, err, errlen);
 }

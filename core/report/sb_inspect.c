@@ -3,6 +3,7 @@
  * scene -> method -> material state -> table. */
 #include "sb_inspect.h"
 #include "sb_context.h"
+#include "sb_memory.h"
 #include "sb_record.h"
 
 #include <math.h>
@@ -55,6 +56,12 @@ static int material_of(const char *path, const sb_record_setup *su, sb_material_
         goto done;
     }
     sb_method_config cfg = { su->res, su->levels > 0 ? su->levels : 1, &ctx.params, &ctx };
+    /* a record's sizes are input like any other: what cannot fit is refused before create() */
+    sb_memory_run mr = { 0, 0, 0, 2, 0 };
+    double bytes;
+    char what[600];
+    snprintf(what, sizeof what, "%s: method %s at res %d with %d levels", path, mt->name, su->res, cfg.levels);
+    if ((rc = sb_memory_check_method(mt, &scene, &cfg, &mr, 0, what, &bytes, err, errlen))) goto done;
     rc = mt->create(state, &scene, &cfg);
     created = 1;
     if (rc) {
@@ -91,11 +98,11 @@ int sb_inspect_report(int n_files, char **files, const char *format, FILE *out, 
 {
     const int csv = format && !strcmp(format, "csv");
     if (csv)
-        fprintf(out, "file,scene,method,solver,dofs,levels,status,steps_done,points,soft_membrane,soft_section,"
+        fprintf(out, "file,scene,method,solver,dofs,levels,status,status_code,steps_done,points,soft_membrane,soft_section,"
                      "soft_area_fraction,max_E11,max_E22,max_E12,min_rel_eig\n");
     else
         fprintf(out, "| file | dofs | status | points | softening (membrane) | area fraction | "
-                     "softening (section) | max E11 | max E22 | max E12 |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+                     "softening (section) | max E11 | max E22 | max E12 |\n|---|--:|---|--:|--:|--:|--:|--:|--:|--:|\n");
     int bad = 0;
     for (int i = 0; i < n_files; i++) {
         sb_material_state ms;
@@ -109,11 +116,12 @@ int sb_inspect_report(int n_files, char **files, const char *format, FILE *out, 
         }
         const double frac = ms.area > 0 ? ms.soft_area / ms.area : 0.0;
         if (csv)
-            fprintf(out, "%s,%s,%s,%s,%d,%d,%d,%d,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g\n", files[i], su.scene, su.method,
-                    su.solver, su.n_x, su.levels, su.status, su.steps_done, ms.points, ms.soft_membrane,
+            fprintf(out, "%s,%s,%s,%s,%d,%d,%s,%d,%d,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g\n", files[i], su.scene, su.method,
+                    su.solver, su.n_x, su.levels, sb_record_status_name(su.status), su.status, su.steps_done, ms.points, ms.soft_membrane,
                     ms.soft_section, frac, ms.max_strain[0], ms.max_strain[1], ms.max_strain[2], ms.min_rel_eig);
         else
-            fprintf(out, "| %s | %d | %d | %ld | %ld | %.3g | %ld | %.3g | %.3g | %.3g |\n", files[i], su.n_x, su.status,
+            fprintf(out, "| %s | %d | %s | %ld | %ld | %.3g | %ld | %.3g | %.3g | %.3g |\n", files[i], su.n_x,
+                    sb_record_status_name(su.status),
                     ms.points, ms.soft_membrane, frac, ms.soft_section, ms.max_strain[0], ms.max_strain[1],
                     ms.max_strain[2]);
         sb_record_setup_free(&su);

@@ -1,6 +1,7 @@
-/* sb_report.c — tables of run records: Markdown (one row per file: scene,
- * method, solver, dofs, levels, steps, iterations, assembly and QP work
- * units (RMTR paper Eq. 7.3), seconds, error, status) or CSV with the same
+/* sb_report.c — tables of run records: Markdown (sb_report_md.c: a header,
+ * one row per file: scene, method, solver, dofs, levels, steps, iterations,
+ * assembly and QP work units (RMTR paper Eq. 7.3), seconds, error, status,
+ * the columns' definitions and the time per event) or CSV with the same
  * columns plus more (per-event seconds, machine, file).  Generated from the
  * HDF5 files only, never by re-running.  The plot is in sb_report_plot.c. */
 #include "sb_record_io.h"
@@ -8,18 +9,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Markdown cell text: '|' would end the cell, newlines the row. */
-static void md_cell(FILE *out, const char *s)
-{
-    fputs("| ", out);
-    for (; *s; s++) {
-        if (*s == '|') fputs("\\|", out);
-        else if (*s == '\n' || *s == '\r') fputc(' ', out);
-        else fputc(*s, out);
-    }
-    fputc(' ', out);
-}
 
 /* RFC 4180 field: quoted when it holds a comma, quote or line break. */
 static void csv_field(FILE *out, const char *s, int first)
@@ -37,7 +26,7 @@ static void csv_field(FILE *out, const char *s, int first)
     fputc('"', out);
 }
 
-static void status_text(const sb_record_summary *s, char *buf, size_t len)
+void sb_report_status_text(const sb_record_summary *s, char *buf, size_t len)
 {
     if (s->status == SB_STATUS_UNFINISHED) {   /* a checkpoint of a run still going (or killed) */
         snprintf(buf, len, "unfinished (%s)", s->reason_name);
@@ -51,7 +40,7 @@ static void status_text(const sb_record_summary *s, char *buf, size_t len)
 
 /* The run's error figure: RMS field error, or max probe relative error,
  * whichever the run has (error kind "field" / "probes"); NaN when none. */
-static double error_value(const sb_record_summary *s, const char **label)
+double sb_report_error_value(const sb_record_summary *s, const char **label)
 {
     *label = "";
     if (!s->has_error) return NAN;
@@ -63,36 +52,6 @@ static double error_value(const sb_record_summary *s, const char **label)
     return s->error_rms;
 }
 
-static void md_header(FILE *out)
-{
-    fputs("| scene | method | solver | dofs | levels | steps | iterations | assembly WU | QP WU "
-          "| seconds | error | status |\n", out);
-    fputs("|---|---|---|--:|--:|--:|--:|--:|--:|--:|---|---|\n", out);
-}
-
-static void md_row(FILE *out, const sb_record_summary *s)
-{
-    char buf[128];
-    md_cell(out, s->scene);
-    md_cell(out, s->method);
-    md_cell(out, s->solver);
-    snprintf(buf, sizeof buf, "%ld", s->dofs), md_cell(out, buf);
-    snprintf(buf, sizeof buf, "%d", s->levels), md_cell(out, buf);
-    snprintf(buf, sizeof buf, "%d", s->steps), md_cell(out, buf);
-    snprintf(buf, sizeof buf, "%d", s->iterations), md_cell(out, buf);
-    snprintf(buf, sizeof buf, "%.4g", s->work_assembly), md_cell(out, buf);
-    snprintf(buf, sizeof buf, "%.4g", s->work_qp), md_cell(out, buf);
-    snprintf(buf, sizeof buf, "%.3f", s->seconds), md_cell(out, buf);
-    const char *label;
-    double e = error_value(s, &label);
-    if (isfinite(e)) snprintf(buf, sizeof buf, "%s %.2e", label, e);
-    else snprintf(buf, sizeof buf, "\xE2\x80\x94");   /* em dash: no error figure */
-    md_cell(out, buf);
-    status_text(s, buf, sizeof buf);
-    md_cell(out, buf);
-    fputs("|\n", out);
-}
-
 static void csv_header(FILE *out)
 {
     static const char *const cols[] = {
@@ -102,7 +61,7 @@ static void csv_header(FILE *out)
     };
     for (size_t i = 0; i < sizeof cols / sizeof *cols; i++) csv_field(out, cols[i], i == 0);
     for (int e = 0; e < SB_EV_COUNT; e++) fprintf(out, ",seconds_%s", sb_event_name((sb_event)e));
-    fputs(",build_id,cpu_model,n_cores,blas_core,started,file,resumes,resume_steps,resume_point\n", out);
+    fputs(",build_id,cpu_model,n_cores,blas_core,started,file,resumes,resume_steps,resume_point,res,parameters\n", out);
 }
 
 /* Numbers in CSV: %.9g; non-finite values as an empty field. */
@@ -123,8 +82,8 @@ static void csv_row(FILE *out, const sb_record_summary *s, const char *file)
     csv_num(out, s->work_assembly);
     csv_num(out, s->work_qp);
     csv_num(out, s->seconds);
-    csv_num(out, error_value(s, &label));
-    status_text(s, buf, sizeof buf);
+    csv_num(out, sb_report_error_value(s, &label));
+    sb_report_status_text(s, buf, sizeof buf);
     csv_field(out, buf, 0);
     fprintf(out, ",%d", s->status);
     csv_field(out, s->reason_name, 0);
@@ -144,6 +103,8 @@ static void csv_row(FILE *out, const sb_record_summary *s, const char *file)
     csv_field(out, s->resume_steps, 0);
     if (s->resume_point >= 0) fprintf(out, ",%d", s->resume_point);
     else fputs(",", out);
+    fprintf(out, ",%d", s->res);
+    csv_field(out, s->overrides, 0);
     fputc('\n', out);
 }
 
@@ -193,11 +154,11 @@ int sb_report_opts(int n_files, char **files, const sb_report_options *o, FILE *
         snprintf(err, errlen, "report: no readable record (%s)", first_bad);
         status = first_bad_rc;
     } else {
-        if (csv) csv_header(out);
-        else md_header(out);
-        for (int i = 0; i < n_ok; i++) {
-            if (csv) csv_row(out, &ok[i], ok_files[i]);
-            else md_row(out, &ok[i]);
+        if (csv) {
+            csv_header(out);
+            for (int i = 0; i < n_ok; i++) csv_row(out, &ok[i], ok_files[i]);
+        } else {
+            sb_report_markdown(out, n_ok, ok);
         }
         fflush(out);
         if (n_bad) {

@@ -1,11 +1,13 @@
 /* sb_report_plot.c — the report's convergence plot: log10 ||g|| against the
  * cumulative outer iteration of each run, one line per record, drawn by
- * gnuplot (pngcairo, or libgd png when cairo is missing, or svg).
+ * gnuplot (pngcairo, or libgd png when cairo is missing; svg; jpeg), in the
+ * format of the path's extension.
  *
  * Data and script go to a private temporary directory; gnuplot writes to
  * PLOT.tmp.<pid>, renamed onto PLOT only when gnuplot succeeded.  A missing
  * or failing gnuplot is a warning (SB_REPORT_WARN_PLOT), not an error: the
  * table has been written already. */
+#include "sb_output.h"
 #include "sb_record_io.h"
 
 #include <errno.h>
@@ -14,6 +16,7 @@
 #include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -80,12 +83,30 @@ static int write_data(const char *path, int n, const sb_record_summary *s, int *
     return bad ? -1 : blocks;
 }
 
-static int write_script(const char *path, const char *data, const char *out, int svg,
+int sb_report_plot_format(const char *path, const char **format, char *err, size_t errlen)
+{
+    static const struct { const char *ext, *fmt; } known[] = {
+        { ".png", "png" }, { ".svg", "svg" }, { ".jpg", "jpeg" }, { ".jpeg", "jpeg" },
+    };
+    size_t pl = path ? strlen(path) : 0;
+    for (size_t i = 0; i < sizeof known / sizeof *known; i++) {
+        size_t el = strlen(known[i].ext);
+        if (pl > el && strcasecmp(path + pl - el, known[i].ext) == 0) {
+            if (format) *format = known[i].fmt;
+            return SB_OK;
+        }
+    }
+    snprintf(err, errlen, "--plot %s: the plot's format follows its extension: .png, .svg or .jpg", path ? path : "");
+    return SB_ERR_INPUT;
+}
+
+static int write_script(const char *path, const char *data, const char *out, const char *format,
                         int n, const sb_record_summary *s, const int *has)
 {
     FILE *f = fopen(path, "w");
     if (!f) return -1;
-    if (svg) fputs("set terminal svg size 1100,600 dynamic\n", f);
+    if (!strcmp(format, "svg")) fputs("set terminal svg size 1100,600 dynamic\n", f);
+    else if (!strcmp(format, "jpeg")) fputs("set terminal jpeg size 1100,600\n", f);
     else fputs("if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
                "    set terminal pngcairo size 1100,600\n"
                "} else {\n"
@@ -152,8 +173,8 @@ static void first_line(const char *path, char *buf, size_t len)
 int sb_report_plot(int n, const sb_record_summary *s, const char *plot_path,
                    const char *gnuplot, char *err, size_t errlen)
 {
-    size_t pl = strlen(plot_path);
-    int svg = pl > 4 && strcmp(plot_path + pl - 4, ".svg") == 0;
+    const char *format;
+    if (sb_report_plot_format(plot_path, &format, err, errlen)) return SB_ERR_INPUT;
     const char *tmpdir = getenv("TMPDIR");
     char dir[512], data[600], script[600], log[600], out[4096];
     snprintf(dir, sizeof dir, "%s/sb_report_XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
@@ -176,13 +197,14 @@ int sb_report_plot(int n, const sb_record_summary *s, const char *plot_path,
     snprintf(log, sizeof log, "%s/gnuplot.log", dir);
     int status = SB_REPORT_WARN_PLOT;
     int blocks = write_data(data, n, s, has);
-    if (blocks < 0 || write_script(script, data, out, svg, n, s, has) != 0) {
+    if (blocks < 0 || write_script(script, data, out, format, n, s, has) != 0) {
         snprintf(err, errlen, "plot not written: cannot write temporary files in %s", dir);
     } else if (blocks == 0) {
         snprintf(err, errlen, "plot %s not written: no run has a positive ||g|| history", plot_path);
     } else {
         int rc = run_gnuplot(gnuplot, script, log);
-        char why[512];
+        char why[1024];
+        sb_output_kind kind = SB_OUTPUT_NEW;
         first_line(log, why, sizeof why);
         if (rc == 127) {
             snprintf(err, errlen, "plot %s not written: gnuplot (\"%s\") is not installed or not on PATH",
@@ -190,6 +212,8 @@ int sb_report_plot(int n, const sb_record_summary *s, const char *plot_path,
         } else if (rc != 0) {
             snprintf(err, errlen, "plot %s not written: gnuplot exited with status %d%s%s", plot_path, rc,
                      why[0] ? ": " : "", why);
+        } else if (sb_output_check(plot_path, "plot", &kind, why, sizeof why) || kind == SB_OUTPUT_DISCARD) {
+            snprintf(err, errlen, "plot not written: %s", kind == SB_OUTPUT_DISCARD ? "the path is the null device" : why);
         } else if (rename(out, plot_path) != 0) {
             snprintf(err, errlen, "plot %s not written: rename from %s failed: %s", plot_path, out, strerror(errno));
         } else {

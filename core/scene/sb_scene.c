@@ -5,6 +5,7 @@
 #include "sb_scene.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <jansson.h>
 #include <limits.h>
 #include <math.h>
@@ -19,7 +20,6 @@
 #include "sb_scene_json.h"
 
 #define MAX_FILE_BYTES (16u << 20)
-#define MAX_RESOLUTION 4096L
 #define DEFAULT_RESOLUTION 8
 
 static int fail_at(const char *file, const char *text, size_t len, size_t off, char *err,
@@ -80,7 +80,7 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
                         SB_NAME_LEN - 1, sc->name);
     if ((r = sbj_get_string(c, root, "description", 0, sc->description, sizeof sc->description, NULL)))
         return r;
-    if ((r = sbj_get_int(c, root, "resolution", 0, 1, MAX_RESOLUTION, &res))) return r;
+    if ((r = sbj_get_int(c, root, "resolution", 0, 1, SB_SCENE_MAX_RESOLUTION, &res))) return r;
     sc->default_res = (int)res;
     if ((r = sbj_parse_domain(c, root, &sc->domain))) return r;
     if ((r = sbj_parse_geometry(c, root, &sc->domain, &sc->chart))) return r;
@@ -109,6 +109,14 @@ static int parse_buffer(const char *text, size_t len, const char *file, sb_scene
     int r;
 
     memset(sc, 0, sizeof *sc);
+    if (len >= 8 && memcmp(text, "\x89HDF\r\n\x1a\n", 8) == 0)
+        return fail_at(file, text, len, 0, err, errlen, SB_ERR_INPUT,
+                       "this is an HDF5 file (a run record?), not a scene: read records with `shellbench report` "
+                       "or `shellbench inspect`");
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) {   /* a UTF-8 byte-order mark: skipped */
+        text += 3;
+        len -= 3;
+    }
     while (i < len && (text[i] == ' ' || text[i] == '\t' || text[i] == '\n' || text[i] == '\r')) i++;
     if (i == len) return fail_at(file, text, len, len, err, errlen, SB_ERR_INPUT, "empty file (expected a JSON object)");
     if (nul) return fail_at(file, text, len, (size_t)(nul - text), err, errlen, SB_ERR_INPUT,
@@ -155,51 +163,118 @@ int sb_scene_parse_string(const char *text, const char *path_for_messages, sb_sc
         if (err && errlen) snprintf(err, errlen, "%s:1:1: at /: no scene text given", file);
         return SB_ERR_INPUT;
     }
-    return parse_buffer(text, strlen(text), file, scene, err, errlen);
+    int r = parse_buffer(text, strlen(text), file, scene, err, errlen);
+    if (r && err && errlen) sb_escape_controls(err, errlen);
+    return r;
 }
 
-int sb_scene_load(const char *path, sb_scene *scene, char *err, size_t errlen)
+int sb_scene_parse_buffer(const char *bytes, size_t len, const char *path_for_messages, sb_scene *scene, char *err,
+                          size_t errlen)
 {
-    FILE *f;
+    const char *file = path_for_messages ? path_for_messages : "<buffer>";
+    if (!scene) return SB_ERR_INPUT;
+    if (len > MAX_FILE_BYTES) {
+        memset(scene, 0, sizeof *scene);
+        if (err && errlen) snprintf(err, errlen, "%s:1:1: at /: too large (more than %u bytes)", file, MAX_FILE_BYTES);
+        return SB_ERR_INPUT;
+    }
+    int r = parse_buffer(bytes ? bytes : "", bytes ? len : 0, file, scene, err, errlen);
+    if (r && err && errlen) sb_escape_controls(err, errlen);
+    return r;
+}
+
+/* The standard input under the names a shell gives it: scenes may come
+ * from a pipe or a terminal there, not from any other non-regular file. */
+static int is_stdin_path(const char *p)
+{
+    return strcmp(p, "/dev/stdin") == 0 || strncmp(p, "/dev/fd/", 8) == 0 || strncmp(p, "/proc/self/fd/", 14) == 0;
+}
+
+static const char *file_type(mode_t m)
+{
+    return S_ISDIR(m) ? "a directory" : S_ISCHR(m) ? "a character device" : S_ISBLK(m) ? "a block device"
+         : S_ISFIFO(m) ? "a FIFO (named pipe)" : S_ISSOCK(m) ? "a socket" : "not a regular file";
+}
+
+/* Opens without blocking (a FIFO without a writer would block open() and a
+ * read forever), then accepts regular files, and the standard input in
+ * whatever form (blocking again: a pipe's writer may be slow). */
+static int open_scene(const char *path, int *fd_out, char *err, size_t errlen)
+{
+    struct stat st;
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    *fd_out = -1;
+    if (fd < 0) {
+        if (err && errlen) snprintf(err, errlen, "%s:1:1: at /: cannot open file (%s)", path, strerror(errno));
+        return SB_ERR_IO;
+    }
+    if (fstat(fd, &st) != 0) {
+        if (err && errlen) snprintf(err, errlen, "%s:1:1: at /: cannot open file (%s)", path, strerror(errno));
+        close(fd);
+        return SB_ERR_IO;
+    }
+    if (!S_ISREG(st.st_mode) && (S_ISDIR(st.st_mode) || !is_stdin_path(path))) {
+        if (err && errlen)
+            snprintf(err, errlen, "%s:1:1: at /: is %s, not a scene file (scenes are read from regular files, or "
+                     "from the standard input as /dev/stdin)", path, file_type(st.st_mode));
+        close(fd);
+        return SB_ERR_INPUT;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags >= 0) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+    *fd_out = fd;
+    return SB_OK;
+}
+
+static int load_file(const char *path, sb_scene *scene, char *err, size_t errlen)
+{
+    int fd;
     char *buf = NULL;
     size_t len = 0, cap = 0;
     int r;
 
     memset(scene, 0, sizeof *scene);
-    if (!path || !(f = fopen(path, "rb"))) {
-        if (err && errlen)
-            snprintf(err, errlen, "%s:1:1: at /: cannot open file (%s)", path ? path : "(null)",
-                     path ? strerror(errno) : "no path");
+    if (!path) {
+        if (err && errlen) snprintf(err, errlen, "(null):1:1: at /: cannot open file (no path)");
         return SB_ERR_IO;
     }
-    for (;;) {   /* read whole file; works for pipes too */
+    if ((r = open_scene(path, &fd, err, errlen))) return r;
+    for (;;) {   /* read the whole file; works for pipes too */
         if (len == cap) {
             size_t ncap = cap ? 2 * cap : 4096;
             char *nb = ncap <= MAX_FILE_BYTES + 1 ? realloc(buf, ncap) : NULL;
             if (!nb) {
-                fclose(f);
+                close(fd);
                 free(buf);
                 if (err && errlen)
-                    snprintf(err, errlen, "%s:1:1: at /: file too large (more than %u bytes)", path,
-                             MAX_FILE_BYTES);
+                    snprintf(err, errlen, "%s:1:1: at /: file too large (more than %u bytes)", path, MAX_FILE_BYTES);
                 return SB_ERR_INPUT;
             }
             buf = nb;
             cap = ncap;
         }
-        size_t n = fread(buf + len, 1, cap - len, f);
-        len += n;
+        ssize_t n = read(fd, buf + len, cap - len);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            int e = errno;
+            close(fd);
+            free(buf);
+            if (err && errlen) snprintf(err, errlen, "%s:1:1: at /: read error (%s)", path, strerror(e));
+            return SB_ERR_IO;
+        }
         if (n == 0) break;
+        len += (size_t)n;
     }
-    if (ferror(f)) {
-        fclose(f);
-        free(buf);
-        if (err && errlen) snprintf(err, errlen, "%s:1:1: at /: read error (%s)", path, strerror(errno));
-        return SB_ERR_IO;
-    }
-    fclose(f);
+    close(fd);
     r = parse_buffer(buf ? buf : "", len, path, scene, err, errlen);
     free(buf);
+    return r;
+}
+
+int sb_scene_load(const char *path, sb_scene *scene, char *err, size_t errlen)
+{
+    int r = load_file(path, scene, err, errlen);
+    if (r && err && errlen) sb_escape_controls(err, errlen);   /* scene text and paths reach a terminal */
     return r;
 }
 
@@ -225,10 +300,12 @@ static int try_path(char *out, size_t len, const char *fmt, const char *a, const
 int sb_scene_resolve(const char *name_or_path, char *path, size_t len)
 {
     if (!name_or_path || !path || len == 0) return SB_ERR_INPUT;
+    struct stat st;
     if (is_file(name_or_path) || strchr(name_or_path, '/')) {
-        /* an existing file, or a path (existing or not: the loader reports) */
+        /* a path: found when something is there (the loader takes regular
+         * files and the standard input, and refuses the rest with a sentence) */
         int n = snprintf(path, len, "%s", name_or_path);
-        return (n >= 0 && (size_t)n < len && is_file(path)) ? SB_OK : SB_ERR_IO;
+        return (n >= 0 && (size_t)n < len && stat(path, &st) == 0) ? SB_OK : SB_ERR_IO;
     }
     const char *root = getenv("SB_ROOT");
     char exe[PATH_MAX];

@@ -15,6 +15,8 @@
 #define SB_SCENE_MAX_BCS 32
 #define SB_SCENE_MAX_PROBES 32
 #define SB_SCENE_MAX_PARTS 8
+/* elements per side: the scene's "resolution", --res and method.cells_t */
+#define SB_SCENE_MAX_RESOLUTION 4096
 
 /* ---- domain ---------------------------------------------------------- */
 typedef enum { SB_DOMAIN_RECTANGLE, SB_DOMAIN_L_SHAPE, SB_DOMAIN_ANNULUS_SECTOR } sb_domain_kind;
@@ -198,6 +200,10 @@ typedef struct sb_scene {
  * "FILE:LINE:COLUMN: at /json/path: what is wrong" into err. */
 int sb_scene_load(const char *path, sb_scene *scene, char *err, size_t errlen);
 int sb_scene_parse_string(const char *text, const char *path_for_messages,
+                          sb_scene *scene, char *err, size_t errlen);
+/* The same for len bytes that may hold anything (what sb_scene_load does
+ * with a file's contents: NUL bytes, a byte-order mark, an HDF5 file). */
+int sb_scene_parse_buffer(const char *bytes, size_t len, const char *path_for_messages,
                           sb_scene *scene, char *err, size_t errlen);
 void sb_scene_free(sb_scene *scene);
 /* Resolve a scene name ("trampoline") or path to a file path. */

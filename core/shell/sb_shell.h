@@ -77,6 +77,38 @@ double sb_shell_energy(const sb_material *m, const sb_shell_ref *r, const sb_she
                        const double *q, double *grad, double *hess, sb_hess_kind kind,
                        sb_shell_work *w);
 
+/* ---- the fast kernel (issue 30; additive: the functions above are the
+ * reference kernel, unchanged, bit-identical to the records made with it) --
+ *
+ * Energy, gradient and Hessian of a whole element: nq quadrature points
+ * with references r[0..nq) and bases b[0..nq) (all with the same k), the
+ * same quantities as summing sb_shell_energy() over the points, computed
+ * batched over the points (sb_shell_elem.c; round-off differs from the
+ * reference).  grad (3k) and hess (3k x 3k, row-major, exactly symmetric)
+ * are ACCUMULATED when non-NULL.  kind EXACT and PSEUDO as above; kind PSD
+ * is the strain-space projection (section tangent and membrane stress
+ * clamped to their PSD parts, bending second derivatives dropped), PSD by
+ * construction, for elements whose exact Hessian is not PSD (see
+ * sb_psd_check).  Bad input gives NaN, as sb_shell_energy. */
+typedef struct sb_shell_batch sb_shell_batch;
+/* scratch for elements of up to kmax basis functions and nqmax points; one per thread */
+sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax);
+void sb_shell_batch_free(sb_shell_batch *w);
+double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                        const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
+
+/* The section law of sb_shell_section, evaluated for the fast kernel: the
+ * thickness points batched in vectors, denim's powers by vectorized
+ * exp/log (sb_vmath.h) instead of libm (agrees with sb_shell_section to a
+ * few ulp; tests/test_shell_fast.c). */
+double sb_shell_section_fast(const sb_material *m, const double A[3], const double B[3], double sA[3],
+                             double sB[3], double C[36]);
+
+/* Which kernel a method assembles with (method.kernel): the fast one, or
+ * the reference (per point, sb_shell_energy; the committed records' bits). */
+typedef enum { SB_KERNEL_FAST = 0, SB_KERNEL_REFERENCE = 1 } sb_kernel_kind;
+extern const char *const sb_kernel_names[];   /* "fast", "reference", NULL */
+
 /* Local-frame membrane strain A and bending strain B (Voigt 11, 22, 12; the
  * E(xi3) = A - 2 xi3 B that sb_shell_energy integrates) at one quadrature
  * point.  Returns SB_OK, SB_ERR_INPUT for bad arguments, SB_NONFINITE for a
@@ -119,5 +151,42 @@ double sb_shell_external(const sb_material *m, const sb_shell_ref *r, const sb_s
  * SB_NONFINITE (NaN/Inf entries, or dsyev failed to converge). */
 size_t sb_psd_work_size(int n);
 int sb_psd_project(int n, double *H, double *work);
+
+/* Is the symmetric n x n H (row-major) positive semidefinite up to
+ * round-off?  LDL^T with diagonal pivoting (sb_psd.c): 1 when every pivot
+ * above the tolerance tol = 64 n eps max|H_ii| is positive and the Schur
+ * complement left below it is within the tolerance; 0 otherwise (also for
+ * NaN/Inf, and for n > SB_PSD_CHECK_MAX_N).  work: n*n doubles.  About
+ * n^3/6 multiply-adds, against the ~9 n^3 of a full eigendecomposition. */
+#define SB_PSD_CHECK_MAX_N (3 * SB_SHELL_MAX_BASIS)
+int sb_psd_check(int n, const double *H, double *work);
+
+/* Hessian kind PSD with the fast kernel, for one element: as
+ * sb_shell_element (energy returned, grad and hess accumulated; hess must
+ * hold zeros or other terms of no concern here), hess then plus Kx, the
+ * element's other terms (penalty, loads; ignored unless kx_used).  The sum
+ * is kept when it is PSD (sb_psd_check): exact where the element Hessian
+ * already is.  Otherwise, if Kx is PSD, the shell part is replaced by the
+ * strain-space projection (kind PSD above, computed as the exact Hessian
+ * minus the difference: bending second derivatives, negative membrane
+ * stress and, where a section tangent is clamped, its clamped part), and
+ * else the eigenvalues of the sum are clamped
+ * (sb_psd_project).  *path (may be NULL) = 0, 1 or 2 for the three cases.
+ * work: sb_psd_work_size(3k) doubles. */
+double sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                            const double *q, double *grad, double *hess, const double *Kx, int kx_used,
+                            sb_shell_batch *w, double *work, int *path);
+
+/* Per-thread element scratch of a method: both kernels' work spaces,
+ * control values qe (3 kmax), the other terms' matrix Kx ((3 kmax)^2), PSD
+ * work and nqmax bases.  init returns SB_OK or SB_ERR_NOMEM (then free). */
+typedef struct sb_elem_scratch {
+    sb_shell_work *work;
+    sb_shell_batch *batch;
+    double *qe, *Kx, *psd;
+    sb_shell_basis *b;
+} sb_elem_scratch;
+int sb_elem_scratch_init(sb_elem_scratch *s, int kmax, int nqmax);
+void sb_elem_scratch_free(sb_elem_scratch *s);
 
 #endif

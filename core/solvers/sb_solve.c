@@ -28,8 +28,14 @@ const sb_param_def sb_solve_params[] = {
       "add to every dof of the start an offset uniform in [-perturb, perturb] (the dofs' units: m for control "
       "points), to sample how counts on a nonconvex scene spread under round-off-sized changes (0 = none)" },
     { "seed", SB_PARAM_INT, 1, 0, 2147483647, NULL, "seed of run.perturb's random offsets" },
+    { "max_memory", SB_PARAM_REAL, 0, 0, 1e9, NULL,
+      "GB (1e9 bytes) a run may take: one whose estimate (discretization, matrices, Cholesky factor, record) exceeds "
+      "it is refused before any work (0 = the machine's physical memory)" },
     { "lifting", SB_PARAM_INT, 1, 0, 1, NULL,
       "start a step with moving boundaries from the linear lifting of the boundary increment (0 = off)" },
+    { "threads", SB_PARAM_INT, 1, 1, 64, NULL,
+      "threads assembling energy, gradient and Hessian over elements (rmtr, bhem; OpenMP): the reduction is in "
+      "element order, so every count and record is bit-identical for any number (docs/performance.md)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 

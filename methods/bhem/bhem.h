@@ -126,6 +126,11 @@ typedef struct bhem_state {
     double qe[BHEM_NED], ge[BHEM_NED];
     double *Ke;               /* 48*48 */
     double *psd_work;
+    /* assembly (issue 30): method.kernel, run.threads, per-thread scratch */
+    sb_kernel_kind kernel;
+    int threads;
+    sb_elem_scratch *tw;
+    struct sb_assembler *assembler;
 } bhem_state;
 
 /* error helper: stores the message in the context (if any) and returns status */
@@ -176,6 +181,11 @@ int  bhem_transfer_build(bhem_state *S, int lc);
 int  bhem_prolong(const bhem_state *S, int lc, const double *xc, double *xf);
 int  bhem_restrict(const bhem_state *S, int lc, const double *gf, double *gc);
 int  bhem_project(const bhem_state *S, int lc, const double *xf, double *xc);
+
+/* ---- rendering (bhem_ray.c) ------------------------------------------------ */
+struct sb_surface;
+/* The patches of x on `level` as Bézier patches, with the reference (sb_surface.h). */
+int  bhem_surface(void *state, int level, const double *x, struct sb_surface *out);
 
 /* ---- creation (bhem_method.c) ------------------------------------------- */
 extern const sb_param_def bhem_params[];

@@ -1,11 +1,83 @@
 /* bhem_energy.c — E = E_elastic + E_external and its gradient / Hessian,
  * assembled patch by patch through the shared Kirchhoff–Love kernel
  * (BHEM paper Eq. 7-8 energy, App. B derivatives, §6.1 exact / pseudo
- * Hessian), 4x4 Gauss points per patch (App. A). */
+ * Hessian), 4x4 Gauss points per patch (App. A).  The patch loop runs on
+ * run.threads threads through sb_assemble (reduction in patch order:
+ * bit-identical results for any count), with method.kernel's kernel: fast
+ * (sb_shell_element) or reference (sb_shell_energy per point). */
 #include "bhem.h"
+#include "sb_assemble.h"
 
 #include <math.h>
 #include <string.h>
+
+/* One assembly: what compute() and reduce() share (sb_assemble.h). */
+typedef struct bhem_asm {
+    bhem_state *S;
+    bhem_level *L;
+    const double *x;
+    double *g;
+    sb_matrix *H;
+    double p_follow;
+    sb_hess_kind kind;          /* EXACT or PSEUDO: PSD is exact here, projected per patch */
+    double E;
+} bhem_asm;
+
+static void bhem_compute(void *ctx, int thread, int e, sb_elem_out *o)
+{
+    bhem_asm *a = ctx;
+    bhem_state *S = a->S;
+    bhem_level *L = a->L;
+    sb_elem_scratch *T = &S->tw[thread];
+    const double gzero[3] = { 0.0, 0.0, 0.0 };
+    double *qe = T->qe, *ge = o->ge, *Ke = o->Ke;
+    bhem_gather(L, e, a->x, qe);
+    if (ge) memset(ge, 0, sizeof(double) * BHEM_NED);
+    if (Ke) memset(Ke, 0, sizeof(double) * BHEM_NED * BHEM_NED);
+    const sb_shell_ref *ref = L->ref + (size_t)e * BHEM_NQP;
+    int nt = 0;
+    if (S->kernel == SB_KERNEL_REFERENCE) {
+        /* per point: the arithmetic and term order of the committed records */
+        for (int q = 0; q < BHEM_NQP; q++) {
+            const bhem_qp_basis *B = &L->qb[q];
+            sb_shell_basis b = { BHEM_NB, B->N, B->N1, B->N2, B->N11, B->N12, B->N22 };
+            o->terms[nt++] = sb_shell_energy(&S->mat, &ref[q], &b, qe, ge, Ke, a->kind, T->work);
+            if (a->p_follow != 0.0)
+                o->terms[nt++] = sb_shell_external(&S->mat, &ref[q], &b, qe, gzero, a->p_follow, 1, ge, Ke);
+        }
+        if (L->n_mq) o->terms[nt++] = bhem_moment_element(S, L, e, qe, ge, Ke);
+        if (Ke && S->hess == SB_HESS_PSD) sb_psd_project(BHEM_NED, Ke, T->psd);
+        o->n_terms = nt;
+        return;
+    }
+    /* the fast kernel: the patch's 4 x 4 points batched (sb_shell_element) */
+    const int psd = Ke && S->hess == SB_HESS_PSD;
+    double *Kt = psd ? T->Kx : Ke, E = 0.0;
+    if (psd) memset(Kt, 0, sizeof(double) * BHEM_NED * BHEM_NED);
+    for (int q = 0; q < BHEM_NQP; q++) {
+        const bhem_qp_basis *B = &L->qb[q];
+        sb_shell_basis b = { BHEM_NB, B->N, B->N1, B->N2, B->N11, B->N12, B->N22 };
+        T->b[q] = b;
+        if (a->p_follow != 0.0) E += sb_shell_external(&S->mat, &ref[q], &b, qe, gzero, a->p_follow, 1, ge, Kt);
+    }
+    if (L->n_mq) E += bhem_moment_element(S, L, e, qe, ge, Kt);
+    o->terms[nt++] = psd ? sb_shell_element_psd(&S->mat, BHEM_NQP, ref, T->b, qe, ge, Ke, Kt,
+                                                a->p_follow != 0.0 || L->n_mq, T->batch, T->psd, NULL)
+                         : sb_shell_element(&S->mat, BHEM_NQP, ref, T->b, qe, ge, Ke, a->kind, T->batch);
+    o->terms[nt++] = E;
+    o->n_terms = nt;
+}
+
+/* in element order: the energy terms one by one, then gradient and matrix */
+static void bhem_reduce(void *ctx, int e, const sb_elem_out *o)
+{
+    bhem_asm *a = ctx;
+    for (int i = 0; i < o->n_terms; i++) a->E += o->terms[i];
+    const int *d = a->L->elem_dofs + (size_t)e * BHEM_NED;
+    if (a->g)
+        for (int i = 0; i < BHEM_NED; i++) a->g[d[i]] += o->ge[i];
+    if (a->H) sb_matrix_add_element(a->H, e, o->Ke);
+}
 
 int bhem_energy(bhem_state *S, int level, const double *x, double *f, double *g, sb_matrix *H)
 {
@@ -16,34 +88,20 @@ int bhem_energy(bhem_state *S, int level, const double *x, double *f, double *g,
         if (L->n_mq) bhem_moment_rebranch(S, L, x);
         L->rebranch = 0;
     }
+    bhem_asm a;
+    memset(&a, 0, sizeof a);
+    a.S = S;
+    a.L = L;
+    a.x = x;
+    a.g = g;
+    a.H = H;
     /* follower pressure: summed over loads, through the kernel's potential */
-    double p_follow = 0.0;
     for (int k = 0; k < sc->n_loads; k++)
         if (sc->loads[k].kind == SB_LOAD_PRESSURE && sc->loads[k].follower)
-            p_follow += S->load_factor[k] * sc->loads[k].value;
-    const double gzero[3] = { 0.0, 0.0, 0.0 };
-    sb_hess_kind kind = S->hess == SB_HESS_PSD ? SB_HESS_EXACT : S->hess;
-    double *ge = (g || H) ? S->ge : NULL, *Ke = H ? S->Ke : NULL;
-    double *qe = S->qe;
-    double E = 0.0;
-    for (int e = 0; e < L->n_elems; e++) {
-        bhem_gather(L, e, x, qe);
-        if (ge) memset(ge, 0, sizeof S->ge);
-        if (Ke) memset(Ke, 0, sizeof(double) * BHEM_NED * BHEM_NED);
-        const sb_shell_ref *ref = L->ref + (size_t)e * BHEM_NQP;
-        for (int q = 0; q < BHEM_NQP; q++) {
-            const bhem_qp_basis *B = &L->qb[q];
-            sb_shell_basis b = { BHEM_NB, B->N, B->N1, B->N2, B->N11, B->N12, B->N22 };
-            E += sb_shell_energy(&S->mat, &ref[q], &b, qe, ge, Ke, kind, S->work);
-            if (p_follow != 0.0) E += sb_shell_external(&S->mat, &ref[q], &b, qe, gzero, p_follow, 1, ge, Ke);
-        }
-        if (L->n_mq) E += bhem_moment_element(S, L, e, qe, ge, Ke);
-        if (Ke && S->hess == SB_HESS_PSD) sb_psd_project(BHEM_NED, Ke, S->psd_work);
-        const int *d = L->elem_dofs + (size_t)e * BHEM_NED;
-        if (g)
-            for (int a = 0; a < BHEM_NED; a++) g[d[a]] += ge[a];
-        if (Ke) sb_matrix_add_element(H, e, Ke);
-    }
+            a.p_follow += S->load_factor[k] * sc->loads[k].value;
+    a.kind = S->hess == SB_HESS_PSD ? SB_HESS_EXACT : S->hess;
+    sb_assemble(S->assembler, L->n_elems, NULL, g || H, H != NULL, bhem_compute, bhem_reduce, &a);
+    double E = a.E;
     /* dead loads: E_ext = -f_ext . (x - x_ref) (BHEM Eq. 19 and 21); measured
      * from the reference so that f carries no large constant (the f-tests of
      * RMTR Eq. 7.1 compare energy differences) */

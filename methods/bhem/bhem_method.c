@@ -2,6 +2,8 @@
  * (BHEM paper 001_…): creation from a scene, levels, step data, and the
  * operation table `sb_method_bhem`. */
 #include "bhem.h"
+#include "sb_context.h"
+#include "sb_assemble.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,8 +18,11 @@ const sb_param_def bhem_params[] = {
     { "imperfection", SB_PARAM_REAL, 0.0, 0.0, 1.0, NULL,
       "amplitude (m) of a smooth deterministic out-of-plane imperfection of the reference surface "
       "(symmetry breaking for buckling scenes; 0 = none)" },
-    { "cells_t", SB_PARAM_INT, 0, 0, 4096, NULL,
+    { "cells_t", SB_PARAM_INT, 0, 0, SB_SCENE_MAX_RESOLUTION, NULL,
       "patches along t on the finest level (0 = same as --res)" },
+    { "kernel", SB_PARAM_CHOICE, 0, 0, 0, sb_kernel_names,
+      "shell kernel: fast (patch-batched, sb_shell_element) or reference (per point, the arithmetic of the "
+      "committed records; docs/reproducibility.md)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
 
@@ -30,6 +35,11 @@ static void bhem_destroy(void *state)
     free(S->psd_work);
     S->work = NULL;
     S->Ke = S->psd_work = NULL;
+    for (int t = 0; S->tw && t < S->threads; t++) sb_elem_scratch_free(&S->tw[t]);
+    free(S->tw);
+    S->tw = NULL;
+    sb_assembler_free(S->assembler);
+    S->assembler = NULL;
 }
 
 static int read_params(bhem_state *S, const sb_method_config *cfg, int *cells_t)
@@ -37,13 +47,76 @@ static int read_params(bhem_state *S, const sb_method_config *cfg, int *cells_t)
     S->hess = SB_HESS_EXACT;
     S->imperfection = 0.0;
     *cells_t = 0;
+    S->kernel = SB_KERNEL_FAST;
+    S->threads = sb_param_int_or(cfg->params, "run.threads", 1);
+    if (S->threads > 1 && !sb_assemble_have_threads())
+        return bhem_fail(S, SB_ERR_INPUT, "run.threads = %d: this build has no OpenMP (build with make OPENMP=-fopenmp)",
+                         S->threads);
     if (!cfg->params) return SB_OK;
+    if (strcmp(sb_param_choice(cfg->params, "method.kernel"), "reference") == 0) S->kernel = SB_KERNEL_REFERENCE;
     const char *h = sb_param_choice(cfg->params, "method.hessian");
     if (strcmp(h, "pseudo") == 0) S->hess = SB_HESS_PSEUDO;
     else if (strcmp(h, "psd") == 0) S->hess = SB_HESS_PSD;
     S->imperfection = sb_param(cfg->params, "method.imperfection");
     *cells_t = sb_param_int(cfg->params, "method.cells_t");
     if (!(S->imperfection >= 0.0)) return bhem_fail(S, SB_ERR_INPUT, "method.imperfection must be >= 0");
+    return SB_OK;
+}
+
+/* Patches (n, m) of the finest level, with the checks every size of
+ * create() relies on: at most SB_SCENE_MAX_RESOLUTION per side (so n*m,
+ * 12 (n+1)(m+1) dofs and 48 n m element dofs fit in int), divisible by
+ * 2^(levels-1). */
+static int bhem_grid_size(const sb_scene *scene, const sb_method_config *cfg, int cells_t, int *n, int *m,
+                          int *levels, char *msg, size_t len)
+{
+    *n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 8);
+    *m = cells_t > 0 ? cells_t : *n;
+    *levels = cfg->levels > 0 ? cfg->levels : 1;
+    if (*levels > SB_MAX_LEVELS) {
+        snprintf(msg, len, "%d levels requested, at most %d are supported", *levels, SB_MAX_LEVELS);
+        return SB_ERR_INPUT;
+    }
+    if (*n > SB_SCENE_MAX_RESOLUTION || *m > SB_SCENE_MAX_RESOLUTION) {
+        snprintf(msg, len, "%d x %d patches requested, at most %d per side are supported", *n, *m,
+                 SB_SCENE_MAX_RESOLUTION);
+        return SB_ERR_INPUT;
+    }
+    int div = 1 << (*levels - 1);
+    if (*n % div || *m % div) {
+        snprintf(msg, len, "--res %d (x %d) patches cannot be coarsened %d times: the resolution must be divisible by "
+                 "2^(levels-1) = %d", *n, *m, *levels - 1, div);
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
+}
+
+/* sb_method_type.estimate: the grid of every level, counted as create()
+ * allocates it (bhem_grid.c, bhem_loads.c, bhem_transfer.c); masked
+ * (L-shape) and identified (periodic) nodes are counted as present. */
+static int bhem_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *sz)
+{
+    int n, m, levels, cells_t = cfg->params ? sb_param_int(cfg->params, "method.cells_t") : 0;
+    char msg[256];
+    if (bhem_grid_size(scene, cfg, cells_t, &n, &m, &levels, msg, sizeof msg))
+        return sb_error(cfg->ctx, SB_ERR_INPUT, "bhem: %s", msg);
+    memset(sz, 0, sizeof *sz);
+    sz->levels = levels;
+    sz->bs = 12;
+    sz->nodes_per_element = 4;
+    sz->stencil = 9;
+    double bytes = 0;
+    for (int l = 0; l < levels; l++) {
+        int sh = levels - 1 - l;
+        double n1 = n >> sh, n2 = m >> sh, nodes = (n1 + 1) * (n2 + 1), ne = n1 * n2, dofs = 12 * nodes;
+        sz->nodes[l] = nodes;
+        sz->elements[l] = ne;
+        bytes += nodes * 3 * sizeof(int) + ne * (2 + BHEM_NED) * sizeof(int);   /* node ids, cells, elements */
+        bytes += ne * BHEM_NQP * sizeof(sb_shell_ref);                          /* quadrature reference data */
+        bytes += dofs * (2 + scene->n_loads) * sizeof(double);                   /* x_ref, f_ext, load vectors */
+        if (l + 1 < levels) bytes += 4 * 4 * nodes * 4 * (sizeof(int) + sizeof(double));   /* prolongation rows */
+    }
+    sz->method_bytes = bytes;
     return SB_OK;
 }
 
@@ -55,16 +128,10 @@ static int bhem_create(void *state, const sb_scene *scene, const sb_method_confi
     S->ctx = cfg->ctx;
     int cells_t, rc = read_params(S, cfg, &cells_t);
     if (rc) return rc;
-    int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 8);
-    int m = cells_t > 0 ? cells_t : n;
-    int levels = cfg->levels > 0 ? cfg->levels : 1;
-    if (levels > SB_MAX_LEVELS)
-        return bhem_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, SB_MAX_LEVELS);
-    int div = 1 << (levels - 1);
-    if (n % div || m % div)
-        return bhem_fail(S, SB_ERR_INPUT,
-                         "--res %d (x %d) patches cannot be coarsened %d times: the resolution must be divisible by "
-                         "2^(levels-1) = %d", n, m, levels - 1, div);
+    int n, m, levels;
+    char msg[256];
+    if (bhem_grid_size(scene, cfg, cells_t, &n, &m, &levels, msg, sizeof msg))
+        return bhem_fail(S, SB_ERR_INPUT, "%s", msg);
     if (scene->material.thickness <= 0.0 || scene->material.density < 0.0)
         return bhem_fail(S, SB_ERR_INPUT, "material thickness must be > 0 and density >= 0");
     if ((rc = sb_material_init(&S->mat, &scene->material, 0))) {
@@ -76,6 +143,13 @@ static int bhem_create(void *state, const sb_scene *scene, const sb_method_confi
     S->psd_work = malloc(sizeof(double) * (sb_psd_work_size(BHEM_NED) + 1));
     S->work = sb_shell_work_new();
     if (!S->Ke || !S->psd_work || !S->work) { bhem_destroy(S); return SB_ERR_NOMEM; }
+    /* assembly: per-thread scratch; terms per patch: shell and follower
+     * pressure per point, end moments */
+    S->tw = calloc((size_t)S->threads, sizeof *S->tw);
+    if (!S->tw) { bhem_destroy(S); return SB_ERR_NOMEM; }
+    for (int t = 0; t < S->threads; t++)
+        if (sb_elem_scratch_init(&S->tw[t], BHEM_NB, BHEM_NQP)) { bhem_destroy(S); return SB_ERR_NOMEM; }
+    if (!(S->assembler = sb_assembler_new(S->threads, BHEM_NED, 2 * BHEM_NQP + 2))) { bhem_destroy(S); return SB_ERR_NOMEM; }
     if ((rc = bhem_detect_periodic(S))) { bhem_destroy(S); return rc; }
     for (int l = 0; l < levels && rc == SB_OK; l++) {
         bhem_level *L = &S->lv[l];
@@ -211,5 +285,7 @@ const sb_method_type sb_method_bhem = {
     .prolong = bhem_prolong_op,
     .restrict_adj = bhem_restrict_op,
     .project = bhem_project_op,
+    .estimate = bhem_estimate,
     .describe = bhem_describe,
+    .surface = bhem_surface,
 };

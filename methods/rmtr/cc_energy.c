@@ -5,58 +5,147 @@
  *   core/shell/sb_shell.h), gravity and pressure (sb_shell_external),
  *   boundary penalty (3.6) and line/point loads (cc_penalty.c).
  * The core adds inertia and damping (DESIGN.md).  Element buffers are
- * allocated once in the method state; nothing is allocated in these loops. */
+ * allocated once in the method state; nothing is allocated in these loops.
+ * The element loop runs on run.threads threads through sb_assemble (a
+ * reduction in element order: bit-identical results for any count), with
+ * the kernel of method.kernel: fast (sb_shell_element) or reference
+ * (sb_shell_energy per point, the arithmetic of the committed records). */
 #include "cc_method.h"
+#include "sb_assemble.h"
 
 #include <math.h>
 #include <string.h>
+
+/* One assembly: what compute() and reduce() share (sb_assemble.h). */
+typedef struct cc_asm {
+    cc_state *S;
+    const cc_level *L;
+    double *g;
+    sb_matrix *H;
+    const double *x;
+    double gvec[3];
+    int has_g, has_p;
+    sb_hess_kind hk;            /* EXACT or PSEUDO: PSD is exact here, projected per element */
+    double E;
+} cc_asm;
+
+/* The reference kernel, per point: the arithmetic (and the order of the
+ * energy terms) of the loop every committed record was made with. */
+static int terms_reference(cc_asm *a, sb_elem_scratch *T, int el, int k, double *ge, double *Ke, double *terms)
+{
+    cc_state *S = a->S;
+    const sb_scene *sc = S->scene;
+    const cc_quad *Q = &a->L->quad;
+    const double *qe = T->qe;
+    int nt = 0;
+    for (int q = 0; q < Q->nq; q++) {
+        sb_shell_basis b = cc_quad_basis(Q, el, q);
+        const sb_shell_ref *r = &a->L->ref[(size_t)el * Q->nq + q];
+        terms[nt++] = sb_shell_energy(&S->mat, r, &b, qe, ge, Ke, a->hk, T->work);
+        if (a->has_g) terms[nt++] = sb_shell_external(&S->mat, r, &b, qe, a->gvec, 0.0, 0, ge, NULL);
+        if (a->has_p)
+            for (int i = 0; i < sc->n_loads; i++)
+                if (sc->loads[i].kind == SB_LOAD_PRESSURE)
+                    terms[nt++] = sb_shell_external(&S->mat, r, &b, qe, NULL, S->load_factor[i] * sc->loads[i].value,
+                                                    sc->loads[i].follower, ge, Ke);
+    }
+    terms[nt++] = cc_points_energy(S, a->L, el, qe, ge, Ke);
+    if (Ke && S->hess == SB_HESS_PSD) sb_psd_project(3 * k, Ke, T->psd);
+    return nt;
+}
+
+/* The fast kernel: the element's points batched (sb_shell_element); kind
+ * PSD by sb_shell_element_psd (exact where the element Hessian is PSD). */
+static int terms_fast(cc_asm *a, sb_elem_scratch *T, int el, int k, double *ge, double *Ke, double *terms)
+{
+    cc_state *S = a->S;
+    const sb_scene *sc = S->scene;
+    const cc_quad *Q = &a->L->quad;
+    const double *qe = T->qe;
+    const int n = 3 * k, psd = Ke && S->hess == SB_HESS_PSD;
+    const sb_shell_ref *r = &a->L->ref[(size_t)el * Q->nq];
+    for (int q = 0; q < Q->nq; q++) T->b[q] = cc_quad_basis(Q, el, q);
+    /* the other terms: gravity, pressure, penalty and loads (into Kx first for PSD) */
+    double *Kt = psd ? T->Kx : Ke, E = 0.0;
+    if (psd) memset(Kt, 0, (size_t)n * n * sizeof *Kt);
+    int kx_used = 0;
+    for (int q = 0; q < Q->nq; q++) {
+        if (a->has_g) E += sb_shell_external(&S->mat, &r[q], &T->b[q], qe, a->gvec, 0.0, 0, ge, NULL);
+        if (a->has_p)
+            for (int i = 0; i < sc->n_loads; i++)
+                if (sc->loads[i].kind == SB_LOAD_PRESSURE) {
+                    E += sb_shell_external(&S->mat, &r[q], &T->b[q], qe, NULL, S->load_factor[i] * sc->loads[i].value,
+                                           sc->loads[i].follower, ge, Kt);
+                    kx_used |= sc->loads[i].follower;
+                }
+    }
+    kx_used |= a->L->ept[el + 1] > a->L->ept[el];
+    E += cc_points_energy(S, a->L, el, qe, ge, Kt);
+    terms[0] = psd ? sb_shell_element_psd(&S->mat, Q->nq, r, T->b, qe, ge, Ke, Kt, kx_used, T->batch, T->psd, NULL)
+                   : sb_shell_element(&S->mat, Q->nq, r, T->b, qe, ge, Ke, a->hk, T->batch);
+    terms[1] = E;
+    return 2;
+}
+
+static void cc_compute(void *ctx, int thread, int el, sb_elem_out *o)
+{
+    cc_asm *a = ctx;
+    cc_state *S = a->S;
+    const cc_quad *Q = &a->L->quad;
+    sb_elem_scratch *T = &S->tw[thread];
+    const int *nd = Q->enode + Q->eoff[el];
+    const int k = Q->eoff[el + 1] - Q->eoff[el], n = 3 * k;
+    double *ge = a->g ? o->ge : NULL, *Ke = o->Ke;
+    for (int i = 0; i < k; i++) memcpy(T->qe + 3 * i, a->x + 3 * nd[i], 3 * sizeof(double));
+    if (ge) memset(ge, 0, (size_t)n * sizeof *ge);
+    if (Ke) memset(Ke, 0, (size_t)n * n * sizeof *Ke);
+    o->n_terms = S->kernel == SB_KERNEL_REFERENCE ? terms_reference(a, T, el, k, ge, Ke, o->terms)
+                                                 : terms_fast(a, T, el, k, ge, Ke, o->terms);
+}
+
+/* in element order: the energy terms one by one, then gradient and matrix */
+static void cc_reduce(void *ctx, int el, const sb_elem_out *o)
+{
+    cc_asm *a = ctx;
+    for (int i = 0; i < o->n_terms; i++) a->E += o->terms[i];
+    const cc_quad *Q = &a->L->quad;
+    const int *nd = Q->enode + Q->eoff[el];
+    const int k = Q->eoff[el + 1] - Q->eoff[el];
+    if (a->g)
+        for (int i = 0; i < k; i++)
+            for (int c = 0; c < 3; c++) a->g[3 * nd[i] + c] += o->ge[3 * i + c];
+    if (a->H) sb_matrix_add_element(a->H, el, o->Ke);
+}
+
+static int cc_dim(void *ctx, int el)
+{
+    const cc_quad *Q = &((cc_asm *)ctx)->L->quad;
+    return 3 * (Q->eoff[el + 1] - Q->eoff[el]);
+}
 
 int cc_energy(cc_state *S, int l, const double *x, double *f, double *g, sb_matrix *H)
 {
     const sb_scene *sc = S->scene;
     cc_level *L = &S->lv[l];
-    const cc_quad *Q = &L->quad;
-    double gvec[3] = { 0, 0, 0 };
-    int has_g = 0, has_p = 0;
+    cc_asm a;
+    memset(&a, 0, sizeof a);
+    a.S = S;
+    a.L = L;
+    a.g = g;
+    a.H = H;
+    a.x = x;
     for (int i = 0; i < sc->n_loads; i++) {
         const sb_load *ld = &sc->loads[i];
         if (ld->kind == SB_LOAD_GRAVITY) {
-            for (int c = 0; c < 3; c++) gvec[c] += S->load_factor[i] * ld->vec[c];
-            has_g = 1;
+            for (int c = 0; c < 3; c++) a.gvec[c] += S->load_factor[i] * ld->vec[c];
+            a.has_g = 1;
         }
-        has_p |= ld->kind == SB_LOAD_PRESSURE;
+        a.has_p |= ld->kind == SB_LOAD_PRESSURE;
     }
-    sb_hess_kind hk = S->hess == SB_HESS_PSD ? SB_HESS_EXACT : S->hess;
-    double E = 0;
-    for (int el = 0; el < Q->ne; el++) {
-        const int *nd = Q->enode + Q->eoff[el];
-        int k = Q->eoff[el + 1] - Q->eoff[el], n = 3 * k;
-        double *qe = S->qe, *ge = g ? S->ge : NULL, *Ke = H ? S->Ke : NULL;
-        for (int a = 0; a < k; a++) memcpy(qe + 3 * a, x + 3 * nd[a], 3 * sizeof(double));
-        if (ge) memset(ge, 0, (size_t)n * sizeof *ge);
-        if (Ke) memset(Ke, 0, (size_t)n * n * sizeof *Ke);
-        for (int q = 0; q < Q->nq; q++) {
-            sb_shell_basis b = cc_quad_basis(Q, el, q);
-            const sb_shell_ref *r = &L->ref[(size_t)el * Q->nq + q];
-            E += sb_shell_energy(&S->mat, r, &b, qe, ge, Ke, hk, S->work);
-            if (has_g) E += sb_shell_external(&S->mat, r, &b, qe, gvec, 0.0, 0, ge, NULL);
-            if (has_p)
-                for (int i = 0; i < sc->n_loads; i++)
-                    if (sc->loads[i].kind == SB_LOAD_PRESSURE)
-                        E += sb_shell_external(&S->mat, r, &b, qe, NULL, S->load_factor[i] * sc->loads[i].value,
-                                               sc->loads[i].follower, ge, Ke);
-        }
-        E += cc_points_energy(S, L, el, qe, ge, Ke);
-        if (ge)
-            for (int a = 0; a < k; a++)
-                for (int c = 0; c < 3; c++) g[3 * nd[a] + c] += ge[3 * a + c];
-        if (Ke) {
-            if (S->hess == SB_HESS_PSD) sb_psd_project(n, Ke, S->psd);
-            sb_matrix_add_element(H, el, Ke);
-        }
-    }
-    *f = E;
-    if (!isfinite(E)) return SB_NONFINITE;
+    a.hk = S->hess == SB_HESS_PSD ? SB_HESS_EXACT : S->hess;
+    sb_assemble(S->assembler, L->quad.ne, cc_dim, g != NULL, H != NULL, cc_compute, cc_reduce, &a);
+    *f = a.E;
+    if (!isfinite(a.E)) return SB_NONFINITE;
     if (g && !sb_all_finite(3 * L->nv, g)) return SB_NONFINITE;
     return SB_OK;
 }

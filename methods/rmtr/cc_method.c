@@ -22,6 +22,7 @@
  * solves on a coarser top level, the fine problem restricted (finest) or the
  * level's own discretization (level, the classical full-multigrid choice). */
 #include "cc_method.h"
+#include "sb_assemble.h"
 #include "sb_context.h"
 #include "sb_galerkin.h"
 
@@ -53,6 +54,9 @@ const sb_param_def cc_params[] = {
     { "subdiv", SB_PARAM_CHOICE, 0, 0, 0, subdiv_choices,
       "subdivision matrix from OpenSubdiv (RMTR §6) or from the rules (5.12)-(5.15) in C (identical, tested)" },
     { "n_thick", SB_PARAM_INT, 0, 0, 8, NULL, "Gauss points through the thickness (0 = material default)" },
+    { "kernel", SB_PARAM_CHOICE, 0, 0, 0, sb_kernel_names,
+      "shell kernel: fast (element-batched, sb_shell_element) or reference (per point, the arithmetic of the "
+      "committed records; docs/reproducibility.md)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
 
@@ -77,6 +81,11 @@ static void cc_destroy(void *state)
     free(S->psd);
     S->work = NULL;
     S->Ke = S->ge = S->qe = S->psd = NULL;
+    for (int t = 0; S->tw && t < S->threads; t++) sb_elem_scratch_free(&S->tw[t]);
+    free(S->tw);
+    S->tw = NULL;
+    sb_assembler_free(S->assembler);
+    S->assembler = NULL;
 }
 
 static double param(const sb_method_config *cfg, const char *name)
@@ -112,6 +121,58 @@ static int coarse_cage(const sb_scene *sc, int n, cc_mesh *m, cc_err *e)
     return cc_cage_grid(sl, n, tl, n, corner, ns, nt, m, e);
 }
 
+/* Elements per side of the finest level, with the checks every size of
+ * create() relies on: at most SB_SCENE_MAX_RESOLUTION (so the cages'
+ * vertex, face and quadrature counts fit in int), divisible by 2^(levels-1). */
+static int cc_grid_size(const sb_scene *scene, const sb_method_config *cfg, int *n, int *levels, char *msg, size_t len)
+{
+    *levels = cfg->levels > 0 ? cfg->levels : 1;
+    *n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
+    if (*levels > CC_MAX_LEVELS) {
+        snprintf(msg, len, "%d levels requested, at most %d are supported", *levels, CC_MAX_LEVELS);
+        return SB_ERR_INPUT;
+    }
+    if (*n > SB_SCENE_MAX_RESOLUTION) {
+        snprintf(msg, len, "--res %d elements per side requested, at most %d are supported", *n, SB_SCENE_MAX_RESOLUTION);
+        return SB_ERR_INPUT;
+    }
+    if (*n % (1 << (*levels - 1))) {
+        snprintf(msg, len, "--res %d cannot be coarsened %d times: it must be divisible by 2^(levels-1) = %d", *n,
+                 *levels - 1, 1 << (*levels - 1));
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
+}
+
+/* sb_method_type.estimate: the cages of every level (the domain's n_l x n_l
+ * faces and one ghost ring, cc_cage.c, cc_hier.c) with their topology,
+ * subdivision and projection matrices, quadrature tables (cc_quad.c) and
+ * reference data (cc_level.c); boundary points are left out (O(n_l)). */
+static int cc_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *sz)
+{
+    int n, levels;
+    char msg[256];
+    if (cc_grid_size(scene, cfg, &n, &levels, msg, sizeof msg)) return sb_error(cfg->ctx, SB_ERR_INPUT, "rmtr: %s", msg);
+    const double ng = param(cfg, "gauss"), nq = ng * ng;
+    memset(sz, 0, sizeof *sz);
+    sz->levels = levels;
+    sz->bs = 3;
+    sz->nodes_per_element = 16;   /* the bicubic B-spline patch of a regular face */
+    sz->stencil = 49;             /* control points sharing a face support: 7 x 7 */
+    double bytes = 0;
+    for (int l = 0; l < levels; l++) {
+        double nl = (double)(n >> (levels - 1 - l)), nv = (nl + 3) * (nl + 3), nf = (nl + 2) * (nl + 2), ne = nl * nl;
+        sz->nodes[l] = nv;
+        sz->elements[l] = ne;
+        bytes += nv * (2 * sizeof(double) + 2 * sizeof(int) + 4 * 3 * sizeof(int) + 3 * sizeof(double));  /* st, grid, topology, X */
+        bytes += nf * (4 + 4 + 2 + 4 + 2) * sizeof(int);                                                    /* fv, fe, cell, vf, felem */
+        bytes += ne * (16 + 4) * sizeof(int) + ne * nq * sizeof(sb_shell_ref);                             /* quadrature, reference */
+        bytes += nv * 10 * (sizeof(int) + sizeof(double));       /* S onto this level (about 6 entries a row) and P from it */
+    }
+    sz->method_bytes = bytes;
+    return SB_OK;
+}
+
 static int cc_create(void *state, const sb_scene *scene, const sb_method_config *cfg)
 {
     cc_state *S = state;
@@ -127,16 +188,16 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
     S->lumped = (int)param(cfg, "mass") == 1;
     S->use_osd = (int)param(cfg, "subdiv") == 0;
     S->beta_finest = (int)param(cfg, "penalty_h") == 0;
+    S->kernel = (sb_kernel_kind)(int)param(cfg, "kernel");
+    S->threads = sb_param_int_or(cfg->params, "run.threads", 1);
+    if (S->threads > 1 && !sb_assemble_have_threads())
+        return cc_state_fail(S, SB_ERR_INPUT, "run.threads = %d: this build has no OpenMP (build with make OPENMP=-fopenmp)",
+                             S->threads);
     char msg[256];
     if (sb_material_init_msg(&S->mat, &scene->material, (int)param(cfg, "n_thick"), msg, sizeof msg) != SB_OK)
         return cc_state_fail(S, SB_ERR_INPUT, "material: %s", msg);
-    int levels = cfg->levels > 0 ? cfg->levels : 1;
-    int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
-    if (levels > CC_MAX_LEVELS)
-        return cc_state_fail(S, SB_ERR_INPUT, "%d levels requested, at most %d are supported", levels, CC_MAX_LEVELS);
-    if (n % (1 << (levels - 1)))
-        return cc_state_fail(S, SB_ERR_INPUT, "--res %d cannot be coarsened %d times: it must be divisible by 2^(levels-1) = %d",
-                             n, levels - 1, 1 << (levels - 1));
+    int n, levels;
+    if (cc_grid_size(scene, cfg, &n, &levels, msg, sizeof msg)) return cc_state_fail(S, SB_ERR_INPUT, "%s", msg);
     S->n_fine = n;
     S->n_coarse = n >> (levels - 1);
     cc_err e = { "" };
@@ -159,6 +220,17 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
         S->psd = malloc((sb_psd_work_size(nm) + 1) * sizeof *S->psd);
         S->work = sb_shell_work_new();
         if (!S->Ke || !S->ge || !S->qe || !S->psd || !S->work) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+        /* assembly: per-thread scratch, and energy terms per element of the
+         * reference order (shell, gravity, each pressure load per point; points) */
+        int n_press = 0;
+        for (int i = 0; i < scene->n_loads; i++) n_press += scene->loads[i].kind == SB_LOAD_PRESSURE;
+        const int nq = S->ng * S->ng, max_terms = nq * (2 + n_press) + 2;
+        S->tw = calloc((size_t)S->threads, sizeof *S->tw);
+        if (!st && !S->tw) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+        for (int t = 0; !st && t < S->threads; t++)
+            if (sb_elem_scratch_init(&S->tw[t], kmax, nq)) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+        if (!st && !(S->assembler = sb_assembler_new(S->threads, nm, max_terms)))
+            st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
     }
     if (st) {
         cc_state_fail(S, st, "%s", e.msg[0] ? e.msg : "cannot build the subdivision hierarchy");
@@ -323,5 +395,7 @@ const sb_method_type sb_method_subdiv = {
     .restrict_adj = cc_restrict,
     .project = cc_project,
     .prolong_matrix = cc_prolong_matrix,
+    .estimate = cc_estimate,
     .describe = cc_describe,
+    .surface = cc_surface,
 };

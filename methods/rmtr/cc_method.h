@@ -86,6 +86,11 @@ typedef struct cc_state {
     /* element workspace (allocated once) */
     sb_shell_work *work;
     double *Ke, *ge, *qe, *psd;
+    /* assembly (issue 30): method.kernel, run.threads, per-thread scratch */
+    sb_kernel_kind kernel;
+    int threads;
+    sb_elem_scratch *tw;
+    struct sb_assembler *assembler;
 } cc_state;
 
 extern const sb_param_def cc_params[];
@@ -107,5 +112,8 @@ double cc_points_energy(const cc_state *S, const cc_level *L, int e, const doubl
 int  cc_energy(cc_state *S, int l, const double *x, double *f, double *g, sb_matrix *H);
 int  cc_mass(cc_state *S, int l, sb_matrix *M);
 int  cc_material_state(cc_state *S, int l, const double *x, sb_material_state *ms);
+/* cc_render.c: the limit surface as Bézier patches (sb_surface.h) */
+struct sb_surface;
+int  cc_surface(void *state, int level, const double *x, struct sb_surface *out);
 
 #endif

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# bench/bhem/table1.sh — the BHEM paper's Table 1 (§5.1, §6.3): rendering
+# time of three ray–patch intersection algorithms on its three test scenes
+# (Fig. 11: Plane, 1 patch; Cylinder and Drape, 10 x 10 patches; 16 samples
+# per pixel, the same lights).
+#
+#   bash bench/bhem/table1.sh [SHELLBENCH] [REPEATS]
+#
+# 1. the three records (results/bhem/table1/{plane,cylinder,drape}.h5), run
+#    only when missing: bhem at rest on bench/bhem/scenes/render_plane.json
+#    (1 patch) and render_cylinder.json (10 x 10), and the draped cloth of
+#    the paper's Fig. 15 (bench/bhem/scenes/draped_cloth.json) at 10 x 10;
+# 2. every record rendered with --intersect subdivision | newton | clipping
+#    at 480x360, 16 spp, REPEATS times (default 3); each render appends its
+#    `--stats` JSON line (CPU seconds and work counts) to timings.jsonl and
+#    writes its picture.
+# The table is then made from timings.jsonl by bench/bhem/table1.py, never
+# by re-running.  Needs about 10 minutes of one core.
+set -u
+BIN=${1:-build/shellbench}
+REPEATS=${2:-3}
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+cd "$ROOT"
+OUT=results/bhem/table1
+mkdir -p "$OUT"
+export OPENBLAS_NUM_THREADS=1
+export OPENBLAS_CORETYPE=${SB_BLAS_CORE:-Prescott}
+SC=bench/bhem/scenes
+
+record() {   # NAME SCENE RES
+  [ -e "$OUT/$1.h5" ] && return 0
+  echo "== record $1: $2 --res $3" >&2
+  "$BIN" run --scene "$2" --method bhem --solver lsnewton --res "$3" --out "$OUT/$1.h5" --quiet || exit 1
+}
+record plane $SC/render_plane.json 1
+record cylinder $SC/render_cylinder.json 10
+record drape $SC/draped_cloth.json 10
+
+machine=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
+for rep in $(seq 1 "$REPEATS"); do
+  for scene in plane cylinder drape; do
+    for alg in subdivision newton clipping; do
+      echo "== $scene $alg (repeat $rep of $REPEATS)" >&2
+      line=$("$BIN" render "$OUT/$scene.h5" --size 480x360 --spp 16 --intersect "$alg" \
+               --out "$OUT/${scene}_$alg.png" --stats --quiet) || exit 1
+      echo "{\"scene\": \"$scene\", \"repeat\": $rep, \"machine\": \"$machine\", \"load\": \"$(cut -d' ' -f1 /proc/loadavg)\", \"stats\": $line}" \
+        >> "$OUT/timings.jsonl"
+    done
+  done
+done
+echo "timings in $OUT/timings.jsonl; table: python3 bench/bhem/table1.py > results/bhem_table1.md" >&2

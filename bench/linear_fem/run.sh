@@ -1,0 +1,151 @@
+#!/usr/bin/env bash
+# bench/linear_fem/run.sh — linear_fem validation, convergence and comparison
+# runs (issue 21), one JSON summary per run (`shellbench run --summary json`,
+# written by the run itself) under results/linear_fem/runs/; the report
+# (results/linear_fem_report.md) is made from those files by
+# bench/linear_fem/report.py, never by re-running.  A record that exists is
+# skipped, so an interrupted sweep resumes (delete a record to redo it).
+#
+#   bash bench/linear_fem/run.sh [SHELLBENCH] [all|conv|cant|roll|cmp|rmtr|perf]
+#
+# conv  plates (clamped, simply supported) and Scordelis–Lo (linear regime)
+#       for the three bending models (midedge with edge or averaged directors,
+#       hinge) on alternate, jittered and regular meshes, --res 4 ... 64
+# cant  heavy cantilever, Gamma = 1, 5, 20, 100 (master curve)
+# roll  roll-up under an end moment (quarter, full ring; strip_end_moment)
+# cmp   the same plates and Scordelis–Lo through bhem and rmtr (matched dofs)
+# rmtr  the four RMTR-paper scenes with every solver (lsnewton, tr, damped,
+#       linearized, rmtr on two levels)
+# perf  bench_linear_fem (assembly / factorization per dof at ~25k dofs); in
+#       `all` only when results/linear_fem/perf.md is missing
+set -u
+BIN=${1:-build/shellbench}
+MODE=${2:-all}
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+cd "$ROOT"
+OUT=results/linear_fem/runs
+mkdir -p "$OUT"
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
+export OPENBLAS_CORETYPE=${SB_BLAS_CORE:-Prescott}
+SC=bench/scenes
+BSC=bench/bhem/scenes
+
+# run TAG METHOD SCENE SOLVER RES LEVELS [--set ...]
+run() {
+  local tag=$1 method=$2 scene=$3 solver=$4 res=$5 levels=$6; shift 6
+  local f="$OUT/$tag.json"
+  [ -s "$f" ] && return 0
+  echo "== $tag" >&2
+  "$BIN" run --scene "$scene" --method "$method" --solver "$solver" --res "$res" --levels "$levels" \
+    --out none --summary json "$@" > "$f.tmp" 2> "$OUT/$tag.log"
+  # keep the summary (converged or not); drop the progress lines before it
+  if grep -q '^{' "$f.tmp"; then
+    sed -n '/^{/,$p' "$f.tmp" > "$f"
+    rm -f "$OUT/$tag.log"
+  else
+    echo "   no summary (see $OUT/$tag.log)" >&2
+  fi
+  rm -f "$f.tmp"
+}
+
+model_sets() {   # model -> --set arguments
+  case $1 in
+    edge) echo "--set method.bending=midedge --set method.director=edge" ;;
+    average) echo "--set method.bending=midedge --set method.director=average" ;;
+    hinge) echo "--set method.bending=hinge" ;;
+  esac
+}
+
+if [ "$MODE" = all ] || [ "$MODE" = conv ]; then
+  for scene in plate_clamped plate_simply_supported scordelis; do
+    case $scene in
+      scordelis) path=$BSC/scordelis_lo_linear.json; extra="--set run.gtol=1e-5" ;;
+      *) path=$SC/$scene.json; extra="" ;;
+    esac
+    for model in edge average hinge; do
+      for mesh in alternate jitter regular; do
+        for r in 4 8 16 32 64; do
+          # shellcheck disable=SC2046
+          run "conv_${scene}_${model}_${mesh}_r$r" linear_fem "$path" lsnewton "$r" 1 \
+            $(model_sets $model) --set method.mesh=$mesh $extra
+        done
+      done
+    done
+  done
+fi
+
+if [ "$MODE" = all ] || [ "$MODE" = cant ]; then
+  for g in 1 5 20 100; do
+    for model in edge average hinge; do
+      for mesh in alternate jitter; do
+        for r in 16 32; do
+          # shellcheck disable=SC2046
+          run "cant_G${g}_${model}_${mesh}_r$r" linear_fem "$BSC/cantilever_G$g.json" lsnewton "$r" 1 \
+            $(model_sets $model) --set method.mesh=$mesh --set method.cells_t=$((r / 8))
+        done
+      done
+    done
+  done
+fi
+
+if [ "$MODE" = all ] || [ "$MODE" = roll ]; then
+  for model in edge average hinge; do
+    for r in 16 32; do
+      # shellcheck disable=SC2046
+      run "roll_quarter_${model}_r$r" linear_fem "$BSC/rollup_quarter.json" lsnewton "$r" 1 $(model_sets $model) --set method.cells_t=1
+      # shellcheck disable=SC2046
+      run "roll_full_${model}_r$r" linear_fem "$BSC/rollup_full.json" lsnewton "$r" 1 $(model_sets $model) --set method.cells_t=1
+      # shellcheck disable=SC2046
+      run "strip_${model}_r$r" linear_fem "$SC/strip_end_moment.json" lsnewton "$r" 1 $(model_sets $model) --set method.cells_t=$((r / 8))
+    done
+  done
+fi
+
+if [ "$MODE" = all ] || [ "$MODE" = cmp ]; then
+  for scene in plate_clamped plate_simply_supported scordelis; do
+    case $scene in
+      scordelis) path=$BSC/scordelis_lo_linear.json; extra="--set run.gtol=1e-5" ;;
+      *) path=$SC/$scene.json; extra="" ;;
+    esac
+    for r in 2 4 8 16; do run "cmp_bhem_${scene}_r$r" bhem "$path" lsnewton "$r" 1 $extra; done
+    # rmtr's default penalty (beta = h^-5) does not hold the roof's boundary (E h = 1e8 N/m): its
+    # Scordelis-Lo runs are reported as such, and the --res 32 one (hours) is left out
+    rr="4 8 16 32"; [ $scene = scordelis ] && rr="4 8 16"
+    for r in $rr; do run "cmp_rmtr_${scene}_r$r" rmtr "$path" lsnewton "$r" 1 $extra; done
+  done
+fi
+
+if [ "$MODE" = all ] || [ "$MODE" = rmtr ]; then
+  for scene in trampoline drooping reentrant_corner drape; do
+    for solver in lsnewton tr damped linearized rmtr; do
+      levels=1
+      [ "$solver" = rmtr ] && levels=2
+      run "rmtr_${scene}_${solver}_r16" linear_fem "$scene" "$solver" 16 "$levels" --set run.max_iter=300
+    done
+    for model in average hinge; do
+      # shellcheck disable=SC2046
+      run "rmtr_${scene}_lsnewton_${model}_r16" linear_fem "$scene" lsnewton 16 1 $(model_sets $model) --set run.max_iter=300
+    done
+    for r in 4 8; do run "rmtr_${scene}_lsnewton_r$r" linear_fem "$scene" lsnewton "$r" 1 --set run.max_iter=300; done
+    # the same scene through the other discretizations (bhem --res 8: 972 dofs, or 10 where the
+    # notch needs it; rmtr --res 8: 363, --res 16: 1,083)
+    rb=8; [ $scene = reentrant_corner ] && rb=10
+    run "ref_${scene}_bhem_r$rb" bhem "$scene" lsnewton $rb 1 --set run.max_iter=300
+    for r in 8 16; do run "ref_${scene}_rmtr_r$r" rmtr "$scene" lsnewton "$r" 1 --set run.max_iter=300; done
+  done
+  # denim's strain softening against a convex law: drooping with StVK
+  for r in 8 16 32; do run "stvk_drooping_linear_fem_r$r" linear_fem bench/linear_fem/scenes/drooping_stvk.json lsnewton "$r" 1; done
+  for r in 8 16; do run "stvk_drooping_bhem_r$r" bhem bench/linear_fem/scenes/drooping_stvk.json lsnewton "$r" 1; done
+  for r in 8 16; do run "stvk_drooping_rmtr_r$r" rmtr bench/linear_fem/scenes/drooping_stvk.json lsnewton "$r" 1; done
+fi
+
+if [ "$MODE" = perf ] || { [ "$MODE" = all ] && [ ! -s results/linear_fem/perf.md ]; }; then
+  B=$(dirname "$BIN")/bench/bench_linear_fem
+  if [ -x "$B" ]; then
+    "$B" 1.0 > results/linear_fem/perf.md.tmp && mv results/linear_fem/perf.md.tmp results/linear_fem/perf.md
+  else
+    echo "no $B: run make bench first" >&2
+  fi
+fi
+
+python3 bench/linear_fem/report.py results/linear_fem > results/linear_fem_report.md && echo "report: results/linear_fem_report.md"

@@ -1,0 +1,18 @@
+build-native/core/problem/sb_registry.o: core/problem/sb_registry.c \
+ core/problem/sb_method.h core/scene/sb_scene.h core/base/sb_common.h \
+ core/base/sb_params.h core/base/sb_common.h core/linalg/sb_sparse.h \
+ core/problem/sb_material_state.h core/solvers/sb_solver.h \
+ core/problem/sb_problem.h core/linalg/sb_linsolve.h \
+ core/linalg/sb_sparse.h core/base/sb_stats.h
+core/problem/sb_method.h:
+core/scene/sb_scene.h:
+core/base/sb_common.h:
+core/base/sb_params.h:
+core/base/sb_common.h:
+core/linalg/sb_sparse.h:
+core/problem/sb_material_state.h:
+core/solvers/sb_solver.h:
+core/problem/sb_problem.h:
+core/linalg/sb_linsolve.h:
+core/linalg/sb_sparse.h:
+core/base/sb_stats.h:

@@ -1,0 +1,23 @@
+build-native/core/solvers/sb_trs.o: core/solvers/sb_trs.c \
+ core/solvers/sb_trs.h core/problem/sb_problem.h core/problem/sb_method.h \
+ core/scene/sb_scene.h core/base/sb_common.h core/base/sb_params.h \
+ core/base/sb_common.h core/linalg/sb_sparse.h \
+ core/problem/sb_material_state.h core/linalg/sb_linsolve.h \
+ core/linalg/sb_sparse.h core/base/sb_stats.h core/base/sb_context.h \
+ core/base/sb_params.h core/base/sb_stats.h core/solvers/sb_schwarz.h
+core/solvers/sb_trs.h:
+core/problem/sb_problem.h:
+core/problem/sb_method.h:
+core/scene/sb_scene.h:
+core/base/sb_common.h:
+core/base/sb_params.h:
+core/base/sb_common.h:
+core/linalg/sb_sparse.h:
+core/problem/sb_material_state.h:
+core/linalg/sb_linsolve.h:
+core/linalg/sb_sparse.h:
+core/base/sb_stats.h:
+core/base/sb_context.h:
+core/base/sb_params.h:
+core/base/sb_stats.h:
+core/solvers/sb_schwarz.h:

@@ -1,0 +1,18 @@
+build-native/methods/bhem/bhem_basis.o: methods/bhem/bhem_basis.c \
+ methods/bhem/bhem.h core/problem/sb_method.h core/scene/sb_scene.h \
+ core/base/sb_common.h core/base/sb_params.h core/base/sb_common.h \
+ core/linalg/sb_sparse.h core/problem/sb_material_state.h \
+ core/scene/sb_geometry.h core/scene/sb_scene.h core/shell/sb_shell.h \
+ core/shell/sb_material.h
+methods/bhem/bhem.h:
+core/problem/sb_method.h:
+core/scene/sb_scene.h:
+core/base/sb_common.h:
+core/base/sb_params.h:
+core/base/sb_common.h:
+core/linalg/sb_sparse.h:
+core/problem/sb_material_state.h:
+core/scene/sb_geometry.h:
+core/scene/sb_scene.h:
+core/shell/sb_shell.h:
+core/shell/sb_material.h:

@@ -1,0 +1,128 @@
+/* sb_memory.c — the memory estimate of a run before any allocation, and the
+ * refusal of runs that cannot fit or cannot be indexed (sb_memory.h). */
+#include "sb_memory.h"
+#include "sb_context.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+/* Bytes of the structures of one level of the problem (sb_problem.c,
+ * sb_sparse.c): the pattern (row indices, column pointers, diagonal
+ * positions), the element node lists and scatter maps (bs entries per
+ * ordered node pair a <= b of an element), the value arrays of H (and M and
+ * the damping matrix D of dynamic scenes), and the per-dof work vectors. */
+static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *nnz_out)
+{
+    const double bs = sz->bs, n = sz->nodes[l] * bs, ne = sz->elements[l], k = sz->nodes_per_element;
+    const double offdiag = 0.5 * (sz->stencil > 1 ? sz->stencil - 1 : 0);
+    /* upper triangle: half the off-diagonal node blocks, the diagonal blocks' upper halves */
+    const double nnz = sz->nodes[l] * (offdiag * bs * bs + 0.5 * bs * (bs + 1));
+    *nnz_out = nnz;
+    double b = nnz * 4.0 + 16.0 * n;                        /* rowind, colptr, diag */
+    b += ne * k * 4.0 + ne * 0.5 * k * (k + 1) * bs * 8.0;  /* element nodes, scatter map */
+    b += nnz * 8.0 * (dynamic ? 3.0 : 1.0);                 /* H (M, D) */
+    b += n * (1.0 + 4.0 * 8.0);                             /* fixed flags, tmp, xhat, xn, spare */
+    return b;
+}
+
+void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb_memory_estimate *est)
+{
+    const int F = sz->levels > 0 ? sz->levels - 1 : 0;
+    est->method = sz->method_bytes;
+    est->matrices = 0;
+    const int C = r->multilevel ? 0 : F;   /* the level whose factor is counted */
+    double nnz_c = 0;
+    for (int l = 0; l <= F; l++) {
+        double nnz;
+        est->matrices += level_bytes(sz, l, r->dynamic, &nnz);
+        if (r->multilevel && l > 0) est->matrices += nnz * 8.0;   /* Galerkin coarse model I^T H I */
+        if (l == F) est->nnz = nnz;
+        if (l == C) nnz_c = nnz;
+    }
+    est->dofs = sz->nodes[F] * sz->bs;
+    const double n = sz->nodes[C] * sz->bs, nodes = sz->nodes[C];
+    /* nested-dissection growth of the Cholesky factor, at most dense */
+    double lnz = 0.6 * nnz_c * (nodes > 2 ? log2(nodes) : 1.0);
+    if (lnz > 0.5 * n * (n + 1)) lnz = 0.5 * n * (n + 1);
+    est->factor_nnz = lnz;
+    /* CHOLMOD: the int pattern copy of A, the supernodal factor's values
+     * (1.3: the zeros supernodes store, measured), its indices and workspaces */
+    est->factor = 4.0 * (nnz_c + n) + 1.3 * 8.0 * lnz + 8.0 * 8.0 * n;
+    /* the run's and the solver's vectors on the finest level (x, x_n, v,
+     * reference, resume point, gradient, trial point, steps ...) */
+    est->vectors = 24.0 * 8.0 * est->dofs;
+    /* the record: probe trajectories and the sample grid with its triangles */
+    const double ns = (double)r->sample_n * r->sample_n, nt = 2.0 * (r->sample_n - 1.0) * (r->sample_n - 1.0);
+    est->record = ((double)r->steps + 1.0) * (r->n_probes > 0 ? r->n_probes : 1) * 3.0 * 8.0 + ns * 8.0 * 8.0 +
+                  nt * 3.0 * 4.0;
+    /* the process itself: code and libraries (HDF5, CHOLMOD, OpenBLAS), measured 15 MB */
+    est->bytes = 16e6 + est->method + est->matrices + est->factor + est->vectors + est->record;
+}
+
+double sb_memory_physical(void)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    return pages > 0 && size > 0 ? (double)pages * (double)size : 0.0;
+}
+
+void sb_memory_format(double bytes, char *buf, size_t len)
+{
+    static const char *const unit[] = { "bytes", "kB", "MB", "GB", "TB", "PB", "EB" };
+    int u = 0;
+    while (bytes >= 1000.0 && u < 6) bytes /= 1000.0, u++;
+    if (u == 0) snprintf(buf, len, "%.0f bytes", bytes);
+    else if (bytes >= 1000.0) snprintf(buf, len, "%.3g %s", bytes, unit[u]);   /* beyond exabytes */
+    else snprintf(buf, len, "%.*f %s", bytes < 10.0 ? 1 : 0, bytes, unit[u]);
+}
+
+int sb_memory_check(const sb_method_size *sz, const sb_memory_estimate *est, double limit_bytes,
+                    const char *what, char *err, size_t errlen)
+{
+    char need[32], have[32];
+    const int F = sz->levels > 0 ? sz->levels - 1 : 0;
+    double limit = limit_bytes > 0 ? limit_bytes : sb_memory_physical();
+    if (limit > 0 && est->bytes > limit) {
+        sb_memory_format(est->bytes, need, sizeof need);
+        sb_memory_format(limit, have, sizeof have);
+        snprintf(err, errlen, "%s needs about %s of memory (%.3g dofs, %.3g Hessian entries, a Cholesky factor of "
+                 "about %.3g entries), more than the %s %s: choose a smaller resolution, or raise the limit with "
+                 "--set run.max_memory=GB", what, need, est->dofs, est->nnz, est->factor_nnz,
+                 limit_bytes > 0 ? "run.max_memory of" : "machine's physical memory of", have);
+        return SB_ERR_INPUT;
+    }
+    /* index limits: dofs and element dof lists are int, CHOLMOD's entries int */
+    if (!(est->dofs <= INT_MAX) || !(sz->elements[F] * sz->nodes_per_element * sz->bs <= INT_MAX)) {
+        snprintf(err, errlen, "%s would have %.3g dofs (%.3g elements); this build indexes dofs and element dof "
+                 "lists with int, at most %d: choose a smaller resolution", what, est->dofs, sz->elements[F], INT_MAX);
+        return SB_ERR_INPUT;
+    }
+    if (!(est->nnz <= INT_MAX)) {
+        snprintf(err, errlen, "%s would have a Hessian of %.3g stored entries; the sparse Cholesky factorization "
+                 "(CHOLMOD's int interface) takes at most %d: choose a smaller resolution", what, est->nnz, INT_MAX);
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
+}
+
+int sb_memory_check_method(const sb_method_type *mt, const sb_scene *scene, const sb_method_config *cfg,
+                           const sb_memory_run *r, double limit_bytes, const char *what, double *bytes,
+                           char *err, size_t errlen)
+{
+    sb_method_size sz;
+    sb_memory_estimate est;
+    *bytes = 0;
+    if (!mt->estimate) return SB_OK;
+    memset(&sz, 0, sizeof sz);
+    if (cfg->ctx) cfg->ctx->err[0] = 0;
+    if (mt->estimate(scene, cfg, &sz)) {
+        snprintf(err, errlen, "%s: %s", what,
+                 cfg->ctx && cfg->ctx->err[0] ? cfg->ctx->err : "the discretization cannot be built at this size");
+        return SB_ERR_INPUT;
+    }
+    sb_memory_estimate_run(&sz, r, &est);
+    *bytes = est.bytes;
+    return sb_memory_check(&sz, &est, limit_bytes, what, err, errlen);
+}

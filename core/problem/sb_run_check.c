@@ -1,0 +1,51 @@
+/* sb_run_check.c — whether a method, a solver and a level count fit
+ * together, and a run's parameter set: shared by `run` (sb_run.c) and the
+ * up-front validation of a sweep (sb_sweep.c), so both refuse the same
+ * requests with the same sentences. */
+#include "sb_run.h"
+#include "sb_solver.h"
+
+#include <stdio.h>
+
+int sb_run_combination_check(const sb_method_type *mt, const sb_solver_type *st, int levels, char *err, size_t errlen)
+{
+    if ((st->flags & SB_SOLVER_NEEDS_HIERARCHY) && !(mt->flags & SB_METHOD_HIERARCHY)) {
+        snprintf(err, errlen, "solver %s needs a level hierarchy (prolongation, restriction, projection), but method %s "
+                 "provides none", st->name, mt->name);
+        return SB_ERR_UNSUPPORTED;
+    }
+    if ((st->flags & SB_SOLVER_NEEDS_HIERARCHY) && levels < 2) {
+        snprintf(err, errlen, "solver %s needs at least 2 levels, but --levels is %d", st->name, levels);
+        return SB_ERR_UNSUPPORTED;
+    }
+    if (levels > 1 && !(mt->flags & SB_METHOD_HIERARCHY)) {
+        snprintf(err, errlen, "--levels %d asks for a hierarchy, but method %s has none", levels, mt->name);
+        return SB_ERR_UNSUPPORTED;
+    }
+    if (levels < 1 || levels > SB_MAX_LEVELS) {
+        snprintf(err, errlen, "--levels must be in [1, %d], got %d", SB_MAX_LEVELS, levels);
+        return SB_ERR_INPUT;
+    }
+    if (!(mt->flags & SB_METHOD_POTENTIAL) && !(st->flags & SB_SOLVER_SINGLE_STEP)) {
+        snprintf(err, errlen, "method %s has no energy potential (lagged forces); solver %s needs one: use linearized",
+                 mt->name, st->name);
+        return SB_ERR_UNSUPPORTED;
+    }
+    return SB_OK;
+}
+
+int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const sb_solver_type *st, int n_sets,
+                    const char *const *sets, char *err, size_t errlen)
+{
+    if (sb_paramset_add(ps, "run", sb_solve_params) || sb_paramset_add(ps, "solver", st->params) ||
+        sb_paramset_add(ps, "method", mt->params)) {
+        snprintf(err, errlen, "internal error: too many parameters");
+        return SB_ERR_INTERNAL;
+    }
+    for (int i = 0; i < n_sets; i++)
+        if (sb_paramset_set(ps, sets[i], err, errlen)) {
+            sb_escape_controls(err, errlen);
+            return SB_ERR_INPUT;
+        }
+    return SB_OK;
+}

@@ -1,0 +1,95 @@
+/* sb_run_limits.c — the sizes a run asks for, checked before any work: the
+ * resolution (at most SB_SCENE_MAX_RESOLUTION per side, the scene file's
+ * limit too), and the memory the discretization, its matrices, the Cholesky
+ * factor and the record will take (sb_memory.h) against run.max_memory or
+ * the machine's physical memory.  A method with an estimate op is measured
+ * before it is created; one without (the test fixtures) right after
+ * create(), from its dof counts, before the problem's matrices exist. */
+#include "sb_memory.h"
+#include "sb_run_state.h"
+
+#include <string.h>
+
+/* The resolution the run uses: --res, else the scene's "resolution"; the
+ * sample grid's size. */
+int sb_run_resolve_res(run_state *R, const sb_run_request *req)
+{
+    if (req->res < 0 || req->res > SB_SCENE_MAX_RESOLUTION) {
+        fprintf(R->err, "shellbench: --res %d is out of range: a resolution is 1 to %d elements per side (0 or "
+                        "absent: the scene's own, %d for %s)\n", req->res, SB_SCENE_MAX_RESOLUTION,
+                R->scene.default_res, R->scene.name);
+        return SB_EXIT_INPUT;
+    }
+    R->res = req->res > 0 ? req->res : (R->scene.default_res > 0 ? R->scene.default_res : 8);
+    if (R->n_grid < 2 || R->n_grid > SB_RUN_MAX_SAMPLES) {
+        fprintf(R->err, "shellbench: --samples %d is out of range: the sample grid has 2 to %d points per side\n",
+                R->n_grid, SB_RUN_MAX_SAMPLES);
+        return SB_EXIT_INPUT;
+    }
+    return -1;
+}
+
+static void run_size(const run_state *R, sb_memory_run *mr)
+{
+    mr->dynamic = R->scene.time.mode == SB_TIME_DYNAMIC;
+    mr->steps = R->scene.time.steps;
+    mr->n_probes = R->scene.n_probes;
+    mr->sample_n = R->n_grid;
+    mr->multilevel = (R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) != 0;
+}
+
+static int check(run_state *R, const sb_method_size *sz)
+{
+    sb_memory_run mr;
+    sb_memory_estimate est;
+    char what[160], msg[1024];
+    run_size(R, &mr);
+    sb_memory_estimate_run(sz, &mr, &est);
+    R->mem_estimate = est.bytes;
+    snprintf(what, sizeof what, "method %s on scene %s at --res %d with %d level%s", R->mt->name, R->scene.name,
+             R->res, sz->levels, sz->levels > 1 ? "s" : "");
+    double limit = sb_param(&R->ctx.params, "run.max_memory") * 1e9;
+    if (sb_memory_check(sz, &est, limit, what, msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: %s\n", msg);
+        return SB_EXIT_INPUT;
+    }
+    return -1;
+}
+
+/* Before the method is created: its estimate op. */
+int sb_run_check_memory(run_state *R, int levels)
+{
+    if (!R->mt->estimate) return -1;   /* measured after create (sb_run_check_created) */
+    sb_method_config cfg = { R->res, levels, &R->ctx.params, &R->ctx };
+    sb_memory_run mr;
+    char what[160], msg[1400];
+    run_size(R, &mr);
+    snprintf(what, sizeof what, "method %s on scene %s at --res %d with %d level%s", R->mt->name, R->scene.name,
+             R->res, levels, levels > 1 ? "s" : "");
+    if (sb_memory_check_method(R->mt, &R->scene, &cfg, &mr, sb_param(&R->ctx.params, "run.max_memory") * 1e9, what,
+                               &R->mem_estimate, msg, sizeof msg)) {
+        fprintf(R->err, "shellbench: %s\n", msg);
+        return SB_EXIT_INPUT;
+    }
+    return -1;
+}
+
+/* After create() of a method without an estimate op: its dof counts, with
+ * a 3 x 3 node stencil and 4-node elements assumed. */
+int sb_run_check_created(run_state *R)
+{
+    if (R->mt->estimate) return -1;
+    sb_method_size sz;
+    memset(&sz, 0, sizeof sz);
+    sz.levels = R->mt->n_levels(R->ms);
+    if (sz.levels < 1 || sz.levels > SB_MAX_LEVELS) return -1;   /* sb_problem_create reports it */
+    sz.bs = R->mt->block_size ? R->mt->block_size(R->ms, sz.levels - 1) : 1;
+    if (sz.bs < 1) sz.bs = 1;
+    sz.nodes_per_element = 4;
+    sz.stencil = 9;
+    for (int l = 0; l < sz.levels; l++) {
+        sz.nodes[l] = (double)R->mt->n_dofs(R->ms, l) / sz.bs;
+        sz.elements[l] = sz.nodes[l];
+    }
+    return check(R, &sz);
+}

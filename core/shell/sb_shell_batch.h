@@ -1,0 +1,86 @@
+/* sb_shell_batch.h — internals of the fast shell kernel shared by
+ * sb_shell_elem.c (the element) and sb_shell_elem_psd.c (its PSD
+ * treatment): the batch's layout and the helpers both use.  Not an API:
+ * include only from core/shell. */
+#ifndef SB_SHELL_BATCH_H
+#define SB_SHELL_BATCH_H
+
+#include "sb_shell.h"
+#include "sb_simd.h"
+
+#include <stddef.h>
+
+/* register tile: MR rows x NV vectors of SB_VL columns (8 accumulators) */
+#if SB_VL <= 4
+#define MR 4
+#define NV 2
+#else
+#define MR 8
+#define NV 1
+#endif
+#define NR (NV * SB_VL)
+#define KPAD (MR > NR ? MR : NR)   /* both are powers of two: a multiple of each */
+#define SB_SHELL_MAX_QP 64
+
+struct sb_shell_batch {
+    int kmax, nqmax, kpmax;
+    double *Wt;   /* 5 nq x kp: basis derivative rows, zero padded */
+    double *Wb;   /* SB_VL == 2: Wt with every entry twice, the tiles' broadcast operand */
+    double *Z;    /* 6 x 5 nq x kp: K^cd W per point */
+    double *Hc;   /* 6 x kp x kp: H^cd */
+    double *Gt;   /* 5 nq x 3: local gradient de/dy per point */
+    double *qd;   /* 3 x kp: control values by component */
+    double *gd;   /* 3 x kp: gradient by component */
+    int keep;     /* sb_shell_element_psd's exact pass: keep what the PSD difference needs */
+    double *kd;   /* nq x KD: per point the PSD difference (see point()) */
+};
+/* per point: 5 blocks of 3 x 3 (0..44), h (45..47); where the section
+ * tangent is not positive definite also Jx (48..83), n (84..86) and the
+ * clamped-away part dD of D (87..122); the flag "positive definite" (127) */
+#define KD 128
+
+
+static inline int sb_elem_round_up(int k, int m) { return (k + m - 1) / m * m; }
+
+static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+static inline void skew3(const double *v, double S[9])
+{
+    S[0] = 0;     S[1] = -v[2]; S[2] = v[1];
+    S[3] = v[2];  S[4] = 0;     S[5] = -v[0];
+    S[6] = -v[1]; S[7] = v[0];  S[8] = 0;
+}
+static inline void mul33(const double *A, const double *B, double *C)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
+}
+
+/* slots of the local jet and the bending component -> slot map (sb_shell.c) */
+enum { S_X1 = 0, S_X2 = 1, S_X11 = 2, S_X12 = 3, S_X22 = 4 };
+static const int bslot[3] = { S_X11, S_X22, S_X12 };
+/* the 6 component pairs c <= d: diagonal ones first */
+static const int pc[6] = { 0, 1, 2, 0, 0, 1 }, pd[6] = { 0, 1, 2, 1, 2, 2 };
+
+/* the element: energy, gradient and Hessian of kind EXACT, PSEUDO or PSD;
+ * with w->keep, what sb_shell_element_psd needs is kept per point */
+double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
+                       double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
+/* H^cd = Wt^T Z^cd for the 6 component pairs, inner dimension R rows */
+void sb_elem_products(int R, int kp, sb_shell_batch *w);
+/* hess (3k x 3k) += sign * the products, exactly symmetric */
+void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
+/* D = dA blockdiag(T, T)^T C6 blockdiag(T, T); K = J^T D J (blocks s <= t) */
+void sb_elem_congruence6(const double *C6, const double *T, double dA, double D[6][6]);
+void sb_elem_jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15]);
+/* C (n x n, n <= 6) positive definite?  And C <- its PSD part. */
+int sb_elem_pos_def(int n, const double *C);
+void sb_elem_psd_part(int n, double *C);
+
+#endif

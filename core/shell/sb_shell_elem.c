@@ -1,0 +1,592 @@
+/* sb_shell_elem.c — the fast Kirchhoff–Love kernel: energy, gradient and
+ * Hessian of a whole element (all its quadrature points at once), the same
+ * quantities as summing sb_shell_energy() over the points (sb_shell.c, the
+ * reference kernel, whose steps 1–4 and notation this file follows), in
+ * another summation order.
+ *
+ * What it exploits (measured in bench/bench_shell.c, docs/performance.md):
+ *
+ * 1. Kronecker structure.  With W_p (5 x k) the basis derivative rows
+ *    (N1, N2, N11, N12, N22) of point p and K_p (15 x 15) the Hessian in the
+ *    local jet y = (x_,1 x_,2 x_,11 x_,12 x_,22), the element Hessian is
+ *        H = sum_p (W_p^T (x) I3) K_p (W_p (x) I3),
+ *    i.e. for each component pair (c, d) the k x k matrix
+ *        H^cd = sum_p W_p^T K_p^cd W_p = Wt^T Z^cd,
+ *    with K_p^cd the 5 x 5 block of components (c, d), Wt = [W_1; ...; W_nq]
+ *    (5 nq x k) and Z^cd = [K_1^cd W_1; ...] (5 nq x k).  Symmetry: H^dc =
+ *    (H^cd)^T, so only the 6 pairs c <= d are formed, and H^cc only on and
+ *    above its diagonal tiles.  Per point this is 22.5 k^2 + 150 k
+ *    multiply-adds against the reference's 22.5 k^2 + 247.5 k plus 9 k^2
+ *    read-modify-writes of the 3k x 3k matrix per point.
+ * 2. Batching quadrature points.  The nq points of an element enter one
+ *    product Wt^T Z^cd (inner dimension 5 nq: 45 for 3 x 3 Gauss points,
+ *    80 for 4 x 4), computed by register-blocked tiles of MR x NR outputs
+ *    on vectors of SB_VL doubles (sb_simd.h): no branches and no memory
+ *    traffic for the outputs inside the loop over the inner dimension, and
+ *    the 3k x 3k element matrix is written once per element, not per point.
+ * 3. Sparsity of the strain Jacobian J = d(A, B)/dy (6 x 15: the membrane
+ *    rows touch x_,1 and x_,2 only, a bending row x_,1, x_,2 and its own
+ *    x_,ab along n), so J^T D J costs ~700 flops instead of ~2,500.
+ * 4. Allocation-free: every buffer lives in sb_shell_batch (one per
+ *    thread), rows padded with zeros to a multiple of the tile width.
+ *
+ * Hessian kinds: EXACT and PSEUDO as in sb_shell.c.  PSD here is the
+ * strain-space projection (issue 30): per point, the section tangent
+ * (6 x 6, material frame) and the membrane stress resultant (2 x 2) are
+ * clamped to their positive semidefinite parts and the bending second
+ * derivatives are dropped (they have a zero v-v block next to a nonzero
+ * x-v block, so they are indefinite whenever a bending moment acts; BHEM
+ * paper §6.1 drops them for its pseudo Hessian).  Every point then adds
+ * (W (x) I3)^T (J^T D+ J + S+ (x) I3) (W (x) I3), a sum of congruences of
+ * PSD matrices: the element Hessian is PSD by construction.  The methods
+ * use it only for elements whose exact Hessian fails sb_psd_check(), so
+ * that a PSD element Hessian is kept exactly (sb_shell_elem_psd.c). */
+#include "sb_shell_batch.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const sb_kernel_names[] = { "fast", "reference", NULL };
+
+static void *alloc64(size_t ndouble)
+{
+    size_t bytes = (ndouble * sizeof(double) + 63) / 64 * 64;
+    void *p = aligned_alloc(64, bytes ? bytes : 64);
+    if (p) memset(p, 0, bytes ? bytes : 64);
+    return p;
+}
+
+sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax)
+{
+    if (kmax < 1 || kmax > SB_SHELL_MAX_BASIS || nqmax < 1 || nqmax > SB_SHELL_MAX_QP) return NULL;
+    sb_shell_batch *w = calloc(1, sizeof *w);
+    if (!w) return NULL;
+    w->kmax = kmax;
+    w->nqmax = nqmax;
+    w->kpmax = sb_elem_round_up(kmax, KPAD);
+    const size_t kp = (size_t)w->kpmax, r = 5 * (size_t)nqmax;
+    w->Wt = alloc64(r * kp);
+    w->Wb = alloc64(2 * r * kp);
+    w->Z = alloc64(6 * r * kp);
+    w->Hc = alloc64(6 * kp * kp);
+    w->Gt = alloc64(3 * r);
+    w->qd = alloc64(3 * kp);
+    w->gd = alloc64(3 * kp);
+    w->kd = alloc64((size_t)KD * nqmax);
+    if (!w->kd || !w->Wt || !w->Wb || !w->Z || !w->Hc || !w->Gt || !w->qd || !w->gd) {
+        sb_shell_batch_free(w);
+        return NULL;
+    }
+    return w;
+}
+
+void sb_shell_batch_free(sb_shell_batch *w)
+{
+    if (!w) return;
+    free(w->Wt);
+    free(w->Wb);
+    free(w->Z);
+    free(w->Hc);
+    free(w->Gt);
+    free(w->qd);
+    free(w->gd);
+    free(w->kd);
+    free(w);
+}
+
+/* D = dA blockdiag(T, T)^T C6 blockdiag(T, T): the material-frame section
+ * tangent in covariant strain components (a congruence: PSD stays PSD) */
+void sb_elem_congruence6(const double *C6, const double *T, double dA, double D[6][6])
+{
+    double CT[6][6];
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++) {
+            const int jb = j < 3 ? 0 : 3, jj = j - jb;
+            CT[i][j] = C6[6 * i + jb] * T[jj] + C6[6 * i + jb + 1] * T[3 + jj] + C6[6 * i + jb + 2] * T[6 + jj];
+        }
+    for (int i = 0; i < 6; i++)
+        for (int j = i; j < 6; j++) {
+            const int ib = i < 3 ? 0 : 3, ii = i - ib;
+            D[i][j] = D[j][i] = dA * (T[ii] * CT[ib][j] + T[3 + ii] * CT[ib + 1][j] + T[6 + ii] * CT[ib + 2][j]);
+        }
+}
+
+/* x-slot parts of J = d(A, B)/dy (rows A11 A22 A12 B0 B1 B2; slots x_,1
+ * x_,2); the v-slot part of bending row i is n/2 in slot bslot[i] */
+static void jacobian_x(const double *x1, const double *x2, double gv[3][3], double Jx[6][2][3])
+{
+    for (int d = 0; d < 3; d++) {
+        Jx[0][0][d] = x1[d];       Jx[0][1][d] = 0.0;
+        Jx[1][0][d] = 0.0;         Jx[1][1][d] = x2[d];
+        Jx[2][0][d] = 0.5 * x2[d]; Jx[2][1][d] = 0.5 * x1[d];
+    }
+    for (int i = 0; i < 3; i++) {
+        double t1[3], t2[3];
+        cross3(x2, gv[i], t1);
+        cross3(gv[i], x1, t2);
+        for (int d = 0; d < 3; d++) {
+            Jx[3 + i][0][d] = 0.5 * t1[d];
+            Jx[3 + i][1][d] = 0.5 * t2[d];
+        }
+    }
+}
+
+/* K = J^T D J in the local jet, the blocks on and above the block diagonal
+ * (slot s <= t), exploiting J's sparsity */
+void sb_elem_jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15])
+{
+    /* DJx[r][s][d] = sum_r' D[r][r'] Jx[r'][s][d] */
+    double DJx[6][2][3];
+    for (int rr = 0; rr < 6; rr++)
+        for (int s = 0; s < 2; s++)
+            for (int d = 0; d < 3; d++) {
+                double acc = 0.0;
+                for (int q = 0; q < 6; q++) acc += D[rr][q] * Jx[q][s][d];
+                DJx[rr][s][d] = acc;
+            }
+    /* (x, x) blocks: sum_r Jx[r][s][c] DJx[r][t][d] */
+    for (int s = 0; s < 2; s++)
+        for (int tt = s; tt < 2; tt++)
+            for (int cc = 0; cc < 3; cc++)
+                for (int d = 0; d < 3; d++) {
+                    double acc = 0.0;
+                    for (int rr = 0; rr < 6; rr++) acc += Jx[rr][s][cc] * DJx[rr][tt][d];
+                    K[3 * s + cc][3 * tt + d] = acc;
+                }
+    /* (x, v_i) blocks: (sum_r Jx[r][s][c] D[r][3+i]) n_d / 2 */
+    for (int s = 0; s < 2; s++)
+        for (int i = 0; i < 3; i++)
+            for (int cc = 0; cc < 3; cc++) {
+                double u = 0.0;
+                for (int rr = 0; rr < 6; rr++) u += Jx[rr][s][cc] * D[rr][3 + i];
+                for (int d = 0; d < 3; d++) K[3 * s + cc][3 * bslot[i] + d] = 0.5 * u * n[d];
+            }
+    /* (v_i, v_j) blocks: D[3+i][3+j] n_c n_d / 4 */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const int si = bslot[i], sj = bslot[j];
+            if (sj < si) continue;
+            for (int cc = 0; cc < 3; cc++)
+                for (int d = 0; d < 3; d++) K[3 * si + cc][3 * sj + d] = 0.25 * D[3 + i][3 + j] * n[cc] * n[d];
+        }
+}
+
+/* ---- one quadrature point ---------------------------------------------------- */
+
+/* Energy of point p; fills Gt rows (gradient de/dy) and, with hess, the Z
+ * rows of the point.  Wt rows of the point must be in place. */
+static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, int need_g, int need_h,
+                    sb_hess_kind kind, sb_shell_batch *w)
+{
+    const double *Wp = w->Wt + (size_t)5 * p * kp;
+    /* 1. the jet y[s][c] = sum_I W_s^I q_I,c (vector dot products over I) */
+    double y[5][3];
+    for (int s = 0; s < 5; s++) {
+        sb_vd a0 = sb_vbcast(0.0), a1 = a0, a2 = a0;
+        const double *ws = Wp + (size_t)s * kp;
+        for (int I = 0; I < kp; I += SB_VL) {
+            const sb_vd wv = sb_vload(ws + I);
+            a0 += wv * sb_vload(w->qd + I);
+            a1 += wv * sb_vload(w->qd + kp + I);
+            a2 += wv * sb_vload(w->qd + 2 * kp + I);
+        }
+        double t0 = 0, t1 = 0, t2 = 0;
+        for (int l = 0; l < SB_VL; l++) {
+            t0 += a0[l];
+            t1 += a1[l];
+            t2 += a2[l];
+        }
+        y[s][0] = t0;
+        y[s][1] = t1;
+        y[s][2] = t2;
+    }
+    /* 2. strains (BHEM paper Eq. 4a, 5, 6a; sb_shell.c local_strains) */
+    const double *x1 = y[S_X1], *x2 = y[S_X2];
+    const double *v[3] = { y[S_X11], y[S_X22], y[S_X12] };
+    double c[3], n[3];
+    cross3(x1, x2, c);
+    const double rho = sqrt(dot3(c, c)), irho = 1.0 / rho;
+    for (int i = 0; i < 3; i++) n[i] = c[i] * irho;
+    const double A[3] = { 0.5 * (dot3(x1, x1) - r->abar[0]), 0.5 * (dot3(x2, x2) - r->abar[1]),
+                          0.5 * (dot3(x1, x2) - r->abar[2]) };
+    const double fv[3] = { dot3(v[0], n), dot3(v[1], n), dot3(v[2], n) };
+    const double B[3] = { 0.5 * (fv[0] - r->bbar[0]), 0.5 * (fv[1] - r->bbar[1]), 0.5 * (fv[2] - r->bbar[2]) };
+    const double *T = r->T;
+    double TA[3], TB[3];
+    for (int i = 0; i < 3; i++) {
+        TA[i] = T[3 * i] * A[0] + T[3 * i + 1] * A[1] + T[3 * i + 2] * A[2];
+        TB[i] = T[3 * i] * B[0] + T[3 * i + 1] * B[1] + T[3 * i + 2] * B[2];
+    }
+    /* 3. through the thickness (BHEM paper Eq. 6a, 7) */
+    double sA[3], sB[3], C6[36];
+    const double dA = r->dA;
+    const double e = dA * sb_shell_section_fast(m, TA, TB, need_g ? sA : NULL, need_g ? sB : NULL,
+                                                need_h ? C6 : NULL);
+    if (!need_g) return e;
+
+    /* 4a. covariant generalized forces nA = dA T^T sA, nB = dA T^T sB */
+    double nA[3], nB[3];
+    for (int i = 0; i < 3; i++) {
+        nA[i] = dA * (T[i] * sA[0] + T[3 + i] * sA[1] + T[6 + i] * sA[2]);
+        nB[i] = dA * (T[i] * sB[0] + T[3 + i] * sB[1] + T[6 + i] * sB[2]);
+    }
+    /* P v_i / |c| and V = sum nB_i/2 v_i, gV = P V / |c| */
+    double gv[3][3], V[3], gV[3];
+    for (int i = 0; i < 3; i++)
+        for (int d = 0; d < 3; d++) gv[i][d] = (v[i][d] - fv[i] * n[d]) * irho;
+    for (int d = 0; d < 3; d++) {
+        V[d] = 0.5 * (nB[0] * v[0][d] + nB[1] * v[1][d] + nB[2] * v[2][d]);
+        gV[d] = 0.5 * (nB[0] * gv[0][d] + nB[1] * gv[1][d] + nB[2] * gv[2][d]);
+    }
+    /* 4b. local gradient de/dy, stored as the point's rows of Gt */
+    double *G = w->Gt + (size_t)15 * p, t[3];
+    for (int d = 0; d < 3; d++) {
+        G[3 * S_X1 + d] = nA[0] * x1[d] + 0.5 * nA[2] * x2[d];
+        G[3 * S_X2 + d] = nA[1] * x2[d] + 0.5 * nA[2] * x1[d];
+        for (int i = 0; i < 3; i++) G[3 * bslot[i] + d] = 0.5 * nB[i] * n[d];
+    }
+    cross3(x2, gV, t);
+    for (int d = 0; d < 3; d++) G[3 * S_X1 + d] += t[d];
+    cross3(gV, x1, t);
+    for (int d = 0; d < 3; d++) G[3 * S_X2 + d] += t[d];
+    if (!need_h) return e;
+
+    /* 4c. K = J^T D J + membrane and bending second derivatives (15 x 15) */
+    if (kind == SB_HESS_PSD) sb_elem_psd_part(6, C6);   /* section tangent in the material frame */
+    double D[6][6], Jx[6][2][3], K[15][15];
+    sb_elem_congruence6(C6, T, dA, D);
+    jacobian_x(x1, x2, gv, Jx);
+    sb_elem_jtdj(Jx, n, D, K);
+    double *kd = w->keep ? w->kd + (size_t)KD * p : NULL;
+    if (kd) {   /* what the strain-space projection takes away from J^T D J */
+        kd[KD - 1] = sb_elem_pos_def(6, C6);
+        if (kd[KD - 1] == 0.0) {
+            double Cp[36], dC[36], dD[6][6];
+            memcpy(Cp, C6, sizeof Cp);
+            sb_elem_psd_part(6, Cp);
+            for (int i = 0; i < 36; i++) dC[i] = C6[i] - Cp[i];
+            sb_elem_congruence6(dC, T, dA, dD);
+            memcpy(kd + 48, Jx, sizeof Jx);
+            memcpy(kd + 84, n, 3 * sizeof *n);
+            memcpy(kd + 87, dD, sizeof dD);
+        }
+    }
+    /* only the blocks on and above the block diagonal (slot s <= t) are
+     * formed from here on; the Z product below reads the others by symmetry */
+    /* membrane second derivatives (BHEM paper Eq. 51-53); kind PSD: the PSD
+     * part of the 2 x 2 stress resultant S = [nA0, nA2/2; nA2/2, nA1] */
+    double s00 = nA[0], s11 = nA[1], s01 = 0.5 * nA[2];
+    if (kd) {   /* the PSD difference: S - S+ on the diagonal blocks, below the bending terms */
+        double t00 = s00, t11 = s11, t01 = s01;
+        if (!(t00 >= 0.0 && t11 >= 0.0 && t00 * t11 - t01 * t01 >= 0.0)) {
+            const double mean = 0.5 * (t00 + t11), rad = sqrt(0.25 * (t00 - t11) * (t00 - t11) + t01 * t01);
+            const double lp = mean + rad, lm = mean - rad;
+            if (lp <= 0.0) {
+                t00 = t11 = t01 = 0.0;
+            } else {
+                const double f = lp / (lp - lm);
+                t00 = f * (t00 - lm);
+                t11 = f * (t11 - lm);
+                t01 = f * t01;
+            }
+        }
+        for (int i = 0; i < 27; i++) kd[i] = 0.0;
+        for (int d = 0; d < 3; d++) {
+            kd[4 * d] = s00 - t00;             /* B11 += (S - S+)_00 I */
+            kd[9 + 4 * d] = s01 - t01;         /* B12 */
+            kd[18 + 4 * d] = s11 - t11;        /* B22 */
+        }
+    }
+    if (kind == SB_HESS_PSD && !(s00 >= 0.0 && s11 >= 0.0 && s00 * s11 - s01 * s01 >= 0.0)) {
+        const double mean = 0.5 * (s00 + s11), rad = sqrt(0.25 * (s00 - s11) * (s00 - s11) + s01 * s01);
+        const double lp = mean + rad, lm = mean - rad;
+        if (lp <= 0.0) {
+            s00 = s11 = s01 = 0.0;
+        } else {   /* S+ = lp v v^T = lp (S - lm I) / (lp - lm) */
+            const double f = lp / (lp - lm);
+            s00 = f * (s00 - lm);
+            s11 = f * (s11 - lm);
+            s01 = f * s01;
+        }
+    }
+    for (int d = 0; d < 3; d++) {
+        K[3 * S_X1 + d][3 * S_X1 + d] += s00;
+        K[3 * S_X2 + d][3 * S_X2 + d] += s11;
+        K[3 * S_X1 + d][3 * S_X2 + d] += s01;
+    }
+    /* bending second derivatives (EXACT only; sb_shell.c step 4c) */
+    if (kind == SB_HESS_EXACT) {
+        const double fV = dot3(V, n), ir2 = irho * irho;
+        double Hc[9], X1[9], X2[9], P[9], M1[9], M2[9], S[9];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                const double id = i == j ? 1.0 : 0.0;
+                Hc[3 * i + j] = (-(V[i] * n[j] + n[i] * V[j]) - fV * (id - 3.0 * n[i] * n[j])) * ir2;
+                P[3 * i + j] = (id - n[i] * n[j]) * irho;
+            }
+        skew3(x1, X1);
+        skew3(x2, X2);
+        mul33(X2, Hc, M1);
+        mul33(M1, X2, M2);
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) K[3 * S_X1 + a][3 * S_X1 + b] -= M2[3 * a + b];
+        if (kd)
+            for (int i = 0; i < 9; i++) kd[i] -= M2[i];
+        mul33(M1, X1, M2);
+        skew3(gV, S);
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) {
+                K[3 * S_X1 + a][3 * S_X2 + b] += M2[3 * a + b] - S[3 * a + b];
+            }
+        if (kd)
+            for (int i = 0; i < 9; i++) kd[9 + i] += M2[i] - S[i];
+        mul33(X1, Hc, M1);
+        mul33(M1, X1, M2);
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) K[3 * S_X2 + a][3 * S_X2 + b] -= M2[3 * a + b];
+        if (kd)
+            for (int i = 0; i < 9; i++) kd[18 + i] -= M2[i];
+        mul33(X2, P, M1);
+        mul33(X1, P, M2);
+        if (kd) {   /* (x1, mu) = X2 P/|c|, (x2, mu) = -X1 P/|c|, mu = sum_i nB_i/2 v_i */
+            for (int i = 0; i < 9; i++) {
+                kd[27 + i] = M1[i];
+                kd[36 + i] = -M2[i];
+            }
+            for (int i = 0; i < 3; i++) kd[45 + i] = 0.5 * nB[i];
+        }
+        for (int i = 0; i < 3; i++) {
+            const int sv = bslot[i];
+            const double h = 0.5 * nB[i];
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++) {
+                    K[3 * S_X1 + a][3 * sv + b] += h * M1[3 * a + b];
+                    K[3 * S_X2 + a][3 * sv + b] -= h * M2[3 * a + b];
+                }
+        }
+    }
+
+    /* Z^cd rows of the point: Z[s][J] = sum_t K[3s+c][3t+d] W_t^J, the
+     * blocks below the block diagonal read from above it (K symmetric).
+     * The 150 coefficients are broadcast once into kb; then each vector of
+     * columns J loads the 5 basis rows once for all 30 output rows. */
+    sb_vd kb[30][5];
+    for (int pr = 0; pr < 6; pr++) {
+        const int cc = pc[pr], d = pd[pr];
+#pragma GCC unroll 5
+        for (int s = 0; s < 5; s++)
+#pragma GCC unroll 5
+            for (int t = 0; t < 5; t++)
+                kb[5 * pr + s][t] = sb_vbcast(s <= t ? K[3 * s + cc][3 * t + d] : K[3 * t + d][3 * s + cc]);
+    }
+    const size_t zstride = (size_t)5 * w->nqmax * kp;
+    double *Z0 = w->Z + (size_t)5 * p * kp;
+    for (int J = 0; J < kp; J += SB_VL) {
+        const sb_vd w0 = sb_vload(Wp + J), w1 = sb_vload(Wp + kp + J), w2 = sb_vload(Wp + 2 * kp + J),
+                    w3 = sb_vload(Wp + 3 * kp + J), w4 = sb_vload(Wp + 4 * kp + J);
+        for (int pr = 0; pr < 6; pr++) {
+            double *Zp = Z0 + pr * zstride + J;
+#pragma GCC unroll 5
+            for (int s = 0; s < 5; s++) {
+                const sb_vd *k5 = kb[5 * pr + s];
+                sb_vstore(Zp + (size_t)s * kp, k5[0] * w0 + k5[1] * w1 + k5[2] * w2 + k5[3] * w3 + k5[4] * w4);
+            }
+        }
+    }
+    return e;
+}
+
+/* ---- the batched product H^cd = Wt^T Z^cd -------------------------------------- */
+
+/* One MR x NR tile of C = A^T B (A, B: R x kp, row-major), written to C
+ * (row stride kp) at (I0, J0).  The loop over the inner dimension keeps the
+ * MR x NV vector accumulators in registers.  With SSE2 (no broadcast load)
+ * A is read from its pre-broadcast copy Ab (each entry twice), so that a
+ * broadcast is one aligned load, folded into the multiply. */
+static inline void tile(int R, int kp, const double *A, const double *Ab, const double *B, int I0, int J0,
+                        double *C)
+{
+    sb_vd acc[MR][NV];
+#pragma GCC unroll 8
+    for (int i = 0; i < MR; i++)
+#pragma GCC unroll 8
+        for (int v = 0; v < NV; v++) acc[i][v] = sb_vbcast(0.0);
+#if SB_VL == 2
+    (void)A;
+    const sb_vd *ab = (const sb_vd *)(Ab + 2 * I0);   /* 16-byte aligned: kp and I0 are even */
+    const int astep = kp;                            /* in vectors */
+#else
+    (void)Ab;
+    const double *a = A + I0;
+    const int astep = kp;
+#endif
+    const double *b = B + J0;
+    for (int rr = 0; rr < R; rr++, b += kp) {
+        sb_vd bv[NV];
+#pragma GCC unroll 8
+        for (int v = 0; v < NV; v++) bv[v] = sb_vload(b + v * SB_VL);
+#pragma GCC unroll 8
+        for (int i = 0; i < MR; i++) {
+#if SB_VL == 2
+            const sb_vd av = ab[i];
+#else
+            const sb_vd av = sb_vbcast(a[i]);
+#endif
+#pragma GCC unroll 8
+            for (int v = 0; v < NV; v++) acc[i][v] += av * bv[v];
+        }
+#if SB_VL == 2
+        ab += astep;
+#else
+        a += astep;
+#endif
+    }
+#pragma GCC unroll 8
+    for (int i = 0; i < MR; i++)
+#pragma GCC unroll 8
+        for (int v = 0; v < NV; v++) sb_vstore(C + (size_t)(I0 + i) * kp + J0 + v * SB_VL, acc[i][v]);
+}
+
+void sb_elem_products(int R, int kp, sb_shell_batch *w)
+{
+    const size_t zstride = (size_t)5 * w->nqmax * kp;
+    for (int pr = 0; pr < 6; pr++) {
+        const double *Zp = w->Z + pr * zstride;
+        double *Hp = w->Hc + (size_t)pr * kp * kp;
+        const int sym = pc[pr] == pd[pr];
+        for (int I0 = 0; I0 < kp; I0 += MR)
+            for (int J0 = sym ? I0 / NR * NR : 0; J0 < kp; J0 += NR) tile(R, kp, w->Wt, w->Wb, Zp, I0, J0, Hp);
+    }
+}
+
+/* ---- the element ------------------------------------------------------------------ */
+
+/* H (3k x 3k) += sign * the element matrix of the products in w->Hc: entry
+ * (3I+c, 3J+d) is H^cd[I][J] for c < d, H^dc[J][I] for c > d and H^cc at
+ * (min, max) on the diagonal pairs, so the result is exactly symmetric */
+void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+{
+    const int n3 = 3 * k;
+    const double *H[3][3];
+    for (int pr = 0; pr < 6; pr++) H[pc[pr]][pd[pr]] = w->Hc + (size_t)pr * kp * kp;
+    for (int I = 0; I < k; I++) {
+        double *row0 = hess + (size_t)(3 * I) * n3;
+        for (int J = 0; J < k; J++) {
+            const size_t ij = (size_t)I * kp + J, ji = (size_t)J * kp + I, dg = I <= J ? ij : ji;
+            double *h = row0 + 3 * J;
+            h[0] += sign * H[0][0][dg];
+            h[1] += sign * H[0][1][ij];
+            h[2] += sign * H[0][2][ij];
+            h += n3;
+            h[0] += sign * H[0][1][ji];
+            h[1] += sign * H[1][1][dg];
+            h[2] += sign * H[1][2][ij];
+            h += n3;
+            h[0] += sign * H[0][2][ji];
+            h[1] += sign * H[1][2][ji];
+            h[2] += sign * H[2][2][dg];
+        }
+    }
+}
+
+double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
+                      double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
+{
+    if (!m || !r || !b || !q || !w || nq < 1 || nq > w->nqmax || m->n_thick < 1 || m->n_thick > 8) return NAN;
+    const int k = b[0].k;
+    if (k < 1 || k > w->kmax) return NAN;
+    for (int p = 0; p < nq; p++)
+        if (b[p].k != k || !b[p].N1 || !b[p].N2 || !b[p].N11 || !b[p].N12 || !b[p].N22) return NAN;
+    const int kp = sb_elem_round_up(k, KPAD), need_g = grad || hess, need_h = hess != NULL;
+
+    /* control values by component, zero padded */
+    for (int cc = 0; cc < 3; cc++) {
+        double *qc = w->qd + (size_t)cc * kp;
+        for (int I = 0; I < k; I++) qc[I] = q[3 * I + cc];
+        for (int I = k; I < kp; I++) qc[I] = 0.0;
+    }
+    double e = 0.0;
+    for (int p = 0; p < nq; p++) {
+        const double *src[5] = { b[p].N1, b[p].N2, b[p].N11, b[p].N12, b[p].N22 };
+        for (int s = 0; s < 5; s++) {
+            double *row = w->Wt + (size_t)(5 * p + s) * kp;
+            memcpy(row, src[s], sizeof(double) * k);
+            for (int I = k; I < kp; I++) row[I] = 0.0;
+#if SB_VL == 2
+            if (hess) {
+                double *rb = w->Wb + (size_t)2 * (5 * p + s) * kp;
+                for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = row[I];
+            }
+#endif
+        }
+        e += point(m, &r[p], p, kp, need_g, need_h, kind, w);
+    }
+    if (!need_g) return e;
+
+    /* gradient: g_I,c += sum_r Wt[r][I] Gt[r][c] */
+    if (grad) {
+        const int R = 5 * nq;
+        for (int I = 0; I < kp; I += SB_VL) {
+            sb_vd g0 = sb_vbcast(0.0), g1 = g0, g2 = g0;
+            for (int rr = 0; rr < R; rr++) {
+                const sb_vd wv = sb_vload(w->Wt + (size_t)rr * kp + I);
+                const double *G = w->Gt + 3 * rr;
+                g0 += wv * G[0];
+                g1 += wv * G[1];
+                g2 += wv * G[2];
+            }
+            sb_vstore(w->gd + I, g0);
+            sb_vstore(w->gd + kp + I, g1);
+            sb_vstore(w->gd + 2 * kp + I, g2);
+        }
+        for (int I = 0; I < k; I++)
+            for (int cc = 0; cc < 3; cc++) grad[3 * I + cc] += w->gd[(size_t)cc * kp + I];
+    }
+    if (!hess) return e;
+    sb_elem_products(5 * nq, kp, w);
+    sb_elem_scatter(k, kp, w, hess, 1.0);
+    return e;
+}
+
+double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                        const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
+{
+    if (w) w->keep = 0;
+    return sb_elem_element(m, nq, r, b, q, grad, hess, kind, w);
+}
+
+/* The exact minus the strain-space Hessian of an element (what the exact
+ * pass kept in w->kd), hess -= it.  Per point the difference is the bending
+ * second derivatives plus S - S+ (membrane), which live in the 3-slot jet
+ * (x,1, x,2, mu = sum_i nB_i/2 x,ab_i) — the bending terms touch x,ab only
+ * through mu — plus, where the section tangent was clamped, J^T (D - D+) J
+ * in the full 5-slot jet.  The product's inner dimension is 3 per point
+ * (5 where clamped) instead of 5, and the section law is not evaluated
+ * again. */
+/* ---- per-thread scratch of a method ------------------------------------------------ */
+
+int sb_elem_scratch_init(sb_elem_scratch *s, int kmax, int nqmax)
+{
+    memset(s, 0, sizeof *s);
+    const int n = 3 * kmax;
+    s->work = sb_shell_work_new();
+    s->batch = sb_shell_batch_new(kmax, nqmax);
+    s->qe = calloc((size_t)n, sizeof *s->qe);
+    s->Kx = calloc((size_t)n * n, sizeof *s->Kx);
+    s->psd = calloc(sb_psd_work_size(n) + 1, sizeof *s->psd);
+    s->b = calloc((size_t)nqmax, sizeof *s->b);
+    return s->work && s->batch && s->qe && s->Kx && s->psd && s->b ? SB_OK : SB_ERR_NOMEM;
+}
+
+void sb_elem_scratch_free(sb_elem_scratch *s)
+{
+    if (!s) return;
+    sb_shell_work_free(s->work);
+    sb_shell_batch_free(s->batch);
+    free(s->qe);
+    free(s->Kx);
+    free(s->psd);
+    free(s->b);
+    memset(s, 0, sizeof *s);
+}

@@ -1,0 +1,203 @@
+/* sb_shell_elem_psd.c — Hessian kind PSD with the fast kernel (issue 30):
+ * the strain-space projections of the section tangent and the membrane
+ * stress, and sb_shell_element_psd, which keeps an element Hessian that is
+ * already PSD (sb_psd_check) and otherwise subtracts from the exact one
+ * what the strain-space projection removes (docs/performance.md, "PSD
+ * Hessians"). */
+#include "sb_shell_batch.h"
+
+#include <math.h>
+#include <string.h>
+
+/* ---- section tangent and membrane stress projections (kind PSD) ---------- */
+
+/* Eigenvalues of the symmetric n x n A (row-major, n <= 6) by cyclic Jacobi
+ * rotations; V (n x n, row-major) gets the eigenvectors as columns. */
+static void jacobi_eig(int n, double *A, double *V)
+{
+    for (int i = 0; i < n * n; i++) V[i] = 0.0;
+    for (int i = 0; i < n; i++) V[i * n + i] = 1.0;
+    for (int sweep = 0; sweep < 50; sweep++) {
+        double off = 0.0, diag = 0.0;
+        for (int i = 0; i < n; i++) {
+            diag += A[i * n + i] * A[i * n + i];
+            for (int j = i + 1; j < n; j++) off += A[i * n + j] * A[i * n + j];
+        }
+        if (!(off > 1e-30 * diag)) break;   /* converged to ~1e-15 relative (also for NaN: give up) */
+        for (int p = 0; p < n; p++)
+            for (int q = p + 1; q < n; q++) {
+                const double apq = A[p * n + q];
+                if (apq == 0.0) continue;
+                /* Golub & Van Loan, Algorithm 8.4.1 (symmetric Schur 2 x 2) */
+                const double tau = (A[q * n + q] - A[p * n + p]) / (2.0 * apq);
+                const double t = (tau >= 0 ? 1.0 : -1.0) / (fabs(tau) + sqrt(1.0 + tau * tau));
+                const double c = 1.0 / sqrt(1.0 + t * t), s = t * c;
+                for (int k = 0; k < n; k++) {   /* A <- A J (columns p, q) */
+                    const double akp = A[k * n + p], akq = A[k * n + q];
+                    A[k * n + p] = c * akp - s * akq;
+                    A[k * n + q] = s * akp + c * akq;
+                }
+                for (int k = 0; k < n; k++) {   /* A <- J^T A (rows p, q) */
+                    const double apk = A[p * n + k], aqk = A[q * n + k];
+                    A[p * n + k] = c * apk - s * aqk;
+                    A[q * n + k] = s * apk + c * aqk;
+                }
+                for (int k = 0; k < n; k++) {
+                    const double vkp = V[k * n + p], vkq = V[k * n + q];
+                    V[k * n + p] = c * vkp - s * vkq;
+                    V[k * n + q] = s * vkp + c * vkq;
+                }
+            }
+    }
+}
+
+/* 1 when the LDL^T pivots of the symmetric n x n C (n <= 6) are all
+ * positive: C is positive definite */
+int sb_elem_pos_def(int n, const double *C)
+{
+    double L[36];
+    memcpy(L, C, sizeof(double) * n * n);
+    for (int j = 0; j < n; j++) {
+        const double piv = L[j * n + j];
+        if (!(piv > 0.0)) return 0;
+        for (int i = j + 1; i < n; i++) {
+            const double l = L[i * n + j] / piv;
+            for (int k = j + 1; k <= i; k++) L[i * n + k] -= l * L[k * n + j];
+            L[i * n + j] = l;
+        }
+    }
+    return 1;
+}
+
+/* C (n x n symmetric, n <= 6) <- its positive semidefinite part.  A matrix
+ * whose LDL^T pivots are all positive is positive definite and kept as it
+ * is (every StVK section, denim where it is convex). */
+void sb_elem_psd_part(int n, double *C)
+{
+    if (sb_elem_pos_def(n, C)) return;
+    double A[36], V[36];
+    memcpy(A, C, sizeof(double) * n * n);
+    jacobi_eig(n, A, V);
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double s = 0.0;
+            for (int l = 0; l < n; l++) {
+                const double lam = A[l * n + l];
+                if (lam > 0.0) s += V[i * n + l] * lam * V[j * n + l];
+            }
+            C[i * n + j] = s;
+        }
+}
+
+/* the Z rows of one point for ns = 3 or 5 slots (a constant once inlined) */
+static inline void zrows(int ns, double Kd[15][15], double *const *u, int kp, double *Z0, size_t zstride)
+{
+    for (int pr = 0; pr < 6; pr++) {
+        const int cc = pc[pr], d = pd[pr];
+#pragma GCC unroll 5
+        for (int s = 0; s < ns; s++) {
+            sb_vd kv[5];
+#pragma GCC unroll 5
+            for (int t = 0; t < ns; t++) kv[t] = sb_vbcast(s <= t ? Kd[3 * s + cc][3 * t + d] : Kd[3 * t + d][3 * s + cc]);
+            double *zs = Z0 + pr * zstride + (size_t)s * kp;
+            for (int J = 0; J < kp; J += SB_VL) {
+                sb_vd z = kv[0] * sb_vload(u[0] + J);
+#pragma GCC unroll 5
+                for (int t = 1; t < ns; t++) z += kv[t] * sb_vload(u[t] + J);
+                sb_vstore(zs + J, z);
+            }
+        }
+    }
+}
+
+static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, double *hess)
+{
+    const int k = b[0].k, kp = sb_elem_round_up(k, KPAD);
+    const size_t zstride = (size_t)5 * w->nqmax * kp;
+    int row = 0;
+    for (int p = 0; p < nq; p++) {
+        const double *kd = w->kd + (size_t)KD * p, *h = kd + 45;
+        const int pd_ok = kd[KD - 1] != 0.0, ns = pd_ok ? 3 : 5;
+        double *u[5];
+        for (int s = 0; s < ns; s++) u[s] = w->Wt + (size_t)(row + s) * kp;
+        if (pd_ok) {
+            for (int I = 0; I < kp; I++) {
+                u[0][I] = I < k ? b[p].N1[I] : 0.0;
+                u[1][I] = I < k ? b[p].N2[I] : 0.0;
+                /* bending component i = 0, 1, 2 is x,11, x,22, x,12 (sb_shell.c bslot) */
+                u[2][I] = I < k ? h[0] * b[p].N11[I] + h[1] * b[p].N22[I] + h[2] * b[p].N12[I] : 0.0;
+            }
+        } else {
+            const double *src[5] = { b[p].N1, b[p].N2, b[p].N11, b[p].N12, b[p].N22 };
+            for (int s = 0; s < 5; s++)
+                for (int I = 0; I < kp; I++) u[s][I] = I < k ? src[s][I] : 0.0;
+        }
+#if SB_VL == 2
+        for (int s = 0; s < ns; s++) {
+            double *rb = w->Wb + (size_t)2 * (row + s) * kp;
+            for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = u[s][I];
+        }
+#endif
+        /* the point's difference matrix, blocks on and above the block diagonal:
+         * 3-slot (s, t): (0,0) B11, (0,1) B12, (0,2) M1, (1,1) B22, (1,2) -M2, (2,2) 0 */
+        double Kd[15][15];
+        if (pd_ok) {
+            const double *blk[3][3] = { { kd, kd + 9, kd + 27 }, { NULL, kd + 18, kd + 36 }, { NULL, NULL, NULL } };
+            for (int s = 0; s < 3; s++)
+                for (int t = s; t < 3; t++)
+                    for (int a = 0; a < 3; a++)
+                        for (int c = 0; c < 3; c++) Kd[3 * s + a][3 * t + c] = blk[s][t] ? blk[s][t][3 * a + c] : 0.0;
+        } else {
+            double Jx[6][2][3], n[3], dD[6][6];
+            memcpy(Jx, kd + 48, sizeof Jx);
+            memcpy(n, kd + 84, sizeof n);
+            memcpy(dD, kd + 87, sizeof dD);
+            sb_elem_jtdj(Jx, n, dD, Kd);
+            for (int a = 0; a < 3; a++)
+                for (int c = 0; c < 3; c++) {
+                    Kd[3 * S_X1 + a][3 * S_X1 + c] += kd[3 * a + c];
+                    Kd[3 * S_X1 + a][3 * S_X2 + c] += kd[9 + 3 * a + c];
+                    Kd[3 * S_X2 + a][3 * S_X2 + c] += kd[18 + 3 * a + c];
+                    for (int i = 0; i < 3; i++) {
+                        Kd[3 * S_X1 + a][3 * bslot[i] + c] += h[i] * kd[27 + 3 * a + c];
+                        Kd[3 * S_X2 + a][3 * bslot[i] + c] += h[i] * kd[36 + 3 * a + c];
+                    }
+                }
+        }
+        if (pd_ok) zrows(3, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
+        else zrows(5, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
+        row += ns;
+    }
+    sb_elem_products(row, kp, w);
+    sb_elem_scatter(k, kp, w, hess, -1.0);
+}
+
+/* kind PSD with the fast kernel (issue 30; see sb_shell.h) */
+double sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                            const double *q, double *grad, double *hess, const double *Kx, int kx_used,
+                            sb_shell_batch *w, double *work, int *path)
+{
+    int pth = 0;
+    if (!w || !hess || !b || nq < 1 || nq > w->nqmax) {
+        if (path) *path = -1;
+        return NAN;
+    }
+    w->keep = 1;
+    const double e = sb_elem_element(m, nq, r, b, q, grad, hess, SB_HESS_EXACT, w);
+    w->keep = 0;
+    const int n = 3 * b[0].k;
+    if (kx_used)
+        for (size_t i = 0; i < (size_t)n * n; i++) hess[i] += Kx[i];
+    if (!isfinite(e) || sb_psd_check(n, hess, work)) {
+        pth = 0;   /* PSD already: kept exactly (or non-finite: reported by the energy) */
+    } else if (!kx_used || sb_psd_check(n, Kx, work)) {
+        /* the other terms are PSD: the shell part by the strain-space projection */
+        psd_difference(nq, b, w, hess);
+        pth = 1;
+    } else {
+        sb_psd_project(n, hess, work);   /* indefinite other terms: clamp the whole element */
+        pth = 2;
+    }
+    if (path) *path = pth;
+    return e;
+}

@@ -1,0 +1,175 @@
+/* test_cli_input.c — issue 28 items 5-6 and issue 27's /dev/stdin: scene
+ * files that are hostile or odd.  Control characters from a scene reach
+ * messages escaped (one line, nothing a terminal would act on); `check` on
+ * a FIFO does not block; a record given as a scene is named as one; a
+ * UTF-8 byte-order mark is skipped; `check` keeps stdout for results and
+ * prints errors on stderr; `run --scene /dev/stdin` reads a pipe. */
+#include "cli_sh.h"
+#include "sb_common.h"
+#include "sb_test.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char tmpdir[256], err[8192], out[1 << 16];
+
+static void write_file(const char *path, const char *bytes, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    if (f) {
+        fwrite(bytes, 1, n, f);
+        fclose(f);
+    }
+}
+
+/* no byte a terminal acts on: C0 controls but the final newline, DEL, C1 */
+static int terminal_safe(const char *s)
+{
+    const unsigned char *p = (const unsigned char *)s;
+    for (; *p; p++) {
+        if (*p == '\n') continue;
+        if (*p < 0x20 || *p == 0x7F || *p == 0x9B || (p[0] == 0xC2 && p[1] >= 0x80 && p[1] < 0xA0)) return 0;
+    }
+    return 1;
+}
+
+static int lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++) n += *s == '\n';
+    return n;
+}
+
+SB_TEST(control_characters_escaped)
+{
+    const char *bin = sb_test_bin();
+    char p[512];
+    /* a name with an escape sequence and a newline (JSON escapes): refused by the name rule */
+    snprintf(p, sizeof p, "%s/esc_name.json", tmpdir);
+    const char *a = "{\"name\": \"x\\u001b[2J\\u001b]0;pwned\\u0007\\nsecond line\\u009b31m\"}";
+    write_file(p, a, strlen(a));
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check %s", bin, p), 2);
+    CHECK_MSG(terminal_safe(err) && lines(err) == 1 && strstr(err, "\\x1b[2J") && strstr(err, "\\n") &&
+              strstr(err, "\\u009b"), "%s", err);
+    /* raw control bytes in the file: jansson quotes them back */
+    snprintf(p, sizeof p, "%s/esc_raw.json", tmpdir);
+    const char raw[] = "{\"name\": \"a\x1b[31mred\x07\"}";
+    write_file(p, raw, sizeof raw - 1);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check %s", bin, p), 2);
+    CHECK_MSG(terminal_safe(err) && lines(err) == 1, "%s", err);
+    /* a file name with control characters (the user's own, still escaped) */
+    snprintf(p, sizeof p, "%s/bad\x1b[1mname.json", tmpdir);
+    write_file(p, "[]", 2);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check '%s'", bin, p), 2);
+    CHECK_MSG(terminal_safe(err) && strstr(err, "\\x1b[1m"), "%s", err);
+    /* and in the run's messages: an edge name from the scene */
+    snprintf(p, sizeof p, "%s/edge.json", tmpdir);
+    char scene[4096];
+    FILE *f = fopen("bench/scenes/trampoline.json", "r");
+    if (!f) {
+        snprintf(scene, sizeof scene, "%s/bench/scenes/trampoline.json", sb_test_root());
+        f = fopen(scene, "r");
+    }
+    size_t n = f ? fread(scene, 1, sizeof scene - 1, f) : 0;
+    if (f) fclose(f);
+    scene[n] = 0;
+    char *on = strstr(scene, "\"left\"");
+    CHECK(on != NULL);
+    if (on) {
+        char mod[4200];
+        snprintf(mod, sizeof mod, "%.*s\"le\\u001b[5mft\"%s", (int)(on - scene), scene, on + 6);
+        write_file(p, mod, strlen(mod));
+        CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s run --scene %s --method bhem --solver tr --out none", bin, p), 2);
+        CHECK_MSG(terminal_safe(err) && strstr(err, "\\x1b[5m"), "%s", err);
+    }
+    /* unknown method names from the command line likewise */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s run --scene trampoline --method \"$(printf 'a\\033[2Jb')\" "
+                       "--solver tr --out none", bin), 2);
+    CHECK_MSG(terminal_safe(err) && strstr(err, "\\x1b[2J"), "%s", err);
+}
+
+SB_TEST(escape_function)
+{
+    char s[64];
+    snprintf(s, sizeof s, "a\x1b[0m\tb\nc");
+    CHECK(sb_escape_controls(s, sizeof s) == 3 && strcmp(s, "a\\x1b[0m\\tb\\nc") == 0);
+    snprintf(s, sizeof s, "\xC2\x9B" "31m \xEF\xBB\xBF \xFF");   /* C1 CSI, BOM, invalid byte */
+    CHECK_MSG(sb_escape_controls(s, sizeof s) == 3 && strcmp(s, "\\u009b31m \\ufeff \\xff") == 0, "%s", s);
+    snprintf(s, sizeof s, "caf\xC3\xA9 \xE2\x80\x96g\xE2\x80\x96");   /* UTF-8 text is kept */
+    CHECK(sb_escape_controls(s, sizeof s) == 0 && strcmp(s, "caf\xC3\xA9 \xE2\x80\x96g\xE2\x80\x96") == 0);
+    char small[8];
+    snprintf(small, sizeof small, "\x01\x02\x03");   /* truncated to whole escapes' bytes */
+    sb_escape_controls(small, sizeof small);
+    CHECK(strlen(small) == 7 && strncmp(small, "\\x01\\x0", 7) == 0);
+}
+
+SB_TEST(fifo_hdf5_bom_and_streams)
+{
+    const char *bin = sb_test_bin(), *root = sb_test_root();
+    char p[512];
+    /* a FIFO without a writer blocked `check` forever */
+    snprintf(p, sizeof p, "%s/scene.fifo", tmpdir);
+    CHECK(mkfifo(p, 0644) == 0);
+    int ec = sb_sh(out, sizeof out, err, sizeof err, "timeout 20 %s check %s", bin, p);
+    CHECK_EQ_INT(ec, 2);
+    CHECK_MSG(strstr(err, "FIFO") && strstr(err, "/dev/stdin"), "%s", err);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "timeout 20 %s run --scene %s --method bhem --solver tr --out none",
+                       bin, p), 2);
+    CHECK(strstr(err, "FIFO") != NULL);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check /dev/zero", bin), 2);
+    CHECK(strstr(err, "character device") != NULL);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check %s", bin, tmpdir), 2);
+    CHECK(strstr(err, "directory") != NULL);
+    /* a run record given as a scene */
+    snprintf(p, sizeof p, "%s/rec.h5", tmpdir);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cd %s && %s run --scene trampoline --method bhem --solver tr --res 4 --quiet "
+                       "--out %s", root, bin, p), 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check %s", bin, p), 2);
+    CHECK_MSG(strstr(err, "HDF5 file (a run record?)") && !strstr(err, "NUL"), "%s", err);
+    /* a UTF-8 byte-order mark is skipped */
+    snprintf(p, sizeof p, "%s/bom.json", tmpdir);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "printf '\\357\\273\\277' > %s && cat %s/bench/scenes/trampoline.json >> %s", p,
+                       root, p), 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check %s", bin, p), 0);
+    CHECK_MSG(strstr(out, ": ok (trampoline)") && err[0] == 0, "%s / %s", out, err);
+    /* results on stdout, errors on stderr */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s check bench/scenes/drape.json "
+                       "tests/scenes_bad/poisson_out_of_range.json", root, bin), 2);
+    CHECK_MSG(strstr(out, "drape.json: ok") && !strstr(out, "poisson"), "stdout: %s", out);
+    CHECK_MSG(strstr(err, "poisson_out_of_range.json:") && !strstr(err, "drape"), "stderr: %s", err);
+}
+
+SB_TEST(scene_from_stdin)
+{
+    const char *bin = sb_test_bin(), *root = sb_test_root();
+    /* `check /dev/stdin` worked, `run --scene /dev/stdin` said "not found" */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && cat bench/scenes/trampoline.json | %s check /dev/stdin",
+                       root, bin), 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && cat bench/scenes/trampoline.json | %s run --scene "
+                       "/dev/stdin --method bhem --solver tr --res 4 --out none --summary json --quiet", root, bin), 0);
+    CHECK_MSG(strstr(out, "\"scene\": \"trampoline\""), "%s / %s", out, err);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s run --scene /dev/stdin --method bhem --solver tr "
+                       "--res 4 --out none < bench/scenes/trampoline.json --quiet", root, bin), 0);
+    /* a path that does not exist is still "not found" */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s run --scene %s/none.json --method bhem --solver tr", bin,
+                       tmpdir), 2);
+    CHECK(strstr(err, "not found") != NULL);
+}
+
+int main(int argc, char **argv)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_cli_in_XXXXXX");
+    if (!mkdtemp(tmpdir)) return 3;
+    static const sb_test_case cases[] = {
+        SB_CASE(control_characters_escaped), SB_CASE(escape_function), SB_CASE(fifo_hdf5_bom_and_streams),
+        SB_CASE(scene_from_stdin), SB_END,
+    };
+    int rc = sb_test_main(argc, argv, cases);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    if (system(cmd)) {}
+    return rc;
+}
