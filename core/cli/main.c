@@ -19,6 +19,7 @@
 #include "sb_record.h"
 #include "sb_render.h"
 #include "sb_scene.h"
+#include "sb_study.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -108,6 +109,8 @@ static int parse_files(const char *cmd, int argc, char **argv, const char **form
 
 static int cmd_report(int argc, char **argv)
 {
+    for (int i = 0; i < argc; i++)
+        if (!strcmp(argv[i], "--study")) return sb_study_cmd_report(argc, argv);   /* docs/study.md */
     const char *format = "md", *plot = NULL;
     char **files = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *files);
     int nf = 0;
@@ -166,6 +169,7 @@ int main(int argc, char **argv)
     static const struct { const char *name; int (*fn)(int, char **); } cmds[] = {
         { "list", sb_cli_list }, { "check", cmd_check }, { "run", cmd_run }, { "sweep", sb_cli_sweep },
         { "report", cmd_report }, { "inspect", cmd_inspect }, { "render", sb_render_main },
+        { "reference", sb_study_cmd_reference },
     };
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++)
         if (!strcmp(cmd, cmds[i].name)) {

@@ -15,6 +15,8 @@ static const char overview[] =
     "  sweep --scenes A,B --methods M,N --solvers V,W [...]   many runs, validated up front\n"
     "  report [--format md|csv] [--plot FILE] FILE.h5...     tables (and a plot) from records\n"
     "  inspect [--format md|csv] FILE.h5...          material state of recorded states\n"
+    "  sweep --study FILE / report --study FILE      a study: work-precision, profiles, selection (docs/study.md)\n"
+    "  reference SCENE [...]                         compute and store a scene's reference record\n"
     "  render FILE.h5 [--out FILE.png] [...]         a ray-traced picture of a record (docs/render.md)\n"
     "  help [COMMAND], --version\n"
     "exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error,\n"
@@ -64,7 +66,11 @@ static const char sweep_help[] =
     "  --resume              skip runs whose record exists (reported as skipped), continue checkpoints\n"
     "  --strict              as for run: a converged run whose validation failed counts as exit 5\n"
     "  --progress, --no-progress, --quiet   as for run; the progress line shows runs done and time left\n"
-    "exit code: the worst of its runs.\n";
+    "exit code: the worst of its runs.\n"
+    "usage: shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet]\n"
+    "A study file (docs/study.md), checked whole before any run (FILE:LINE:COL); runs what is not\n"
+    "recorded, N at a time in child processes; refusals leave RECORD.refused; --max-runs stops\n"
+    "resumably (exit 4); --plan prints the runs and runs nothing.\n";
 
 static const char check_help[] =
     "usage: shellbench check SCENE...\n"
@@ -80,7 +86,18 @@ static const char report_help[] =
     "  --plot FILE           log10 ||g|| against iteration through gnuplot; the format follows the\n"
     "                        extension; /dev/null: no plot\n"
     "A file that is not a readable record, or a plot that cannot be made, is an error: the table of the\n"
-    "others is still written, and the exit code is 2 (input) or 3 (plot failed).\n";
+    "others is still written, and the exit code is 2 (input) or 3 (plot failed).\n"
+    "usage: shellbench report --study FILE [--out DIR] [--dir DIR] [--deterministic]\n"
+    "The study's report.md: method selection, work-precision diagrams, performance profiles, the\n"
+    "nonconvex scenes by energy, convergence plots (docs/study.md); --deterministic leaves out\n"
+    "wall-clock figures (the same records give the same bytes).\n";
+
+static const char reference_help[] =
+    "usage: shellbench reference SCENE [--method M] [--solver S] [--res N | --dofs N] [--levels L]\n"
+    "                            [--set KEY=VALUE]... [--samples N] [--out FILE.h5] [--no-check] [--force]\n"
+    "Computes a scene's reference record (default: bhem near 12,000 dofs, rmtr on 3 levels,\n"
+    "run.gtol=1e-8) into results/references/SCENE.h5 with its provenance SCENE.json and a self-check\n"
+    "at half the resolution; prints the line that points the scene at it (docs/study.md).\n";
 
 static const char inspect_help[] =
     "usage: shellbench inspect [--format md|csv] FILE.h5...\n"
@@ -99,7 +116,7 @@ int sb_cli_help(const char *cmd, FILE *f)
 {
     static const struct { const char *name, *text; } topics[] = {
         { "run", run_help }, { "sweep", sweep_help }, { "check", check_help }, { "report", report_help },
-        { "inspect", inspect_help }, { "list", list_help },
+        { "inspect", inspect_help }, { "list", list_help }, { "reference", reference_help },
     };
     if (!cmd) {
         fputs(overview, f);

@@ -6,6 +6,7 @@
  * --progress) the live line says runs done/total and the time left,
  * estimated from the runs done so far. */
 #include "sb_cli.h"
+#include "sb_study.h"
 #include "sb_record.h"
 #include "sb_stats.h"
 #include "sb_sweep.h"
@@ -49,6 +50,8 @@ static void format_left(double s, char *buf, size_t len)
 
 int sb_cli_sweep(int argc, char **argv)
 {
+    for (int i = 0; i < argc; i++)
+        if (!strcmp(argv[i], "--study")) return sb_study_cmd_sweep(argc, argv);   /* docs/study.md */
     sb_cli_run c;
     char err[2048];
     memset(&c, 0, sizeof c);

@@ -351,6 +351,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     sb_run_potential_change(R);
     sb_run_compute_error(R, err);
     sb_run_record_material(R);
+    sb_run_record_energy(R);
     if (out_path) {
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
         stats->seconds_total = sb_now() - R->t_start;

@@ -85,6 +85,8 @@ char  *sb_run_summary_json(run_state *R, const char *out_path);
 void   sb_run_compute_error(run_state *R, FILE *err);
 /* rec->material of the current state (methods with material_state). */
 void   sb_run_record_material(run_state *R);
+/* rec->energy_final: the method's energy of the current state (uncounted). */
+void   sb_run_record_energy(run_state *R);
 
 /* ---- verdicts beyond the solver's (sb_run_judge.c, docs/trust.md) -------- */
 /* A step the solver calls converged is a physical state: finite, and within

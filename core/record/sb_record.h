@@ -121,6 +121,11 @@ typedef struct sb_run {
      * methods, unlike f, which carries the constant -F.X of dead loads */
     int has_potential;
     double potential_change;
+    /* the method's energy E(x) (elastic + external + boundary penalty, no
+     * inertia) of the final state at the last step's loads: what a local
+     * minimum found on a nonconvex scene is compared by (docs/study.md) */
+    int has_energy;
+    double energy_final;           /* J */
     sb_resume_log resumed;
     /* checkpoints only: the last step boundary, written as /resume (NULL in
      * a final record); its stats' history pointers are not used, the
@@ -174,6 +179,7 @@ typedef struct sb_record_summary {
     int has_error;
     double error_rms, error_max, error_probe;
     char error_kind[16];
+    double energy_final;       /* J; NaN when the record has none (written before it was kept) */
     /* convergence history of all iterations (for plots) */
     int n_hist;
     double *hist_gnorm;        /* owned */

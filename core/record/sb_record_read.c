@@ -161,6 +161,8 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
             rc = sb_h5r_attr_str(&r, f, "validation", s->validation, sizeof s->validation);
         if (!rc && H5Aexists(f, "potential_change") > 0)
             rc = sb_h5r_attr_dbl(&r, f, "potential_change", &s->potential_change);
+        s->energy_final = NAN;
+        if (!rc && H5Aexists(f, "energy_final") > 0) rc = sb_h5r_attr_dbl(&r, f, "energy_final", &s->energy_final);
         s->resume_point = -1;
         hid_t gr = rc || H5Lexists(f, "/resume", H5P_DEFAULT) <= 0 ? -1 : H5Gopen2(f, "/resume", H5P_DEFAULT);
         if (gr >= 0) {

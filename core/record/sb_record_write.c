@@ -75,6 +75,7 @@ static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_attr_long(w, f, "steps_done", r->steps_done);
     bad |= sb_h5w_attr_str(w, f, "validation", sb_validation_name(r->validation));
     bad |= sb_h5w_attr_dbl(w, f, "potential_change", r->has_potential ? r->potential_change : NAN);
+    bad |= sb_h5w_attr_dbl(w, f, "energy_final", r->has_energy ? r->energy_final : NAN);
     return bad ? -1 : 0;
 }
 

@@ -105,23 +105,23 @@ static int write_script(const char *path, const char *data, const char *out, con
 {
     FILE *f = fopen(path, "w");
     if (!f) return -1;
-    if (!strcmp(format, "svg")) fputs("set terminal svg size 900,600 dynamic\n", f);
-    else if (!strcmp(format, "jpeg")) fputs("set terminal jpeg size 900,600\n", f);
+    if (!strcmp(format, "svg")) fputs("set terminal svg size 1100,600 dynamic\n", f);
+    else if (!strcmp(format, "jpeg")) fputs("set terminal jpeg size 1100,600\n", f);
     else fputs("if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-               "    set terminal pngcairo size 900,600\n"
+               "    set terminal pngcairo size 1100,600\n"
                "} else {\n"
-               "    set terminal png size 900,600\n"
+               "    set terminal png size 1100,600\n"
                "}\n", f);
     fputs("set termoption noenhanced\nset output ", f);
     gp_quoted(f, out);
     fputs("\nset title 'convergence: log10 ||g|| against cumulative iteration'\n"
           "set xlabel 'cumulative iteration'\nset ylabel 'log10 ||g||  (N)'\n"
-          "set grid\nset key below\nplot ", f);
+          "set grid\nset key outside right top vertical Left reverse\nplot ", f);   /* never over the data or the axis label */
     int block = 0;
     for (int k = 0; k < n; k++) {
         if (!has[k]) continue;
-        char title[3 * SB_NAME_LEN + 4];
-        snprintf(title, sizeof title, "%s/%s/%s", s[k].scene, s[k].method, s[k].solver);
+        char title[3 * SB_NAME_LEN + 32];
+        snprintf(title, sizeof title, "%s/%s/%s %ld dofs", s[k].scene, s[k].method, s[k].solver, s[k].dofs);
         if (block) fputs(", \\\n     ", f);
         gp_quoted(f, data);
         fprintf(f, " index %d using 1:2 with linespoints title ", block++);

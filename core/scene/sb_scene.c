@@ -315,6 +315,27 @@ static int try_path(char *out, size_t len, const char *fmt, const char *a, const
     return n > 0 && (size_t)n < len && is_file(out);
 }
 
+int sb_project_file(const char *rel, char *path, size_t len)
+{
+    /* the places sb_scene_resolve looks for bench/scenes: the working
+     * directory, $SB_ROOT, and the directory above the executable's */
+    if (!rel || !*rel || rel[0] == '/') return SB_ERR_INPUT;
+    if (try_path(path, len, "%s%s", "", rel)) return SB_OK;
+    const char *root = getenv("SB_ROOT");
+    if (root && *root && try_path(path, len, "%s/%s", root, rel)) return SB_OK;
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = '\0';
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            *slash = '\0';
+            if (try_path(path, len, "%s/../%s", exe, rel)) return SB_OK;
+        }
+    }
+    return SB_ERR_IO;
+}
+
 int sb_scene_resolve(const char *name_or_path, char *path, size_t len)
 {
     if (!name_or_path || !path || len == 0) return SB_ERR_INPUT;

@@ -222,6 +222,10 @@ int sb_scene_parse_buffer(const char *bytes, size_t len, const char *path_for_me
 void sb_scene_free(sb_scene *scene);
 /* Resolve a scene name ("trampoline") or path to a file path. */
 int sb_scene_resolve(const char *name_or_path, char *path, size_t len);
+/* A project file by its path relative to the project root (e.g.
+ * "results/references/trampoline.h5"), looked for where bundled scenes are
+ * (working directory, $SB_ROOT, the executable's parent); SB_OK when found. */
+int sb_project_file(const char *rel, char *path, size_t len);
 
 /* Ramp factors at step n (1-based) of the scene's time spec. */
 double sb_load_factor(const sb_scene *s, const sb_load *ld, int step);

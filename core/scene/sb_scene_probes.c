@@ -13,6 +13,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "sb_scene_json.h"
 
@@ -188,6 +189,13 @@ int sbj_parse_reference(sbj_ctx *c, const json_t *root, sb_scene *sc)
                     : snprintf(ref->file, sizeof ref->file, "%s", file);
         if (n < 0 || (size_t)n >= sizeof ref->file)
             r = sbj_fail(c, "file", 0, "resolved path is too long (at most %zu bytes)", sizeof ref->file - 1);
+        /* not beside the scene (a copied scene, one read from a pipe): a
+         * relative path may also name a file of the project, e.g. the
+         * bundled scenes' "results/references/NAME.h5" (docs/scene_format.md) */
+        struct stat fst;
+        char proj[sizeof ref->file];
+        if (!r && file[0] != '/' && stat(ref->file, &fst) != 0 && sb_project_file(file, proj, sizeof proj) == SB_OK)
+            snprintf(ref->file, sizeof ref->file, "%s", proj);
     }
 out:
     sbj_pop(c, mark);

@@ -1,0 +1,47 @@
+/* sb_study_fig.h — the study report's figures (gnuplot PNG + SVG): one
+ * gnuplot run per figure (sb_study_gnuplot.c), the figures themselves in
+ * sb_study_figs.c.  Every function returns 0, or -1 with a warning sentence
+ * in err (the report goes on without that figure). */
+#ifndef SB_STUDY_FIG_H
+#define SB_STUDY_FIG_H
+
+#include "sb_study_data.h"
+
+#include <stdio.h>
+
+typedef struct sb_gp {
+    char dir[512];            /* private temporary directory */
+    const char *prog;         /* gnuplot */
+    FILE *body;               /* the plot commands (written twice: PNG, SVG) */
+    char *body_text;
+    size_t body_len;
+    int ndata;
+} sb_gp;
+
+int   sb_gp_open(sb_gp *g, const char *prog);
+/* a new data file in the figure's directory (its path into path) */
+FILE *sb_gp_data(sb_gp *g, char *path, size_t len);
+void  sb_gp_quoted(FILE *f, const char *s);
+/* run gnuplot: the body into png and svg (replaced atomically), clean up */
+int   sb_gp_finish(sb_gp *g, const char *png, const char *svg, int width, int height, char *err, size_t errlen);
+void  sb_gp_abandon(sb_gp *g);
+
+/* cost measures of the diagrams and profiles */
+enum { SB_COST_SECONDS = 0, SB_COST_WORK = 1 };
+const char *sb_cost_name(int cost);       /* "seconds", "work units" */
+const char *sb_cost_axis(int cost);       /* axis label with its unit */
+
+/* Work-precision diagram of scene i: error against cost, one curve per
+ * configuration (start 0, converged runs, increasing dofs), points labelled
+ * by dofs, the Pareto front, the error targets.  STEM.png / STEM.svg. */
+int sb_fig_work_precision(const sb_study_data *d, int i, int cost, const char *stem, const char *gnuplot,
+                          char *err, size_t errlen);
+/* Performance profile: rho_s(tau) for the ns configurations (labels) over
+ * np problems (ratio[p * ns + s]). */
+int sb_fig_profile(int np, int ns, const double *ratio, char (*labels)[128], const char *title, const char *stem,
+                   const char *gnuplot, char *err, size_t errlen);
+/* log10 ||g|| against cumulative iteration, one line per configuration at
+ * the resolution nearest the scene's middle dofs (start 0). */
+int sb_fig_convergence(const sb_study_data *d, int i, const char *stem, const char *gnuplot, char *err, size_t errlen);
+
+#endif

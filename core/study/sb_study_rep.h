@@ -1,0 +1,26 @@
+/* sb_study_rep.h — internal to the study report: the report under way and
+ * the sections written by sb_study_report_runs.c. */
+#ifndef SB_STUDY_REP_H
+#define SB_STUDY_REP_H
+
+#include "sb_study_fig.h"
+
+typedef struct sb_rep {
+    const sb_study *st;
+    const sb_study_data *d;
+    const sb_study_report_options *o;
+    FILE *md, *err;
+    char dir[1024];
+    int n_costs, costs[2];     /* the cost measures shown (seconds first) */
+} sb_rep;
+
+/* "%.3g", or an em dash for a non-finite value */
+void sb_rep_g3(char *buf, size_t len, double v);
+/* scenes with several solutions (and perturbed starts): energy, spread, cost */
+void sb_rep_multiple_scenes(sb_rep *R);
+/* every record per scene */
+void sb_rep_run_tables(sb_rep *R);
+/* refused, missing, skipped, not applicable */
+void sb_rep_without_records(sb_rep *R);
+
+#endif
