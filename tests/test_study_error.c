@@ -41,7 +41,7 @@ static int sample(const sb_method_type *mt, const sb_scene *sc, int res, const d
     if (sb_context_init(&ctx)) return -1;
     sb_paramset_add(&ctx.params, "method", mt->params);
     void *ms = calloc(1, mt->state_size);
-    sb_method_config cfg = { res, 1, &ctx.params, &ctx };
+    sb_method_config cfg = { .res = res, .levels = 1, .params = &ctx.params, .ctx = &ctx, .res_t = 0 };
     int rc = mt->create(ms, sc, &cfg);
     if (rc == SB_OK) {
         int F = mt->n_levels(ms) - 1, n = mt->n_dofs(ms, F);
