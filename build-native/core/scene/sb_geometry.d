@@ -1,5 +1,0 @@
-build-native/core/scene/sb_geometry.o: core/scene/sb_geometry.c \
- core/scene/sb_geometry.h core/scene/sb_scene.h core/base/sb_common.h
-core/scene/sb_geometry.h:
-core/scene/sb_scene.h:
-core/base/sb_common.h:

@@ -1,8 +1,0 @@
-build-native/core/scene/sb_scene.o: core/scene/sb_scene.c \
- core/scene/sb_scene.h core/base/sb_common.h core/scene/sb_geometry.h \
- core/scene/sb_json_pos.h core/scene/sb_scene_json.h
-core/scene/sb_scene.h:
-core/base/sb_common.h:
-core/scene/sb_geometry.h:
-core/scene/sb_json_pos.h:
-core/scene/sb_scene_json.h:

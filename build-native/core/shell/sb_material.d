@@ -1,5 +1,0 @@
-build-native/core/shell/sb_material.o: core/shell/sb_material.c \
- core/shell/sb_material.h core/scene/sb_scene.h core/base/sb_common.h
-core/shell/sb_material.h:
-core/scene/sb_scene.h:
-core/base/sb_common.h:

@@ -1,9 +1,0 @@
-build-native/core/shell/sb_section_fast.o: core/shell/sb_section_fast.c \
- core/shell/sb_shell.h core/shell/sb_material.h core/scene/sb_scene.h \
- core/base/sb_common.h core/shell/sb_vmath.h core/shell/sb_simd.h
-core/shell/sb_shell.h:
-core/shell/sb_material.h:
-core/scene/sb_scene.h:
-core/base/sb_common.h:
-core/shell/sb_vmath.h:
-core/shell/sb_simd.h:
