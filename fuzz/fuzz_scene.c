@@ -41,7 +41,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const int res[] = { 0, sc.default_res, SB_SCENE_MAX_RESOLUTION };
         for (int r = 0; r < 3; r++)
             for (int levels = 1; levels <= 3; levels++) {
-                sb_method_config cfg = { res[r], levels, NULL, NULL };
+                sb_method_config cfg = { .res = res[r], .levels = levels, .params = NULL, .ctx = NULL, .res_t = 0 };
                 sb_memory_run mr = { sc.time.mode == SB_TIME_DYNAMIC, sc.time.steps, sc.n_probes, 21, levels > 1 };
                 double bytes;
                 char msg[1024];
