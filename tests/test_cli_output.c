@@ -72,6 +72,13 @@ SB_TEST(fifo_and_symlink_outputs_refused)
     CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s " QUICK " --out %s", root, bin, rec), 2);
     CHECK_MSG(strstr(err, "XDMF sidecar") && strstr(err, "FIFO"), "%s", err);
     CHECK(is_fifo(xdmf_fifo) && access(rec, F_OK) != 0);
+    /* and the time-series sidecar (RUN.steps.xdmf) */
+    snprintf(rec, sizeof rec, "%s/series.h5", tmpdir);
+    snprintf(xdmf_fifo, sizeof xdmf_fifo, "%s/series.steps.xdmf", tmpdir);
+    CHECK(symlink(target, xdmf_fifo) == 0);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s " QUICK " --out %s", root, bin, rec), 2);
+    CHECK_MSG(strstr(err, "time-series sidecar") && strstr(err, "symbolic link"), "%s", err);
+    CHECK(is_link(xdmf_fifo) && access(rec, F_OK) != 0);
     snprintf(rec, sizeof rec, "%s/ck.h5", tmpdir);
     snprintf(plink, sizeof plink, "%s.partial", rec);
     CHECK(symlink(target, plink) == 0);

@@ -449,7 +449,8 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
      * FIFO or symbolic link at the path is never renamed over. */
     sb_output_kind kind;
     if (sb_output_check(path, "record", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD ||
-        sb_output_check(xpath, "XDMF sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD) {
+        sb_output_check(xpath, "XDMF sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD ||
+        sb_output_check(spath, "XDMF time-series sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD) {
         if (kind == SB_OUTPUT_DISCARD) snprintf(err, errlen, "will not write record %s: the null device", path);
         return SB_ERR_INPUT;
     }

@@ -2,8 +2,10 @@
  * PNG 1.2: IHDR, sRGB, tEXt, IDAT, IEND; filter "Sub" on every row). */
 #include "sb_render.h"
 #include "sb_common.h"
+#include "sb_output.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -65,6 +67,12 @@ static int chunk(FILE *f, const char *type, const unsigned char *data, size_t n)
 int sb_image_write_png(const sb_image *im, const char *path, int n_text, const char *const *key,
                        const char *const *val, char *err, size_t errlen)
 {
+    /* only a new path or a regular file is replaced; /dev/null discards;
+       a device, FIFO, directory or symbolic link is refused (docs/cli.md
+       "Output safety") */
+    sb_output_kind kind;
+    if (sb_output_check(path, "image", &kind, err, errlen)) return -1;
+    if (kind == SB_OUTPUT_DISCARD) return 0;
     const size_t row = (size_t)im->w * 3 + 1, raw_n = row * im->h;
     unsigned char *raw = malloc(raw_n);
     uLongf zn = compressBound((uLong)raw_n);
@@ -95,8 +103,14 @@ int sb_image_write_png(const sb_image *im, const char *path, int n_text, const c
     }
     char tmp[4096];
     snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
+    /* the temporary file is new and ours: never follow a link planted there */
+    const int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
+    FILE *f = fd >= 0 ? fdopen(fd, "wb") : NULL;
     if (!f) {
+        if (fd >= 0) {
+            close(fd);
+            remove(tmp);
+        }
         free(z);
         snprintf(err, errlen, "cannot create %s: %s", path, strerror(errno));
         return -1;

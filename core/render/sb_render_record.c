@@ -18,6 +18,7 @@
 #include "sb_context.h"
 #include "sb_geometry.h"
 #include "sb_method.h"
+#include "sb_output.h"
 #include "sb_record.h"
 #include "sb_sysinfo.h"
 
@@ -190,6 +191,9 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
                      size_t errlen)
 {
     const char *path = rq->record;
+    /* the output is checked before any work: a refused path costs nothing */
+    sb_output_kind out_kind;
+    if (sb_output_check(rq->out, "image", &out_kind, err, errlen)) return SB_ERR_INPUT;
     sb_record_setup su;
     sb_record_summary sum;
     memset(&sum, 0, sizeof sum);
