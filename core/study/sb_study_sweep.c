@@ -129,7 +129,7 @@ static const char *finish_child(const sb_plan_run *r, int code, FILE *err)
 int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue, int nq, const sb_sweep_options *o,
                        FILE *out, FILE *err, int *failed)
 {
-    int jobs = o->jobs > 0 ? o->jobs : 1, next = 0, running = 0, done = 0;
+    int jobs = o->jobs > 0 ? o->jobs : 1, next = 0, running = 0, done = 0, n_conv = 0, n_not = 0;
     child *ch = calloc((size_t)jobs, sizeof *ch);
     if (!ch) return SB_EXIT_INTERNAL;
     *failed = 0;
@@ -161,6 +161,8 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
                 int code = WIFEXITED(status) ? WEXITSTATUS(status) : SB_EXIT_INTERNAL;
                 const char *what = finish_child(r, code, err);
                 if (code == SB_EXIT_INTERNAL) *failed += 1;
+                n_conv += code == SB_EXIT_CONVERGED;
+                n_not += code == SB_EXIT_NOT_CONVERGED;
                 done++;
                 if (!o->quiet)
                     fprintf(out, "[%d/%d] %-64s %s%s (%.1f s)\n", done, nq, r->out, what,
@@ -171,6 +173,11 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
             }
     }
     free(ch);
+    /* what this invocation ran, so that the main job ends by saying how many failed */
+    if (nq > 0)
+        fprintf(out, "runs made now: %d of %d: %d converged, %d NOT converged (reason recorded), %d stopped, %d failed "
+                     "(could not be carried out: log kept)\n", done, nq, n_conv, n_not, done - n_conv - n_not - *failed,
+                *failed);
     return SB_EXIT_CONVERGED;
 }
 
