@@ -53,6 +53,13 @@ static void run_size(const run_state *R, sb_memory_run *mr)
     mr->multilevel = (R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) != 0;
 }
 
+/* "--res 8" or "--res 8x4096": the resolution as the user gave it */
+static void res_text(const run_state *R, char *buf, size_t len)
+{
+    if (R->res_t > 0 && R->res_t != R->res) snprintf(buf, len, "%dx%d", R->res, R->res_t);
+    else snprintf(buf, len, "%d", R->res);
+}
+
 static int check(run_state *R, const sb_method_size *sz)
 {
     sb_memory_run mr;
@@ -61,8 +68,10 @@ static int check(run_state *R, const sb_method_size *sz)
     run_size(R, &mr);
     sb_memory_estimate_run(sz, &mr, &est);
     R->mem_estimate = est.bytes;
-    snprintf(what, sizeof what, "method %s on scene %s at --res %d with %d level%s", R->mt->name, R->scene.name,
-             R->res, sz->levels, sz->levels > 1 ? "s" : "");
+    char rs[32];
+    res_text(R, rs, sizeof rs);
+    snprintf(what, sizeof what, "method %s on scene %s at --res %s with %d level%s", R->mt->name, R->scene.name,
+             rs, sz->levels, sz->levels > 1 ? "s" : "");
     double limit = sb_param(&R->ctx.params, "run.max_memory") * 1e9;
     if (sb_memory_check(sz, &est, limit, what, msg, sizeof msg)) {
         fprintf(R->err, "shellbench: %s\n", msg);
@@ -79,8 +88,10 @@ int sb_run_check_memory(run_state *R, int levels)
     sb_memory_run mr;
     char what[160], msg[1400];
     run_size(R, &mr);
-    snprintf(what, sizeof what, "method %s on scene %s at --res %d with %d level%s", R->mt->name, R->scene.name,
-             R->res, levels, levels > 1 ? "s" : "");
+    char rs[32];
+    res_text(R, rs, sizeof rs);
+    snprintf(what, sizeof what, "method %s on scene %s at --res %s with %d level%s", R->mt->name, R->scene.name,
+             rs, levels, levels > 1 ? "s" : "");
     if (sb_memory_check_method(R->mt, &R->scene, &cfg, &mr, sb_param(&R->ctx.params, "run.max_memory") * 1e9, what,
                                &R->mem_estimate, msg, sizeof msg)) {
         fprintf(R->err, "shellbench: %s\n", msg);
