@@ -9,7 +9,9 @@
  * sentence naming the method) and is skipped.  Resolutions: the cheapest
  * that the scene's tolerance allows, from the table below, so that the file
  * runs in tens of seconds; a method not in the table runs at the scene's
- * bundled resolution (the contract).  Coverage beyond make test: the
+ * bundled resolution for it (the contract: the scene's "resolution", or its
+ * "methods" entry for that method, with that entry's settings, as `run`
+ * without --res does).  Coverage beyond make test: the
  * bundled resolutions of the bhem validation scenes are run by
  * bench/bhem/run_bench.sh (rollup_full at 16 x 16 takes minutes). */
 #include "sb_test.h"
@@ -31,7 +33,6 @@ static const struct { const char *scene, *method, *res, *set[3]; } cheap[] = {
     { .scene = "bench/scenes/plate_simply_supported.json", .method = "bhem", .res = "8" },
     { .scene = "bench/scenes/plate_simply_supported.json", .method = "rmtr", .res = "8" },
     { .scene = "bench/scenes/scordelis_lo.json", .method = "bhem", .res = "4" },
-    { .scene = "bench/scenes/scordelis_lo.json", .method = "rmtr", .res = "16" },   /* 8 x 8 misses by 17 %: too coarse for the roof */
     { .scene = "bench/scenes/strip_end_moment.json", .method = "bhem", .res = "8x1" },
     { .scene = "bench/bhem/scenes/plate_clamped.json", .method = "bhem", .res = "4" },
     { .scene = "bench/bhem/scenes/plate_clamped.json", .method = "rmtr", .res = "8" },
@@ -42,19 +43,9 @@ static const struct { const char *scene, *method, *res, *set[3]; } cheap[] = {
     { .scene = "bench/bhem/scenes/rollup_full.json", .method = "bhem", .res = "8x1" },
     { .scene = "bench/bhem/scenes/rollup_quarter.json", .method = "bhem", .res = "8x1" },
     { .scene = "bench/bhem/scenes/scordelis_lo_linear.json", .method = "bhem", .res = "4" },
-    { .scene = "bench/bhem/scenes/scordelis_lo_linear.json", .method = "rmtr", .res = "16" },
-    /* linear_fem (discrete shells, order 2): the clamped plates need 64 x 64 for 1 % */
-    { .scene = "bench/scenes/cantilever.json", .method = "linear_fem", .res = "16", .set = { "method.cells_t=2" } },
-    { .scene = "bench/scenes/plate_clamped.json", .method = "linear_fem", .res = "64" },
-    { .scene = "bench/scenes/plate_simply_supported.json", .method = "linear_fem", .res = "32" },
-    { .scene = "bench/scenes/scordelis_lo.json", .method = "linear_fem", .res = "32" },
-    { .scene = "bench/scenes/strip_end_moment.json", .method = "linear_fem", .res = "16", .set = { "method.cells_t=1" } },
-    { .scene = "bench/bhem/scenes/plate_clamped.json", .method = "linear_fem", .res = "64" },
-    { .scene = "bench/bhem/scenes/plate_simply_supported.json", .method = "linear_fem", .res = "32" },
-    /* the full ring needs averaged edge directors (docs/linear_fem.md) */
-    { .scene = "bench/bhem/scenes/rollup_full.json", .method = "linear_fem", .res = "16", .set = { "method.cells_t=1", "method.director=average" } },
-    { .scene = "bench/bhem/scenes/rollup_quarter.json", .method = "linear_fem", .res = "16", .set = { "method.cells_t=1" } },
-    { .scene = "bench/bhem/scenes/scordelis_lo_linear.json", .method = "linear_fem", .res = "32" },
+    /* linear_fem (discrete shells, order 2) runs at the resolutions its scenes
+     * bundle it at ("methods": the clamped plates need 64 x 64 for 1 %), with
+     * the scene's settings (rollup_full: averaged edge directors) */
 };
 
 static const char *cheap_res(const char *scene, const char *method, const char *const **sets)

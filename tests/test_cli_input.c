@@ -159,13 +159,52 @@ SB_TEST(scene_from_stdin)
     CHECK(strstr(err, "not found") != NULL);
 }
 
+/* issue 27: a scene bundles each method at its own resolution ("methods"),
+ * with its own method.* settings; --res and --set win; names and keys the
+ * registry does not know are refused by check and run, naming the file */
+SB_TEST(scene_method_settings)
+{
+    const char *bin = sb_test_bin(), *root = sb_test_root();
+    char path[512], cmd[2048];
+    snprintf(path, sizeof path, "%s/bundled.json", tmpdir);
+    snprintf(cmd, sizeof cmd, "sed 's/\"methods\": {.*/\"methods\": {\"bhem\": "
+             "{\"resolution\": 4, \"set\": {\"method.hessian\": \"pseudo\"}}}/' %s/bench/scenes/plate_clamped.json > %s",
+             root, path);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "%s", cmd), 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check %s", bin, path), 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s run --scene %s --method bhem --solver lsnewton --out none "
+                       "--summary json --quiet", bin, path), 0);
+    CHECK_MSG(strstr(out, "\"res\": 4,") && strstr(out, "pseudo Hessian"), "%s / %s", out, err);
+    /* the command line wins over the scene */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s run --scene %s --method bhem --solver lsnewton --res 2 "
+                       "--set method.hessian=exact --out none --summary json --quiet", bin, path), 0);
+    CHECK_MSG(strstr(out, "\"res\": 2,") && strstr(out, "exact Hessian"), "%s / %s", out, err);
+    /* another method keeps the scene's own resolution */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s run --scene %s --method rmtr --solver lsnewton --out none "
+                       "--summary json --quiet", bin, path), 0);
+    CHECK_MSG(strstr(out, "\"res\": 16,"), "%s / %s", out, err);
+    /* a method this build does not have, a parameter the method does not have */
+    const char *bad[2][2] = { { "s/\"bhem\": {/\"bhem2\": {/", "not a method of this build" },
+                              { "s/method.hessian/method.hesian/", "method.hesian" } };
+    for (int i = 0; i < 2; i++) {
+        char badp[600];
+        snprintf(badp, sizeof badp, "%s/bad%d.json", tmpdir, i);
+        CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "sed '%s' %s > %s", bad[i][0], path, badp), 0);
+        CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check %s", bin, badp), 2);
+        CHECK_MSG(strstr(err, bad[i][1]) && strstr(err, badp) && lines(err) == 1, "%s", err);
+        CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s run --scene %s --method rmtr --solver lsnewton "
+                           "--out none --quiet", bin, badp), 2);
+        CHECK_MSG(strstr(err, bad[i][1]), "%s", err);
+    }
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_cli_in_XXXXXX");
     if (!mkdtemp(tmpdir)) return 3;
     static const sb_test_case cases[] = {
         SB_CASE(control_characters_escaped), SB_CASE(escape_function), SB_CASE(fifo_hdf5_bom_and_streams),
-        SB_CASE(scene_from_stdin), SB_END,
+        SB_CASE(scene_from_stdin), SB_CASE(scene_method_settings), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[600];

@@ -18,6 +18,7 @@
 #include "sb_output.h"
 #include "sb_record.h"
 #include "sb_render.h"
+#include "sb_run.h"
 #include "sb_scene.h"
 #include "sb_study.h"
 
@@ -46,7 +47,8 @@ static int cmd_check(int argc, char **argv)
         if (sb_scene_load(file, &sc, err, sizeof err)) {
             fprintf(stderr, "%s\n", err);
             bad = 1;
-        } else if (sb_reference_check(&sc, NULL, 0, err, sizeof err)) {   /* a reference file must be usable */
+        } else if (sb_run_scene_methods_check(&sc, err, sizeof err) ||
+                   sb_reference_check(&sc, NULL, 0, err, sizeof err)) {   /* a reference file must be usable */
             char e[1100];
             fprintf(stderr, "%s: %s\n", sb_escape_copy(file, e, sizeof e), err);
             sb_scene_free(&sc);

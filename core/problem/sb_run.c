@@ -94,7 +94,18 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
     }
     *levels = req->levels > 0 ? req->levels : 1;
     int rc = sb_run_combination_check(R->mt, R->stype, *levels, msg, sizeof msg);
-    if (!rc) rc = sb_run_paramset(&R->ctx.params, R->mt, R->stype, req->n_sets, req->sets, msg, sizeof msg);
+    if (!rc) rc = sb_run_scene_methods_check(&R->scene, msg, sizeof msg);
+    if (!rc) {
+        /* the scene's settings for this method first, the command line's --set after (it wins) */
+        const sb_scene_method *sm = sb_scene_method_find(&R->scene, R->mt->name);
+        const int n_scene = sm ? sm->n_sets : 0;
+        const char **sets = malloc((size_t)(n_scene + req->n_sets + 1) * sizeof *sets);
+        if (!sets) return SB_EXIT_INTERNAL;
+        for (int k = 0; k < n_scene; k++) sets[k] = sm->sets[k];
+        for (int k = 0; k < req->n_sets; k++) sets[n_scene + k] = req->sets[k];
+        rc = sb_run_paramset(&R->ctx.params, R->mt, R->stype, n_scene + req->n_sets, sets, msg, sizeof msg);
+        free(sets);
+    }
     if (rc) {
         fprintf(err, "shellbench: %s\n", msg);
         return rc == SB_ERR_INTERNAL ? SB_EXIT_INTERNAL : SB_EXIT_INPUT;

@@ -48,6 +48,9 @@ int sb_run_combination_check(const sb_method_type *mt, const struct sb_solver_ty
                              size_t errlen);
 /* The run's parameters: run.*, solver.* and method.* declared, then the
  * "key=value" overrides applied; SB_OK or an error with a sentence. */
+/* The scene's "methods" section against the registry: known methods, their
+ * own parameters, valid values; SB_OK or SB_ERR_INPUT naming the scene file. */
+int sb_run_scene_methods_check(const sb_scene *sc, char *err, size_t errlen);
 int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const struct sb_solver_type *st, int n_sets,
                     const char *const *sets, char *err, size_t errlen);
 

@@ -49,3 +49,34 @@ int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const sb_solver_t
         }
     return SB_OK;
 }
+
+/* The scene's "methods" section names registered methods and their own
+ * method.* parameters with valid values (the scene layer cannot check that:
+ * it does not know the methods). */
+int sb_run_scene_methods_check(const sb_scene *sc, char *err, size_t errlen)
+{
+    for (int i = 0; i < sc->n_methods; i++) {
+        const sb_scene_method *m = &sc->methods[i];
+        const sb_method_type *mt = sb_method_find(m->method);
+        if (!mt) {
+            snprintf(err, errlen, "%s: \"methods\" names \"%s\", which is not a method of this build (see `shellbench "
+                     "list methods`)", sc->path, m->method);
+            return SB_ERR_INPUT;
+        }
+        sb_paramset ps;
+        sb_paramset_init(&ps);
+        if (sb_paramset_add(&ps, "method", mt->params)) {
+            snprintf(err, errlen, "internal error: too many parameters");
+            return SB_ERR_INTERNAL;
+        }
+        for (int k = 0; k < m->n_sets; k++) {
+            char msg[512];
+            if (sb_paramset_set(&ps, m->sets[k], msg, sizeof msg)) {
+                sb_escape_controls(msg, sizeof msg);
+                snprintf(err, errlen, "%s: \"methods\"/\"%s\"/\"set\": %s", sc->path, m->method, msg);
+                return SB_ERR_INPUT;
+            }
+        }
+    }
+    return SB_OK;
+}

@@ -20,7 +20,10 @@ int sb_run_resolve_res(run_state *R, const sb_run_request *req)
                 R->scene.default_res, R->scene.name);
         return SB_EXIT_INPUT;
     }
-    R->res = req->res > 0 ? req->res : (R->scene.default_res > 0 ? R->scene.default_res : 8);
+    /* without --res: the resolution the scene bundles this method at ("methods"), else its own */
+    int bundled, bundled_t;
+    sb_scene_bundled_res(&R->scene, R->mt->name, &bundled, &bundled_t);
+    R->res = req->res > 0 ? req->res : bundled;
     /* --res NxM, or the scene's "resolution": [N, M] without --res (a method
      * that takes square resolutions only refuses the first, and gets N x N for
      * the second) */
@@ -35,7 +38,7 @@ int sb_run_resolve_res(run_state *R, const sb_run_request *req)
         return SB_EXIT_INPUT;
     }
     R->res_t = req->res_t > 0 ? req->res_t
-             : (req->res <= 0 && (R->mt->flags & SB_METHOD_RES_ST)) ? R->scene.default_res_t : 0;
+             : (req->res <= 0 && (R->mt->flags & SB_METHOD_RES_ST)) ? bundled_t : 0;
     if (R->n_grid < 2 || R->n_grid > SB_RUN_MAX_SAMPLES) {
         fprintf(R->err, "shellbench: --samples %d is out of range: the sample grid has 2 to %d points per side\n",
                 R->n_grid, SB_RUN_MAX_SAMPLES);

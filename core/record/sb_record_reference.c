@@ -10,7 +10,7 @@
 #include <string.h>
 
 /* Members of a scene that do not change its solution. */
-static const char *const not_the_problem[] = { "description", "resolution", "reference", "probes", NULL };
+static const char *const not_the_problem[] = { "description", "resolution", "methods", "reference", "probes", NULL };
 
 static json_t *problem_of(const char *text)
 {

@@ -69,7 +69,7 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
 {
     static const char *const keys[] = { "name", "description", "domain", "geometry", "material",
                                         "loads", "boundary", "time", "probes", "reference",
-                                        "resolution", NULL };
+                                        "resolution", "methods", NULL };
     long res = DEFAULT_RESOLUTION;
     int r, constrained = 0;
 
@@ -80,23 +80,10 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
                         SB_NAME_LEN - 1, sc->name);
     if ((r = sbj_get_string(c, root, "description", 0, sc->description, sizeof sc->description, NULL)))
         return r;
-    json_t *rv = json_object_get(root, "resolution");
-    if (rv && json_is_array(rv)) {
-        /* [N, M]: N elements along s, M along t (strips, annuli; --res NxM) */
-        double nm[2];
-        size_t mark = sbj_push(c, "resolution");
-        r = sbj_vec_value(c, rv, 2, nm);
-        for (int k = 0; k < 2 && !r; k++)
-            if (!(nm[k] >= 1 && nm[k] <= SB_SCENE_MAX_RESOLUTION && nm[k] == (long)nm[k]))
-                r = sbj_fail(c, NULL, 0, "[N, M] must hold two integers in [1, %d], got [%g, %g]",
-                             (int)SB_SCENE_MAX_RESOLUTION, nm[0], nm[1]);
-        sbj_pop(c, mark);
-        if (r) return r;
-        res = (long)nm[0];
-        sc->default_res_t = nm[1] != nm[0] ? (int)nm[1] : 0;
-    } else if ((r = sbj_get_int(c, root, "resolution", 0, 1, SB_SCENE_MAX_RESOLUTION, &res))) {
-        return r;
-    }
+    int res_i = DEFAULT_RESOLUTION, res_t = 0;
+    if ((r = sbj_parse_resolution(c, root, "resolution", &res_i, &res_t))) return r;
+    res = res_i;
+    sc->default_res_t = res_t;
     sc->default_res = (int)res;
     if ((r = sbj_parse_domain(c, root, &sc->domain))) return r;
     if ((r = sbj_parse_geometry(c, root, &sc->domain, &sc->chart))) return r;
@@ -106,6 +93,7 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
     if ((r = sbj_parse_boundary(c, root, sc))) return r;
     if ((r = sbj_parse_probes(c, root, sc))) return r;
     if ((r = sbj_parse_reference(c, root, sc))) return r;
+    if ((r = sbj_parse_methods(c, root, sc))) return r;
     if ((r = check_symmetry(c, sc))) return r;
     for (int b = 0; b < sc->n_bcs; b++) constrained += sc->bcs[b].kind != SB_BC_FREE;
     if (sc->time.mode == SB_TIME_QUASI_STATIC && constrained == 0)

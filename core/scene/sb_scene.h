@@ -193,6 +193,17 @@ typedef struct sb_reference {
     char note[256];          /* where the reference value comes from */
 } sb_reference;
 
+/* "methods": {"NAME": {"resolution": N or [N, M], "set": {"method.KEY": V}}}:
+ * how a discretization is bundled with the scene (sb_scene_methods.c) */
+#define SB_SCENE_MAX_METHODS 8
+#define SB_SCENE_MAX_METHOD_SETS 6
+typedef struct sb_scene_method {
+    char method[SB_NAME_LEN];
+    int res, res_t;          /* 0: the scene's "resolution" */
+    int n_sets;
+    char sets[SB_SCENE_MAX_METHOD_SETS][96];   /* "method.KEY=VALUE", applied before --set */
+} sb_scene_method;
+
 typedef struct sb_scene {
     char name[SB_NAME_LEN];
     char path[512];          /* file it was read from */
@@ -208,6 +219,8 @@ typedef struct sb_scene {
     sb_reference reference;
     int default_res;         /* suggested resolution (elements per side) when --res is absent */
     int default_res_t;       /* "resolution": [N, M]: M elements along t (0: as default_res) */
+    int n_methods;
+    sb_scene_method methods[SB_SCENE_MAX_METHODS];
 } sb_scene;
 
 /* Parse and validate.  On error returns SB_ERR_INPUT and writes
@@ -226,6 +239,12 @@ int sb_scene_resolve(const char *name_or_path, char *path, size_t len);
  * "results/references/trampoline.h5"), looked for where bundled scenes are
  * (working directory, $SB_ROOT, the executable's parent); SB_OK when found. */
 int sb_project_file(const char *rel, char *path, size_t len);
+
+/* The scene's settings for `method` (its "methods" entry), or NULL. */
+const sb_scene_method *sb_scene_method_find(const sb_scene *sc, const char *method);
+/* The resolution `method` is bundled at: its "methods" entry's, else the
+ * scene's "resolution", else 8 (res_t 0: as res). */
+void sb_scene_bundled_res(const sb_scene *sc, const char *method, int *res, int *res_t);
 
 /* Ramp factors at step n (1-based) of the scene's time spec. */
 double sb_load_factor(const sb_scene *s, const sb_load *ld, int step);

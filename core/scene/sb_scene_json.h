@@ -89,6 +89,9 @@ int sbj_parse_boundary(sbj_ctx *c, const json_t *root, sb_scene *sc);
 int sbj_parse_time(sbj_ctx *c, const json_t *root, sb_time_spec *t);
 int sbj_parse_probes(sbj_ctx *c, const json_t *root, sb_scene *sc);
 int sbj_parse_reference(sbj_ctx *c, const json_t *root, sb_scene *sc);
+/* "resolution" (N or [N, M]) of obj; untouched when absent */
+int sbj_parse_resolution(sbj_ctx *c, const json_t *obj, const char *key, int *res, int *res_t);
+int sbj_parse_methods(sbj_ctx *c, const json_t *root, sb_scene *sc);
 
 /* Parts: member "on" (edge names) and/or "at" (material points) of object
  * obj; edges_ok/points_ok say which are allowed; at least one part needed. */
