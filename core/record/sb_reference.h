@@ -38,8 +38,9 @@ int sb_scene_same_problem(const char *json_a, const char *json_b, char *why, siz
 /* Read the reference record `path` for the scene (name, verbatim JSON text)
  * and the sample grid (n points st[2n]).  Refused with one sentence naming
  * the file (SB_ERR_INPUT / SB_ERR_IO): an unreadable or unfinished record
- * (a checkpoint), a run that did not converge, a record of another scene
- * (other name, or the same name with another problem), another sample grid.
+ * (a checkpoint), a run that did not converge, a record of another problem
+ * (the scene's name does not count: a renamed copy keeps its reference, as
+ * sb_reference_check says at `check`), another sample grid.
  * On success ref owns its arrays (sb_refrec_free). */
 int sb_refrec_load(const char *path, const char *scene_name, const char *scene_json, int n,
                    const double *st, sb_refrec *ref, char *err, size_t errlen);
