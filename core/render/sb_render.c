@@ -379,6 +379,13 @@ static void draw_labels(sb_image *im, const sb_render_options *o, const sb_rende
 
 /* ---- the render loop ------------------------------------------------------- */
 
+/* The per-pixel Cranley-Patterson rotation of the Sobol points: SplitMix64
+ * (Steele, Lea & Flood 2014) of the pixel index, used as a hash, not as a
+ * stream.  Kept instead of a gsl_rng (issue 31): it is a pure function of
+ * (px, py), branch-free in the pixel loop and needs no allocation or seeding
+ * per pixel, and the committed images (docs/img, results/bhem/table1) are
+ * made with it.  Its name is written into every PNG (sb_render_record.c,
+ * SB_RENDER_SAMPLES). */
 static uint64_t splitmix(uint64_t *x)
 {
     uint64_t z = (*x += 0x9e3779b97f4a7c15ULL);

@@ -112,4 +112,7 @@ int sb_render_record_png(const char *path, const char *out, int w, int h, char *
  * exit code (0 ok, 2 input error, 3 internal error). */
 int sb_render_main(int argc, char **argv);
 
+/* how pixel samples are drawn, recorded in each image (issue 31) */
+#define SB_RENDER_SAMPLES "Sobol points (gsl_qrng_sobol, 4-D) with a per-pixel Cranley-Patterson rotation from the SplitMix64 hash of the pixel index"
+
 #endif

@@ -259,11 +259,11 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         }
     }
     if (!rc) {
-        char build[64], desc[512], param[256];
+        char build[64], desc[512], param[512];
         sb_sysinfo_build_id(build, sizeof build);
         snprintf(desc, sizeof desc, "%s; ray-patch intersection: %s", surf.what, sb_isect_names[o.isect]);
-        snprintf(param, sizeof param, "%dx%d, %d samples per pixel, colour %s, camera azimuth %g elevation %g zoom %g",
-                 o.width, o.height, o.spp, sb_color_names[o.color], o.azimuth, o.elevation, o.zoom);
+        snprintf(param, sizeof param, "%dx%d, %d samples per pixel (%s), colour %s, camera azimuth %g elevation %g zoom %g",
+                 o.width, o.height, o.spp, SB_RENDER_SAMPLES, sb_color_names[o.color], o.azimuth, o.elevation, o.zoom);
         char software[128];
         snprintf(software, sizeof software, "shellbench render (build %s)", build);
         const char *key[] = { "Title", "Source", "Description", "Comment", "Software" };
