@@ -23,8 +23,8 @@ PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
 # core/ is the architecture, one folder per part (docs/architecture.md):
-# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, cli
-CORE_DIRS := base scene mesh problem linalg shell solvers record report render study cli
+# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, regress, cli
+CORE_DIRS := base scene mesh problem linalg shell solvers record report render study regress cli
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
            $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) $(OPENMP) -MMD -MP
@@ -51,7 +51,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short
+.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short nightly
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -121,6 +121,13 @@ test: $(BIN) $(TEST_BIN)
 
 run: $(BIN)
 	$(BLAS_ENV) bash bench/default.sh $(BIN)
+
+# Nightly performance regression (docs/regression.md): the suite
+# bench/nightly/nightly.json against bench/nightly/baseline.json; exit 0 no
+# regression, 1 regression, 2 input error.  NIGHTLY_ARGS=--update-baseline
+# writes a new baseline.
+nightly: $(BIN)
+	$(BLAS_ENV) $(BIN) regress $(NIGHTLY_ARGS)
 
 bench: $(BIN) $(BENCH_BIN)
 	$(BLAS_ENV) bash bench/run_all.sh $(BUILD)

@@ -18,6 +18,7 @@ static const char overview[] =
     "  sweep --study FILE / report --study FILE      a study: work-precision, profiles, selection (docs/study.md)\n"
     "  reference SCENE [...]                         compute and store a scene's reference record\n"
     "  render FILE.h5 [--out FILE.png] [...]         a ray-traced picture of a record (docs/render.md)\n"
+    "  regress [--update-baseline] [...]             nightly regression against a baseline (docs/regression.md)\n"
     "  help [COMMAND], --version\n"
     "exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error,\n"
     "            3 internal error, 4 stopped by --stop-after-steps (resumable),\n"
@@ -127,6 +128,10 @@ int sb_cli_help(const char *cmd, FILE *f)
             fputs(topics[i].text, f);
             return 0;
         }
+    if (!strcmp(cmd, "regress")) {   /* beside the command (core/cli/sb_cli_regress.c) */
+        fputs(sb_cli_regress_help, f);
+        return 0;
+    }
     if (!strcmp(cmd, "render")) {   /* render's options live beside it (core/render/sb_render_cli.c) */
         char opt[] = "--help";
         char *argv[] = { opt, NULL };
