@@ -35,6 +35,19 @@ LDFLAGS += $(SAN) $(OPENMP)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
 
+# MPI sweeps (`mpirun -n N shellbench sweep --study FILE`, docs/regression.md):
+# built in when OpenMPI's mpicc is found (scripts/ensure_deps.sh installs
+# it); `make MPI=0` builds without.  Only core/study/sb_sweep_mpi.c uses MPI;
+# the binary calls MPI_Init only when an MPI launcher started it.
+MPICC ?= $(shell command -v mpicc 2>/dev/null)
+ifneq ($(MPI),0)
+ifneq ($(MPICC),)
+MPI_CFLAGS := $(shell $(MPICC) --showme:compile 2>/dev/null)
+MPI_LIBS   := $(shell $(MPICC) --showme:link 2>/dev/null)
+HAVE_MPI   := 1
+endif
+endif
+
 LIB_C   := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c) methods/*/*.c tests/fixture/*.c))
 LIB_C   := $(filter-out core/cli/main.c,$(LIB_C))
 LIB_CXX := $(sort $(wildcard methods/*/*.cpp))
@@ -75,6 +88,14 @@ $(BUILD)/build_id.h: FORCE | $(DEPS_STAMP)
 	@mkdir -p $(BUILD)
 	@echo '#define SB_BUILD_ID "$(BUILD_ID)"' > $@.new
 	@cmp -s $@.new $@ || mv $@.new $@; rm -f $@.new
+ifeq ($(HAVE_MPI),1)
+$(BUILD)/core/study/sb_sweep_mpi.o: CFLAGS += -DSB_HAVE_MPI $(MPI_CFLAGS)
+LDLIBS += $(MPI_LIBS)
+endif
+# the object follows the MPI choice (a stamp that changes with it)
+$(BUILD)/core/study/sb_sweep_mpi.o: $(BUILD)/mpi_$(if $(HAVE_MPI),on,off).stamp
+$(BUILD)/mpi_%.stamp: | $(DEPS_STAMP)
+	@rm -f $(BUILD)/mpi_*.stamp; mkdir -p $(BUILD); touch $@
 $(BUILD)/core/base/sb_sysinfo.o: $(BUILD)/build_id.h
 $(BUILD)/core/base/sb_sysinfo.o: CFLAGS += -include $(BUILD)/build_id.h
 .PHONY: FORCE
