@@ -36,9 +36,11 @@ LDFLAGS += $(SAN) $(OPENMP)
 DEPS_STAMP := $(BUILD)/.deps-ok
 
 # MPI sweeps (`mpirun -n N shellbench sweep --study FILE`, docs/regression.md):
-# built in when OpenMPI's mpicc is found (scripts/ensure_deps.sh installs
-# it); `make MPI=0` builds without.  Only core/study/sb_sweep_mpi.c uses MPI;
-# the binary calls MPI_Init only when an MPI launcher started it.
+# when OpenMPI's mpicc is found (scripts/ensure_deps.sh installs it) a second
+# binary, $(BUILD)/shellbench-mpi, is built with core/study/sb_sweep_mpi.c
+# compiled with MPI; build/shellbench and the tests never link libmpi (no
+# MPI library in ordinary runs, forked runs or sanitizer builds) and hand a
+# sweep started by an MPI launcher over to shellbench-mpi.  `make MPI=0`: no MPI.
 MPICC ?= $(shell command -v mpicc 2>/dev/null)
 ifneq ($(MPI),0)
 ifneq ($(MPICC),)
@@ -88,14 +90,6 @@ $(BUILD)/build_id.h: FORCE | $(DEPS_STAMP)
 	@mkdir -p $(BUILD)
 	@echo '#define SB_BUILD_ID "$(BUILD_ID)"' > $@.new
 	@cmp -s $@.new $@ || mv $@.new $@; rm -f $@.new
-ifeq ($(HAVE_MPI),1)
-$(BUILD)/core/study/sb_sweep_mpi.o: CFLAGS += -DSB_HAVE_MPI $(MPI_CFLAGS)
-LDLIBS += $(MPI_LIBS)
-endif
-# the object follows the MPI choice (a stamp that changes with it)
-$(BUILD)/core/study/sb_sweep_mpi.o: $(BUILD)/mpi_$(if $(HAVE_MPI),on,off).stamp
-$(BUILD)/mpi_%.stamp: | $(DEPS_STAMP)
-	@rm -f $(BUILD)/mpi_*.stamp; mkdir -p $(BUILD); touch $@
 $(BUILD)/core/base/sb_sysinfo.o: $(BUILD)/build_id.h
 $(BUILD)/core/base/sb_sysinfo.o: CFLAGS += -include $(BUILD)/build_id.h
 .PHONY: FORCE
@@ -107,6 +101,17 @@ $(LIB): $(LIB_OBJ)
 
 $(BIN): $(BUILD)/core/cli/main.o $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+ifeq ($(HAVE_MPI),1)
+MPI_BIN := $(BUILD)/shellbench-mpi
+$(BUILD)/core/study/sb_sweep_mpi.mpi.o: core/study/sb_sweep_mpi.c | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DSB_HAVE_MPI $(MPI_CFLAGS) -c $< -o $@
+# the MPI object comes before the archive, whose own sb_sweep_mpi.o is then not linked
+$(MPI_BIN): $(BUILD)/core/cli/main.o $(BUILD)/core/study/sb_sweep_mpi.mpi.o $(LIB)
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)
+all: $(MPI_BIN)
+endif
 
 $(TEST_HELP_OBJ): $(BUILD)/tests/%.o: tests/%.c | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
@@ -130,12 +135,12 @@ BLAS_ENV = OPENBLAS_NUM_THREADS=1 OPENBLAS_CORETYPE=$(SB_BLAS_CORE)
 LSAN_ENV = LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0
 
 # Each test binary writes its own result file; the summary sums them.
-$(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN)
+$(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN) $(MPI_BIN)
 	@SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) $(BLAS_ENV) $(LSAN_ENV) \
 	  $(abspath $<) > $@.log 2>&1; echo $$? > $@.rc; tail -n 1 $@.log > $@; \
 	  if [ "$$(cat $@.rc)" != 0 ]; then echo "--- $< failed:"; grep -E 'FAIL|not ok|rror|Sanitizer' $@.log | head -n 30; fi
 
-test: $(BIN) $(TEST_BIN)
+test: $(BIN) $(MPI_BIN) $(TEST_BIN)
 	@rm -f $(BUILD)/tests/*.result
 	@$(MAKE) --no-print-directory -k $(TEST_OK) || true
 	@bash scripts/test_summary.sh $(BUILD)/tests
@@ -148,7 +153,8 @@ run: $(BIN)
 # regression, 1 regression, 2 input error.  NIGHTLY_ARGS=--update-baseline
 # writes a new baseline.
 nightly: $(BIN)
-	$(BLAS_ENV) $(BIN) regress $(NIGHTLY_ARGS)
+	@$(BLAS_ENV) $(BIN) regress $(NIGHTLY_ARGS); rc=$$?; \
+	  echo "shellbench regress: exit $$rc (0 no regression, 1 regression, 2 input error; make itself exits 2 on any failure)"; exit $$rc
 
 bench: $(BIN) $(BENCH_BIN)
 	$(BLAS_ENV) bash bench/run_all.sh $(BUILD)

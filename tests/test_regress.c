@@ -114,7 +114,7 @@ SB_TEST(baseline_round_trip_and_errors)
     snprintf(s.prov.build, sizeof s.prov.build, "v1-2-gabc");
     snprintf(s.prov.date, sizeof s.prov.date, "2026-12-04T00:00:00Z");
     snprintf(s.prov.blas_core, sizeof s.prov.blas_core, "Prescott");
-    s.prov.repeat = 3, s.prov.n_calib = 3, s.prov.calib_median = 0.1;
+    s.prov.repeat = 3, s.prov.n_calib = 3, s.prov.calib_median = 0.1, s.prov.load_max = 2.5, s.prov.cores = 2;
     for (int i = 0; i < 3; i++) s.prov.calib[i] = 0.1 + 0.001 * i;
     sb_regress_case *c = sb_regress_set_add(&s, "plate/bhem-tr-r4.h5");
     fill(c, 0.123456789012345678, 3);
@@ -132,6 +132,7 @@ SB_TEST(baseline_round_trip_and_errors)
         CHECK(r.c[0].norm[1] == c->norm[1]);   /* 17 digits: exactly */
         CHECK(!strcmp(r.prov.build, "v1-2-gabc"));
         CHECK(r.prov.calib[2] == s.prov.calib[2]);
+        CHECK(r.prov.load_max == 2.5 && r.prov.cores == 2);
     }
     sb_regress_set_free(&r);
     /* damaged files: the file and the member are named */

@@ -68,10 +68,13 @@ static const char sweep_help[] =
     "  --strict              as for run: a converged run whose validation failed counts as exit 5\n"
     "  --progress, --no-progress, --quiet   as for run; the progress line shows runs done and time left\n"
     "exit code: the worst of its runs.\n"
-    "usage: shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet]\n"
+    "usage: shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume]\n"
     "A study file (docs/study.md), checked whole before any run (FILE:LINE:COL); runs what is not\n"
-    "recorded, N at a time in child processes; refusals leave RECORD.refused; --max-runs stops\n"
-    "resumably (exit 4); --plan prints the runs and runs nothing.\n";
+    "recorded (--resume is implied), N at a time in child processes; refusals leave RECORD.refused;\n"
+    "--max-runs stops resumably (exit 4); --plan prints the runs and runs nothing.\n"
+    "  mpirun -n N shellbench sweep --study FILE   the runs over N MPI ranks, longest expected first\n"
+    "  --emit slurm [--out FILE]   write an sbatch job array of the runs not recorded (default\n"
+    "                        RECORDS/STUDY.sbatch); --task K runs its task K (docs/regression.md)\n";
 
 static const char check_help[] =
     "usage: shellbench check SCENE...\n"

@@ -126,6 +126,9 @@ typedef struct sb_regress_prov {
     double calib[SB_REGRESS_MAX_REPEAT]; /* CPU seconds of each calibration pass */
     int n_calib;
     double calib_median;
+    double load_max;                     /* largest 1-minute load average seen at the start of a round
+                                            (/proc/loadavg; NaN: not known) */
+    int cores;                           /* online processors */
 } sb_regress_prov;
 
 typedef struct sb_regress_set {

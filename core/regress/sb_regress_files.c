@@ -79,6 +79,8 @@ int sb_regress_baseline_write(const sb_regress_set *s, const char *path, char *e
     json_object_set_new(pv, "repeat", json_integer(p->repeat));
     json_object_set_new(pv, "calibration_seconds", reals(p->calib, p->n_calib));
     json_object_set_new(pv, "calibration_median", json_real(p->calib_median));
+    json_object_set_new(pv, "load_average_max", isfinite(p->load_max) ? json_real(p->load_max) : json_null());
+    json_object_set_new(pv, "cores", json_integer(p->cores));
     json_object_set_new(root, "provenance", pv);
     for (int k = 0; k < s->n; k++)
         if (s->c[k].ok) json_array_append_new(cases, case_json(&s->c[k]));
@@ -221,6 +223,10 @@ int sb_regress_baseline_read(const char *path, sb_regress_set *s, char *err, siz
         p->repeat = (int)get_int(&r, pv, "repeat", "/provenance");
         p->n_calib = get_reals(&r, pv, "calibration_seconds", "/provenance", p->calib, SB_REGRESS_MAX_REPEAT, 1);
         p->calib_median = get_real(&r, pv, "calibration_median", "/provenance");
+        /* optional (baselines written before they were kept) */
+        json_t *l = json_object_get(pv, "load_average_max"), *c = json_object_get(pv, "cores");
+        p->load_max = json_is_number(l) ? json_number_value(l) : NAN;
+        p->cores = json_is_integer(c) ? (int)json_integer_value(c) : 0;
     }
     json_t *cases = json_object_get(root, "cases");
     if (!r.bad && !json_is_array(cases)) fail(&r, "/cases", "missing or not an array");

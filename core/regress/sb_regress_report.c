@@ -28,9 +28,14 @@ static double minimum(const double *x, int n)
 
 static void prov_line(FILE *out, const char *what, const sb_regress_prov *p)
 {
-    fprintf(out, "* %s: build `%s`, %s, host `%s`, %s, BLAS kernels `%s`, %d repeats, calibration %.3f s CPU (median of %d)\n",
+    fprintf(out, "* %s: build `%s`, %s, host `%s`, %s, BLAS kernels `%s`, %d repeats, calibration %.3f s CPU (median of %d)",
             what, p->build, p->date, p->host, p->cpu, p->blas_core, p->repeat, p->calib_median, p->n_calib);
+    if (isfinite(p->load_max) && p->cores > 0) fprintf(out, ", load average up to %.1f on %d cores", p->load_max, p->cores);
+    fprintf(out, "\n");
 }
+
+/* a measurement made on a machine busier than its cores */
+static int busy(const sb_regress_prov *p) { return p && isfinite(p->load_max) && p->cores > 0 && p->load_max > p->cores; }
 
 void sb_regress_markdown(FILE *out, const sb_regress_set *now, const sb_regress_set *base, const sb_regress_rules *ru,
                          const char *baseline_path)
@@ -45,6 +50,12 @@ void sb_regress_markdown(FILE *out, const sb_regress_set *now, const sb_regress_
                  "slower/faster when a two-sided Mann-Whitney U test gives p < %g **and** the medians differ by at least "
                  "%.0f %%; deterministic figures exactly (energy and probes to %.0e relative)\n\n",
             ru->alpha, 100 * ru->min_effect, ru->rtol);
+    if (busy(&now->prov) || (base && busy(&base->prov)))
+        fprintf(out, "**Warning**: the machine was busier than its cores during %s (load average above the core "
+                     "count): CPU times then inflate unevenly (shared caches and memory bandwidth), which the calibration "
+                     "does not fully absorb; treat slower/faster verdicts with care and re-run on a quiet machine "
+                     "(docs/regression.md \"Shared machines\").\n\n",
+                busy(&now->prov) && base && busy(&base->prov) ? "this run and the baseline's" : busy(&now->prov) ? "this run" : "the baseline's");
     fprintf(out, "**%d cases:", now->n);
     for (int v = 0; v < SB_VERDICT_COUNT; v++)
         if (count[v]) fprintf(out, " %d %s", count[v], sb_verdict_name((sb_verdict)v));

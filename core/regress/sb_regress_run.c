@@ -47,6 +47,16 @@ static const char *case_id(const sb_study *st, const sb_plan_run *r)
     return !strncmp(r->out, st->records, n) && r->out[n] == '/' ? r->out + n + 1 : r->out;
 }
 
+/* the 1-minute load average (NaN when /proc/loadavg cannot be read) */
+static double load_average(void)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    double l = NAN;
+    if (f && fscanf(f, "%lf", &l) != 1) l = NAN;
+    if (f) fclose(f);
+    return l;
+}
+
 static int selected(const sb_regress_run_options *o, const char *id)
 {
     if (o->n_only <= 0) return 1;
@@ -174,6 +184,8 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
     sb_sysinfo_blas_core(p->blas_core, sizeof p->blas_core);
     snprintf(p->suite, sizeof p->suite, "%s", st->path);
     p->repeat = o->repeat;
+    p->cores = sb_sysinfo_cores();
+    p->load_max = NAN;
     int jobs = o->jobs > 0 ? o->jobs : 1, refused = 0;
     slot *sl = calloc((size_t)jobs, sizeof *sl);
     if (!sl) { free(runs); sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
@@ -181,6 +193,8 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
         fprintf(out, "regress %s: %d cases x %d repeats, %d at a time, calibration before each round\n", st->name, n,
                 o->repeat, jobs);
     for (int rep = 0; rep < o->repeat && !refused; rep++) {
+        double l = load_average();
+        if (isfinite(l) && !(l <= p->load_max)) p->load_max = l;
         p->calib[p->n_calib++] = sb_regress_calibrate();
         int next = 0, running = 0;
         while ((next < n || running > 0) && !refused) {

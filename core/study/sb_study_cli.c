@@ -94,7 +94,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
     } else if (task >= 0) {
         rc = sb_study_run_task(st, task, stdout, stderr);
     } else if (sb_mpi_launched() && !plan_only) {
-        rc = sb_study_sweep_mpi(st, &o, stdout, stderr);
+        rc = sb_study_sweep_mpi(st, &o, argc, argv, stdout, stderr);
     } else if (plan_only) {
         sb_plan p;
         rc = 0;

@@ -64,9 +64,10 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err);
 void sb_study_order_longest_first(const sb_study *st, const sb_plan *plan, int *queue, int nq, double *expected);
 /* 1 when this process was started by an MPI launcher (mpirun, srun). */
 int  sb_mpi_launched(void);
-/* The sweep over MPI ranks (rank 0 schedules and runs too); without MPI
- * in the build: a sentence and SB_EXIT_INPUT. */
-int  sb_study_sweep_mpi(const sb_study *st, const sb_sweep_options *o, FILE *out, FILE *err);
+/* The sweep over MPI ranks (rank 0 schedules and runs too).  In the
+ * ordinary binary (no MPI): exec BUILD/shellbench-mpi with `sweep` and the
+ * command's arguments, or a sentence and SB_EXIT_INPUT when there is none. */
+int  sb_study_sweep_mpi(const sb_study *st, const sb_sweep_options *o, int argc, char **argv, FILE *out, FILE *err);
 /* The runnable runs of the plan, in plan order: task k of a job array is
  * runs[task[k]]; returns the count (task: plan->n entries). */
 int  sb_study_tasks(const sb_plan *plan, int *task);

@@ -98,3 +98,12 @@ int sb_study_tasks(const sb_plan *plan, int *task)
         if (plan->runs[i].state == SB_PLAN_RUN) task[n++] = i;
     return n;
 }
+
+int sb_mpi_launched(void)
+{
+    /* OpenMPI's mpirun, PMIx launchers (OpenMPI 4/5, Slurm's srun --mpi=pmix), MPICH/Hydra (PMI) */
+    static const char *const vars[] = { "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK" };
+    for (size_t k = 0; k < sizeof vars / sizeof *vars; k++)
+        if (getenv(vars[k])) return 1;
+    return 0;
+}
