@@ -23,8 +23,8 @@ PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
 # core/ is the architecture, one folder per part (docs/architecture.md):
-# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, cli
-CORE_DIRS := base scene mesh problem linalg shell solvers record report render study cli
+# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, regress, cli
+CORE_DIRS := base scene mesh problem linalg shell solvers record report render study regress cli
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
            $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) $(OPENMP) -MMD -MP
@@ -34,6 +34,21 @@ LDLIBS   = $(PKGLIBS) -lcholmod -lsuitesparseconfig -llapack -lblas -losdCPU -ls
 LDFLAGS += $(SAN) $(OPENMP)
 
 DEPS_STAMP := $(BUILD)/.deps-ok
+
+# MPI sweeps (`mpirun -n N shellbench sweep --study FILE`, docs/regression.md):
+# when OpenMPI's mpicc is found (scripts/ensure_deps.sh installs it) a second
+# binary, $(BUILD)/shellbench-mpi, is built with core/study/sb_sweep_mpi.c
+# compiled with MPI; build/shellbench and the tests never link libmpi (no
+# MPI library in ordinary runs, forked runs or sanitizer builds) and hand a
+# sweep started by an MPI launcher over to shellbench-mpi.  `make MPI=0`: no MPI.
+MPICC ?= $(shell command -v mpicc 2>/dev/null)
+ifneq ($(MPI),0)
+ifneq ($(MPICC),)
+MPI_CFLAGS := $(shell $(MPICC) --showme:compile 2>/dev/null)
+MPI_LIBS   := $(shell $(MPICC) --showme:link 2>/dev/null)
+HAVE_MPI   := 1
+endif
+endif
 
 LIB_C   := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c) methods/*/*.c tests/fixture/*.c))
 LIB_C   := $(filter-out core/cli/main.c,$(LIB_C))
@@ -51,7 +66,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short
+.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short nightly
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -87,6 +102,17 @@ $(LIB): $(LIB_OBJ)
 $(BIN): $(BUILD)/core/cli/main.o $(LIB)
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
+ifeq ($(HAVE_MPI),1)
+MPI_BIN := $(BUILD)/shellbench-mpi
+$(BUILD)/core/study/sb_sweep_mpi.mpi.o: core/study/sb_sweep_mpi.c | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -DSB_HAVE_MPI $(MPI_CFLAGS) -c $< -o $@
+# the MPI object comes before the archive, whose own sb_sweep_mpi.o is then not linked
+$(MPI_BIN): $(BUILD)/core/cli/main.o $(BUILD)/core/study/sb_sweep_mpi.mpi.o $(LIB)
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS) $(MPI_LIBS)
+all: $(MPI_BIN)
+endif
+
 $(TEST_HELP_OBJ): $(BUILD)/tests/%.o: tests/%.c | $(DEPS_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Itests -c $< -o $@
@@ -109,18 +135,26 @@ BLAS_ENV = OPENBLAS_NUM_THREADS=1 OPENBLAS_CORETYPE=$(SB_BLAS_CORE)
 LSAN_ENV = LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0
 
 # Each test binary writes its own result file; the summary sums them.
-$(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN)
+$(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN) $(MPI_BIN)
 	@SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) $(BLAS_ENV) $(LSAN_ENV) \
 	  $(abspath $<) > $@.log 2>&1; echo $$? > $@.rc; tail -n 1 $@.log > $@; \
 	  if [ "$$(cat $@.rc)" != 0 ]; then echo "--- $< failed:"; grep -E 'FAIL|not ok|rror|Sanitizer' $@.log | head -n 30; fi
 
-test: $(BIN) $(TEST_BIN)
+test: $(BIN) $(MPI_BIN) $(TEST_BIN)
 	@rm -f $(BUILD)/tests/*.result
 	@$(MAKE) --no-print-directory -k $(TEST_OK) || true
 	@bash scripts/test_summary.sh $(BUILD)/tests
 
 run: $(BIN)
 	$(BLAS_ENV) bash bench/default.sh $(BIN)
+
+# Nightly performance regression (docs/regression.md): the suite
+# bench/nightly/nightly.json against bench/nightly/baseline.json; exit 0 no
+# regression, 1 regression, 2 input error.  NIGHTLY_ARGS=--update-baseline
+# writes a new baseline.
+nightly: $(BIN)
+	@$(BLAS_ENV) $(BIN) regress $(NIGHTLY_ARGS); rc=$$?; \
+	  echo "shellbench regress: exit $$rc (0 no regression, 1 regression, 2 input error; make itself exits 2 on any failure)"; exit $$rc
 
 bench: $(BIN) $(BENCH_BIN)
 	$(BLAS_ENV) bash bench/run_all.sh $(BUILD)

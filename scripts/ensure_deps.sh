@@ -19,6 +19,9 @@ command -v c++ >/dev/null 2>&1                    || need+=(g++)
 command -v make >/dev/null 2>&1                   || need+=(make)
 command -v git >/dev/null 2>&1                    || need+=(git)
 command -v python3 >/dev/null 2>&1                || need+=(python3)    # benchmark report scripts (standard library only)
+# MPI sweeps (mpirun -n N shellbench sweep --study FILE; optional: the build leaves MPI out without mpicc)
+command -v mpicc >/dev/null 2>&1                  || need+=(libopenmpi-dev)
+command -v mpirun >/dev/null 2>&1                 || need+=(openmpi-bin)
 # `make fuzz` only (`ensure_deps.sh fuzz`): clang with libFuzzer and its sanitizer runtimes
 if [ "${1:-}" = fuzz ]; then
   probe=$(mktemp -d)

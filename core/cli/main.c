@@ -10,6 +10,7 @@
  *   shellbench inspect [--format md|csv] FILE.h5...
  *   shellbench help [COMMAND] | --version
  *   shellbench render FILE.h5 [options]   (core/render/sb_render_cli.c, docs/render.md)
+ *   shellbench regress [options]          (core/cli/sb_cli_regress.c, docs/regression.md)
  * Exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input
  * error, 3 internal error, 4 stopped by --stop-after-steps, 5 converged but
  * validation failed (--strict). */
@@ -17,6 +18,7 @@
 #include "sb_inspect.h"
 #include "sb_output.h"
 #include "sb_record.h"
+#include "sb_regress.h"
 #include "sb_render.h"
 #include "sb_run.h"
 #include "sb_scene.h"
@@ -171,7 +173,7 @@ int main(int argc, char **argv)
     static const struct { const char *name; int (*fn)(int, char **); } cmds[] = {
         { "list", sb_cli_list }, { "check", cmd_check }, { "run", cmd_run }, { "sweep", sb_cli_sweep },
         { "report", cmd_report }, { "inspect", cmd_inspect }, { "render", sb_render_main },
-        { "reference", sb_study_cmd_reference },
+        { "reference", sb_study_cmd_reference }, { "regress", sb_cli_regress },
     };
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++)
         if (!strcmp(cmd, cmds[i].name)) {

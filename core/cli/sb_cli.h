@@ -40,5 +40,6 @@ void sb_cli_version(FILE *f);
 /* ---- commands ------------------------------------------------------------ */
 int  sb_cli_list(int argc, char **argv);     /* sb_cli_list.c */
 int  sb_cli_sweep(int argc, char **argv);    /* sb_cli_sweep.c */
+extern const char sb_cli_regress_help[];     /* sb_cli_regress.c */
 
 #endif

@@ -18,6 +18,7 @@ static const char overview[] =
     "  sweep --study FILE / report --study FILE      a study: work-precision, profiles, selection (docs/study.md)\n"
     "  reference SCENE [...]                         compute and store a scene's reference record\n"
     "  render FILE.h5 [--out FILE.png] [...]         a ray-traced picture of a record (docs/render.md)\n"
+    "  regress [--update-baseline] [...]             nightly regression against a baseline (docs/regression.md)\n"
     "  help [COMMAND], --version\n"
     "exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error,\n"
     "            3 internal error, 4 stopped by --stop-after-steps (resumable),\n"
@@ -67,10 +68,13 @@ static const char sweep_help[] =
     "  --strict              as for run: a converged run whose validation failed counts as exit 5\n"
     "  --progress, --no-progress, --quiet   as for run; the progress line shows runs done and time left\n"
     "exit code: the worst of its runs.\n"
-    "usage: shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet]\n"
+    "usage: shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume]\n"
     "A study file (docs/study.md), checked whole before any run (FILE:LINE:COL); runs what is not\n"
-    "recorded, N at a time in child processes; refusals leave RECORD.refused; --max-runs stops\n"
-    "resumably (exit 4); --plan prints the runs and runs nothing.\n";
+    "recorded (--resume is implied), N at a time in child processes; refusals leave RECORD.refused;\n"
+    "--max-runs stops resumably (exit 4); --plan prints the runs and runs nothing.\n"
+    "  mpirun -n N shellbench sweep --study FILE   the runs over N MPI ranks, longest expected first\n"
+    "  --emit slurm [--out FILE]   write an sbatch job array of the runs not recorded (default\n"
+    "                        RECORDS/STUDY.sbatch); --task K runs its task K (docs/regression.md)\n";
 
 static const char check_help[] =
     "usage: shellbench check SCENE...\n"
@@ -127,6 +131,10 @@ int sb_cli_help(const char *cmd, FILE *f)
             fputs(topics[i].text, f);
             return 0;
         }
+    if (!strcmp(cmd, "regress")) {   /* beside the command (core/cli/sb_cli_regress.c) */
+        fputs(sb_cli_regress_help, f);
+        return 0;
+    }
     if (!strcmp(cmd, "render")) {   /* render's options live beside it (core/render/sb_render_cli.c) */
         char opt[] = "--help";
         char *argv[] = { opt, NULL };

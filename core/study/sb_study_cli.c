@@ -1,7 +1,9 @@
 /* sb_study_cli.c — the study commands of the command line (core/cli/main.c
  * dispatches to them):
  *
- *   shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet]
+ *   shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume]
+ *                    [--emit slurm [--out FILE]] [--task K]
+ *   mpirun -n N shellbench sweep --study FILE ...   (sb_sweep_mpi.c)
  *   shellbench report --study FILE [--out DIR] [--dir DIR] [--deterministic]
  *
  * Exit codes as for runs: 0 done, 2 the study file or an option is wrong
@@ -44,10 +46,15 @@ int sb_study_cmd_sweep(int argc, char **argv)
 {
     const char *file = NULL, *dir = NULL;
     sb_sweep_options o = { 1, 0, 0 };
-    int plan_only = 0;
+    int plan_only = 0, task = -1;
+    const char *emit = NULL, *emit_out = NULL;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--study") && v) file = v, i++;
+        else if (!strcmp(a, "--emit") && v) emit = v, i++;
+        else if (!strcmp(a, "--out") && v) emit_out = v, i++;
+        else if (!strcmp(a, "--task")) { if (parse_count(a, v, 0, &task)) return 2; i++; }
+        else if (!strcmp(a, "--resume")) { /* a study sweep always resumes: accepted for `sweep --resume` */ }
         else if (!strcmp(a, "--dir") && v) dir = v, i++;
         else if (!strcmp(a, "--jobs")) { if (parse_count(a, v, 1, &o.jobs)) return 2; i++; }
         else if (!strcmp(a, "--max-runs")) { if (parse_count(a, v, 1, &o.max_runs)) return 2; i++; }
@@ -55,12 +62,22 @@ int sb_study_cmd_sweep(int argc, char **argv)
         else if (!strcmp(a, "--quiet")) o.quiet = 1;
         else {
             fprintf(stderr, "shellbench sweep --study: unknown option or missing value \"%s\" "
-                            "(--study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet])\n", a);
+                            "(--study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume] "
+                            "[--emit slurm [--out FILE]] [--task K])\n", a);
             return 2;
         }
     }
     if (!file) {
         fprintf(stderr, "shellbench sweep: --study needs a file\n");
+        return 2;
+    }
+    if (emit && strcmp(emit, "slurm")) {
+        char e[64];
+        fprintf(stderr, "shellbench sweep: --emit: \"%s\" is not a known batch system (slurm)\n", sb_escape_copy(emit, e, sizeof e));
+        return 2;
+    }
+    if (emit_out && !emit) {
+        fprintf(stderr, "shellbench sweep --study: --out goes with --emit slurm (the records go to --dir)\n");
         return 2;
     }
     sb_study *st = malloc(sizeof *st);
@@ -72,7 +89,13 @@ int sb_study_cmd_sweep(int argc, char **argv)
         return 2;
     }
     int rc;
-    if (plan_only) {
+    if (emit) {
+        rc = sb_study_emit_slurm(st, file, emit_out, stdout, stderr);
+    } else if (task >= 0) {
+        rc = sb_study_run_task(st, task, stdout, stderr);
+    } else if (sb_mpi_launched() && !plan_only) {
+        rc = sb_study_sweep_mpi(st, &o, argc, argv, stdout, stderr);
+    } else if (plan_only) {
         sb_plan p;
         rc = 0;
         if (sb_study_plan(st, &p, err, sizeof err)) {

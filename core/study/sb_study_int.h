@@ -6,6 +6,8 @@
 #include "sb_run.h"
 #include "sb_study.h"
 
+#include <sys/types.h>
+
 /* Set-ups already done: (scene, method, levels, res) -> dofs or refusal. */
 typedef struct sb_dofs_entry {
     int scene, method, levels, res;
@@ -46,6 +48,33 @@ int sb_study_run_done(const sb_plan_run *r);
  * *failed counts internal errors.  Returns 0 or an exit code. */
 int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue, int nq, const sb_sweep_options *o,
                        FILE *out, FILE *err, int *failed);
+/* One run in a child process (messages into OUT.log); the child's pid, or -1. */
+pid_t sb_study_start_child(const sb_study *st, const sb_plan_run *r, FILE *err);
+/* What a finished child (exit code) leaves: OUT.refused for a refusal, its
+ * log shown (and removed unless it failed); the outcome's word. */
+const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err);
+
+/* ---- distributed sweeps (sb_sweep_order.c, sb_sweep_mpi.c, sb_sweep_slurm.c) ---- */
+/* Sort queue[0..nq) by expected seconds, longest first (ties in plan
+ * order): from the study's records of the same configuration at other
+ * resolutions or starts, scaled by (dofs / recorded dofs)^1.5, else from
+ * c dofs^1.5 with c the median over every record of the study (1e-5 s
+ * without records).  expected (may be NULL) receives the estimates in the
+ * new order. */
+void sb_study_order_longest_first(const sb_study *st, const sb_plan *plan, int *queue, int nq, double *expected);
+/* 1 when this process was started by an MPI launcher (mpirun, srun). */
+int  sb_mpi_launched(void);
+/* The sweep over MPI ranks (rank 0 schedules and runs too).  In the
+ * ordinary binary (no MPI): exec BUILD/shellbench-mpi with `sweep` and the
+ * command's arguments, or a sentence and SB_EXIT_INPUT when there is none. */
+int  sb_study_sweep_mpi(const sb_study *st, const sb_sweep_options *o, int argc, char **argv, FILE *out, FILE *err);
+/* The runnable runs of the plan, in plan order: task k of a job array is
+ * runs[task[k]]; returns the count (task: plan->n entries). */
+int  sb_study_tasks(const sb_plan *plan, int *task);
+/* `--emit slurm`: an sbatch job-array script for the runs not yet recorded. */
+int  sb_study_emit_slurm(const sb_study *st, const char *study_file, const char *path, FILE *out, FILE *err);
+/* `--task K`: run task K (sb_study_tasks) unless recorded. */
+int  sb_study_run_task(const sb_study *st, int task, FILE *out, FILE *err);
 
 /* ---- dt stability (sb_study_dt.c) -------------------------------------- */
 /* The scene of run r at its dt: written once as RECORDS/scenes/SCENE-dtX.json

@@ -14,6 +14,8 @@
 #include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -87,7 +89,7 @@ static int mkdirs_for(const char *file)
     return 0;
 }
 
-static pid_t start_child(const sb_study *st, const sb_plan_run *r, FILE *err)
+pid_t sb_study_start_child(const sb_study *st, const sb_plan_run *r, FILE *err)
 {
     char lp[1100];
     log_path(r, lp, sizeof lp);
@@ -96,8 +98,13 @@ static pid_t start_child(const sb_study *st, const sb_plan_run *r, FILE *err)
         return -1;
     }
     fflush(NULL);
+    pid_t parent = getpid();
     pid_t pid = fork();
     if (pid != 0) return pid;
+    /* the child dies with the sweep (or MPI rank) that started it: a killed
+     * sweep leaves no orphan run behind, only the run's checkpoint */
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(SB_EXIT_INTERNAL);
     /* the child: its messages into OUT.log, its stdout discarded */
     FILE *log = fopen(lp, "w");
     int devnull = open("/dev/null", O_WRONLY);
@@ -109,7 +116,7 @@ static pid_t start_child(const sb_study *st, const sb_plan_run *r, FILE *err)
 
 /* what a finished child leaves: OUT.refused for a refusal (exit 2), the log
  * shown and removed otherwise (kept for internal errors) */
-static const char *finish_child(const sb_plan_run *r, int code, FILE *err)
+const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err)
 {
     char lp[1100], rp[1100], line[1024];
     log_path(r, lp, sizeof lp);
@@ -138,7 +145,7 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
             int k = 0;
             while (ch[k].pid > 0) k++;
             const sb_plan_run *r = &plan->runs[queue[next]];
-            pid_t pid = start_child(st, r, err);
+            pid_t pid = sb_study_start_child(st, r, err);
             if (pid < 0) {
                 fprintf(err, "shellbench sweep: cannot start %s: %s\n", r->out, strerror(errno));
                 *failed += 1;
@@ -159,7 +166,7 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
             if (ch[k].pid == pid) {
                 const sb_plan_run *r = &plan->runs[ch[k].run];
                 int code = WIFEXITED(status) ? WEXITSTATUS(status) : SB_EXIT_INTERNAL;
-                const char *what = finish_child(r, code, err);
+                const char *what = sb_study_finish_child(r, code, err);
                 if (code == SB_EXIT_INTERNAL) *failed += 1;
                 n_conv += code == SB_EXIT_CONVERGED;
                 n_not += code == SB_EXIT_NOT_CONVERGED;

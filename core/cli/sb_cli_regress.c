@@ -1,0 +1,254 @@
+/* sb_cli_regress.c — `shellbench regress` (and `make nightly`): run the
+ * nightly suite, compare it with the baseline, write the report, append the
+ * history, and exit 0 (no regression), 1 (regression: a case slower, with
+ * changed deterministic figures, or failed) or 2 (input error: the suite,
+ * the baseline or an option).  docs/regression.md. */
+#include "sb_cli.h"
+#include "sb_regress_int.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+const char sb_cli_regress_help[] =
+    "usage: shellbench regress [--suite FILE] [--baseline FILE] [--history FILE] [--out DIR]\n"
+    "                          [--repeat K] [--jobs N] [--set KEY=VALUE]... [--update-baseline]\n"
+    "                          [--no-history] [--no-confirm] [--alpha A] [--min-effect E] [--rtol R] [--quiet]\n"
+    "Nightly performance regression (docs/regression.md): runs the suite (a study file) K times with a\n"
+    "calibration pass per round, compares every case with the baseline and gives a verdict per case:\n"
+    "same, faster, slower (CPU time / calibration, Mann-Whitney U test p < A and a change of at least\n"
+    "E), changed (iterations, work units, nnz, flops, status, reason; energy and probes to R), failed,\n"
+    "new.  Writes DIR/report.md and DIR/history-CASE.png, appends the history.\n"
+    "  --suite FILE          the suite (default bench/nightly/nightly.json)\n"
+    "  --baseline FILE       the baseline (default bench/nightly/baseline.json)\n"
+    "  --history FILE        the history (default results/nightly/history.csv)\n"
+    "  --out DIR             report and plots (default results/nightly)\n"
+    "  --repeat K            runs per case, 2..64 (default 5)\n"
+    "  --jobs N              runs at once (default 1: the times are the least disturbed)\n"
+    "  --set KEY=VALUE       an extra parameter of every run (an experiment), repeatable\n"
+    "  --update-baseline     write the baseline from this run (with its provenance); refused when a\n"
+    "                        case failed\n"
+    "  --no-history          do not append to the history\n"
+    "  --no-confirm          do not measure a case judged slower or faster a second time (by default\n"
+    "                        the verdict stands only when a second measurement agrees)\n"
+    "  --alpha A             significance of the U test (default 0.05)\n"
+    "  --min-effect E        smallest relative change of the median time called a change (default 0.10)\n"
+    "  --rtol R              relative tolerance of energies and probe positions (default 1e-9)\n"
+    "exit code: 0 no regression, 1 regression, 2 input error, 3 internal error.\n";
+
+static int real_opt(const char *opt, const char *v, double lo, double hi, double *out)
+{
+    char *end;
+    double x = v ? strtod(v, &end) : 0;
+    if (!v || end == v || *end || !(x >= lo && x <= hi)) {
+        char e[64];
+        fprintf(stderr, "shellbench regress: %s: \"%s\" is not a number in [%g, %g]\n", opt,
+                sb_escape_copy(v ? v : "", e, sizeof e), lo, hi);
+        return -1;
+    }
+    *out = x;
+    return 0;
+}
+
+static int int_opt(const char *opt, const char *v, int lo, int hi, int *out)
+{
+    if (!v || sb_cli_parse_int(v, lo, hi, out)) {
+        char e[64];
+        fprintf(stderr, "shellbench regress: %s: \"%s\" is not an integer in [%d, %d]\n", opt,
+                sb_escape_copy(v ? v : "", e, sizeof e), lo, hi);
+        return -1;
+    }
+    return 0;
+}
+
+static int mkdir_p(const char *dir)
+{
+    char tmp[1024];
+    snprintf(tmp, sizeof tmp, "%s/", dir);
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
+            *p = '/';
+        }
+    return 0;
+}
+
+static int dir_of(const char *file, char *buf, size_t len)
+{
+    snprintf(buf, len, "%s", file);
+    char *s = strrchr(buf, '/');
+    if (!s) return 0;
+    *s = 0;
+    return buf[0] ? mkdir_p(buf) : 0;
+}
+
+/* A timing verdict (slower, faster) is confirmed by measuring the case again
+ * (k fresh repeats with their own calibration) and judging the new samples:
+ * it stands only when both measurements agree, so a passing disturbance of
+ * the machine (a false positive at level alpha) must strike twice (alpha^2).
+ * The case keeps the confirming samples. */
+static int confirm_changes(const sb_study *st, const sb_regress_run_options *o, sb_regress_set *now,
+                           const sb_regress_set *base, const sb_regress_rules *ru, int *regressions)
+{
+    const char **ids = malloc((size_t)(now->n ? now->n : 1) * sizeof *ids);
+    int n = 0;
+    if (!ids) return 3;
+    for (int k = 0; k < now->n; k++)
+        if (now->c[k].verdict == SB_VERDICT_SLOWER || now->c[k].verdict == SB_VERDICT_FASTER) ids[n++] = now->c[k].id;
+    if (n == 0) { free(ids); return 0; }
+    if (!o->quiet) printf("confirming %d timing verdict%s with %d more repeats\n", n, n > 1 ? "s" : "", o->repeat);
+    sb_regress_run_options o2 = *o;
+    o2.n_only = n, o2.only = ids;
+    sb_regress_set again;
+    memset(&again, 0, sizeof again);
+    int rc = sb_regress_measure(st, &o2, &again, stdout, stderr);
+    if (!rc) {
+        sb_regress_judge(&again, base, ru);
+        for (int j = 0; j < again.n; j++) {
+            sb_regress_case *c = (sb_regress_case *)sb_regress_set_find(now, again.c[j].id), *a = &again.c[j];
+            if (!c) continue;
+            char first[200];
+            snprintf(first, sizeof first, "first measurement %s x%.3f p = %.3g", sb_verdict_name(c->verdict), c->ratio, c->p);
+            if (a->verdict == c->verdict) {
+                snprintf(a->detail + strlen(a->detail), sizeof a->detail - strlen(a->detail), "; confirmed (%s)", first);
+            } else {
+                char d[512];
+                snprintf(d, sizeof d, "%.300s; not confirmed (%.150s)", a->detail, first);
+                snprintf(a->detail, sizeof a->detail, "%s", d);
+                if (a->verdict == SB_VERDICT_SLOWER || a->verdict == SB_VERDICT_FASTER) a->verdict = SB_VERDICT_SAME;
+            }
+            *regressions += sb_verdict_is_regression(a->verdict) - sb_verdict_is_regression(c->verdict);
+            *c = *a;
+        }
+    }
+    sb_regress_set_free(&again);
+    free(ids);
+    return rc;
+}
+
+int sb_cli_regress(int argc, char **argv)
+{
+    const char *suite = "bench/nightly/nightly.json", *baseline = "bench/nightly/baseline.json",
+               *history = "results/nightly/history.csv", *outdir = "results/nightly";
+    sb_regress_run_options o;
+    memset(&o, 0, sizeof o);
+    o.repeat = 5, o.jobs = 1;
+    sb_regress_rules ru;
+    sb_regress_rules_default(&ru);
+    int update = 0, no_history = 0, confirm = 1;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1;
+        if (!strcmp(a, "--suite") && v) suite = v;
+        else if (!strcmp(a, "--baseline") && v) baseline = v;
+        else if (!strcmp(a, "--history") && v) history = v;
+        else if (!strcmp(a, "--out") && v) outdir = v;
+        else if (!strcmp(a, "--repeat")) { if (int_opt(a, v, 2, SB_REGRESS_MAX_REPEAT, &o.repeat)) return 2; }
+        else if (!strcmp(a, "--jobs")) { if (int_opt(a, v, 1, 64, &o.jobs)) return 2; }
+        else if (!strcmp(a, "--alpha")) { if (real_opt(a, v, 1e-6, 0.5, &ru.alpha)) return 2; }
+        else if (!strcmp(a, "--min-effect")) { if (real_opt(a, v, 0, 10, &ru.min_effect)) return 2; }
+        else if (!strcmp(a, "--rtol")) { if (real_opt(a, v, 0, 1, &ru.rtol)) return 2; }
+        else if (!strcmp(a, "--set") && v && strchr(v, '=')) {
+            if (o.n_sets == SB_REGRESS_MAX_SETS) { fprintf(stderr, "shellbench regress: more than %d --set\n", SB_REGRESS_MAX_SETS); return 2; }
+            o.sets[o.n_sets++] = v;
+        } else {
+            takes = 0;
+            if (!strcmp(a, "--update-baseline")) update = 1;
+            else if (!strcmp(a, "--no-history")) no_history = 1;
+            else if (!strcmp(a, "--no-confirm")) confirm = 0;
+            else if (!strcmp(a, "--quiet")) o.quiet = 1;
+            else {
+                char e[80];
+                fprintf(stderr, "shellbench regress: unknown option, missing or malformed value \"%s\" (see `shellbench help regress`)\n",
+                        sb_escape_copy(a, e, sizeof e));
+                return 2;
+            }
+        }
+        i += takes;
+    }
+    char err[2048];
+    /* the baseline first: a broken one is an input error before minutes of runs */
+    sb_regress_set base, now;
+    memset(&base, 0, sizeof base);
+    memset(&now, 0, sizeof now);
+    int have_base = 0;
+    struct stat stt;
+    if (stat(baseline, &stt) == 0) {
+        if (sb_regress_baseline_read(baseline, &base, err, sizeof err)) {
+            fprintf(stderr, "shellbench regress: %s\n", err);
+            return 2;
+        }
+        have_base = 1;
+    } else if (!update) {
+        fprintf(stderr, "shellbench regress: no baseline %s: make one with --update-baseline\n", baseline);
+        return 2;
+    }
+    sb_study *st = malloc(sizeof *st);
+    if (!st) return 3;
+    if (sb_study_load(suite, NULL, st, err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        free(st);
+        sb_regress_set_free(&base);
+        return 2;
+    }
+    int rc = sb_regress_measure(st, &o, &now, stdout, stderr);
+    if (rc) {
+        sb_study_free(st);
+        free(st);
+        sb_regress_set_free(&base);
+        sb_regress_set_free(&now);
+        return rc;
+    }
+    int regressions = sb_regress_judge(&now, have_base ? &base : NULL, &ru);
+    if (!rc && confirm && have_base) rc = confirm_changes(st, &o, &now, &base, &ru, &regressions);
+    sb_study_free(st);
+    free(st);
+    if (rc) {
+        sb_regress_set_free(&base);
+        sb_regress_set_free(&now);
+        return rc;
+    }
+    char dir[1024], report[1100];
+    if (mkdir_p(outdir)) {
+        fprintf(stderr, "shellbench regress: cannot create %s: %s\n", outdir, strerror(errno));
+        rc = 3;
+    } else {
+        snprintf(report, sizeof report, "%s/report.md", outdir);
+        FILE *f = fopen(report, "w");
+        if (f) {
+            sb_regress_markdown(f, &now, have_base ? &base : NULL, &ru, baseline);
+            if (fclose(f)) f = NULL;
+        }
+        if (!f) fprintf(stderr, "shellbench regress: cannot write %s: %s\n", report, strerror(errno)), rc = 3;
+    }
+    sb_regress_markdown(stdout, &now, have_base ? &base : NULL, &ru, baseline);
+    if (!no_history) {
+        if (dir_of(history, dir, sizeof dir) || sb_regress_history_append(&now, history, err, sizeof err)) {
+            fprintf(stderr, "shellbench regress: %s\n", err);
+            rc = 3;
+        } else if (!rc) {
+            sb_regress_history_plots(history, &now, outdir, NULL, stderr);
+        }
+    }
+    if (update) {
+        int failed = 0;
+        for (int k = 0; k < now.n; k++) failed += now.c[k].verdict == SB_VERDICT_FAILED;
+        if (failed) {
+            fprintf(stderr, "shellbench regress: %d case%s failed: the baseline %s is left as it was\n", failed,
+                    failed > 1 ? "s" : "", baseline);
+            regressions = regressions ? regressions : 1;
+        } else if (dir_of(baseline, dir, sizeof dir) || sb_regress_baseline_write(&now, baseline, err, sizeof err)) {
+            fprintf(stderr, "shellbench regress: %s\n", err);
+            rc = 3;
+        } else {
+            printf("baseline written: %s (%d cases, build %s)\n", baseline, now.n, now.prov.build);
+            regressions = 0;   /* the new baseline is this run: nothing regressed against it */
+        }
+    }
+    sb_regress_set_free(&base);
+    sb_regress_set_free(&now);
+    if (rc) return rc;
+    return regressions ? 1 : 0;
+}

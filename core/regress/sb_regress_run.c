@@ -1,0 +1,260 @@
+/* sb_regress_run.c — running the nightly suite (docs/regression.md "How a
+ * case is measured").  The suite is a study file; its cases are the planned
+ * runs (sb_study_plan), identified by their record path under the study's
+ * records directory.  The suite is run `repeat` times in rounds: each round
+ * starts with one pass of the calibration kernel, then runs every case once
+ * (interleaving the repeats spreads a passing load over all cases rather
+ * than onto one).  Every run is a child process of its own, with a fresh
+ * record RECORDS/repK/ID (never resumed from an earlier invocation's); its
+ * CPU time (user + system, wait4's rusage) is the time judged, its record's
+ * seconds_total is kept beside it.  The first repeat's deterministic figures
+ * are the case's; a later repeat that differs makes the case "changed"
+ * (not reproducible). */
+#include "sb_regress_int.h"
+#include "sb_run.h"
+#include "sb_sysinfo.h"
+#include "sb_gsl.h"
+#include "sb_record.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static int mkdirs_for(const char *file)
+{
+    char tmp[1200];
+    snprintf(tmp, sizeof tmp, "%s", file);
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
+            *p = '/';
+        }
+    return 0;
+}
+
+/* the case id: the record path under the records directory */
+static const char *case_id(const sb_study *st, const sb_plan_run *r)
+{
+    size_t n = strlen(st->records);
+    return !strncmp(r->out, st->records, n) && r->out[n] == '/' ? r->out + n + 1 : r->out;
+}
+
+/* the 1-minute load average (NaN when /proc/loadavg cannot be read) */
+static double load_average(void)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    double l = NAN;
+    if (f && fscanf(f, "%lf", &l) != 1) l = NAN;
+    if (f) fclose(f);
+    return l;
+}
+
+static int selected(const sb_regress_run_options *o, const char *id)
+{
+    if (o->n_only <= 0) return 1;
+    for (int k = 0; k < o->n_only; k++)
+        if (!strcmp(o->only[k], id)) return 1;
+    return 0;
+}
+
+static void remove_outputs(const char *out)
+{
+    static const char *const suffix[] = { "", ".partial", ".log", ".lock" };
+    char p[1200];
+    for (size_t k = 0; k < sizeof suffix / sizeof *suffix; k++) {
+        snprintf(p, sizeof p, "%s%s", out, suffix[k]);
+        unlink(p);
+    }
+    if (sb_record_xdmf_path(out, p, sizeof p) == SB_OK) unlink(p);
+}
+
+typedef struct slot {
+    pid_t pid;
+    int run, rep;
+    sb_plan_run r;
+} slot;
+
+static pid_t start(const sb_study *st, slot *s, FILE *err)
+{
+    char lp[1200];
+    snprintf(lp, sizeof lp, "%s.log", s->r.out);
+    remove_outputs(s->r.out);
+    if (mkdirs_for(lp)) {
+        fprintf(err, "shellbench regress: cannot create the directory of %s: %s\n", lp, strerror(errno));
+        return -1;
+    }
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid != 0) return pid;
+    FILE *log = fopen(lp, "w");
+    int devnull = open("/dev/null", O_WRONLY);
+    if (devnull >= 0) dup2(devnull, STDOUT_FILENO);
+    int code = sb_study_run_one(st, &s->r, log ? log : stderr);
+    if (log) fclose(log);
+    _exit(code);
+}
+
+static void first_log_line(const char *out, char *buf, size_t len)
+{
+    char lp[1200], line[600];
+    snprintf(lp, sizeof lp, "%s.log", out);
+    FILE *f = fopen(lp, "r");
+    buf[0] = 0;
+    if (f && fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = 0;
+        snprintf(buf, len, "%s", line);
+    }
+    if (f) fclose(f);
+}
+
+/* a finished child: its time and figures into the case; 1 when the run was
+ * refused as input (exit 2: a bad --set), else 0 */
+static int finish(sb_regress_case *c, const slot *s, int status, const struct rusage *ru, FILE *err)
+{
+    int code = WIFEXITED(status) ? WEXITSTATUS(status) : SB_EXIT_INTERNAL;
+    char why[600], msg[1200];
+    if (code == SB_EXIT_INPUT) {
+        first_log_line(s->r.out, why, sizeof why);
+        fprintf(err, "shellbench regress: %s refused: %s\n", c->id, why[0] ? why : "(no message)");
+        return 1;
+    }
+    if (code != SB_EXIT_CONVERGED && code != SB_EXIT_NOT_CONVERGED) {
+        first_log_line(s->r.out, why, sizeof why);
+        if (!c->crashed)
+            snprintf(c->failure, sizeof c->failure, "repeat %d: %s%s%.400s", s->rep + 1,
+                     WIFSIGNALED(status) ? "killed by a signal" : "internal error", why[0] ? ": " : "", why);
+        c->crashed = 1;
+        return 0;
+    }
+    sb_regress_figures g;
+    if (sb_regress_figures_read(s->r.out, &g, msg, sizeof msg)) {
+        if (!c->crashed) snprintf(c->failure, sizeof c->failure, "repeat %d: %.400s", s->rep + 1, msg);
+        c->crashed = 1;
+        return 0;
+    }
+    sb_record_summary sum;
+    double wall = NAN;
+    if (sb_record_read_summary(s->r.out, &sum, msg, sizeof msg) == SB_OK) {
+        wall = sum.seconds;
+        sb_record_summary_free(&sum);
+    }
+    if (!c->ok) {
+        c->fig = g;
+        c->ok = 1;
+    } else if (!c->crashed && !c->failure[0] && sb_regress_figures_differ(&c->fig, &g, 0.0, msg, sizeof msg)) {
+        snprintf(c->failure, sizeof c->failure, "not reproducible: repeat %d differs from the first: %.400s", s->rep + 1, msg);
+    }
+    if (c->n_rep < SB_REGRESS_MAX_REPEAT) {
+        c->cpu[c->n_rep] = (double)ru->ru_utime.tv_sec + 1e-6 * (double)ru->ru_utime.tv_usec +
+                           (double)ru->ru_stime.tv_sec + 1e-6 * (double)ru->ru_stime.tv_usec;
+        c->wall[c->n_rep] = wall;
+        c->n_rep++;
+    }
+    return 0;
+}
+
+int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_regress_set *now, FILE *out, FILE *err)
+{
+    sb_plan plan;
+    char msg[1200];
+    if (sb_study_plan(st, &plan, msg, sizeof msg)) {
+        fprintf(err, "shellbench regress: %s: %s\n", st->path, msg);
+        return SB_EXIT_INPUT;
+    }
+    int *runs = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *runs), n = 0;
+    if (!runs) { sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
+    for (int k = 0; k < plan.n; k++)
+        if (plan.runs[k].state == SB_PLAN_RUN && selected(o, case_id(st, &plan.runs[k]))) {
+            runs[n++] = k;
+            if (!sb_regress_set_add(now, case_id(st, &plan.runs[k]))) { free(runs); sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
+        }
+    sb_regress_prov *p = &now->prov;
+    sb_sysinfo_build_id(p->build, sizeof p->build);
+    sb_sysinfo_now_iso(p->date, sizeof p->date);
+    sb_sysinfo_hostname(p->host, sizeof p->host);
+    sb_sysinfo_cpu_model(p->cpu, sizeof p->cpu);
+    sb_sysinfo_blas_core(p->blas_core, sizeof p->blas_core);
+    snprintf(p->suite, sizeof p->suite, "%s", st->path);
+    p->repeat = o->repeat;
+    p->cores = sb_sysinfo_cores();
+    p->load_max = NAN;
+    int jobs = o->jobs > 0 ? o->jobs : 1, refused = 0;
+    slot *sl = calloc((size_t)jobs, sizeof *sl);
+    if (!sl) { free(runs); sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
+    if (!o->quiet)
+        fprintf(out, "regress %s: %d cases x %d repeats, %d at a time, calibration before each round\n", st->name, n,
+                o->repeat, jobs);
+    for (int rep = 0; rep < o->repeat && !refused; rep++) {
+        double l = load_average();
+        if (isfinite(l) && !(l <= p->load_max)) p->load_max = l;
+        p->calib[p->n_calib++] = sb_regress_calibrate();
+        int next = 0, running = 0;
+        while ((next < n || running > 0) && !refused) {
+            while (running < jobs && next < n) {
+                int k = 0;
+                while (sl[k].pid > 0) k++;
+                sl[k].r = plan.runs[runs[next]];
+                sl[k].run = next, sl[k].rep = rep;
+                /* RECORDS/repK/ID, and the extra parameters of --set */
+                snprintf(sl[k].r.out, sizeof sl[k].r.out, "%s/rep%d/%s", st->records, rep + 1, now->c[next].id);
+                for (int j = 0; j < o->n_sets && sl[k].r.n_sets < (int)(sizeof sl[k].r.sets / sizeof sl[k].r.sets[0]); j++)
+                    snprintf(sl[k].r.sets[sl[k].r.n_sets++], sizeof sl[k].r.sets[0], "%s", o->sets[j]);
+                pid_t pid = start(st, &sl[k], err);
+                next++;
+                if (pid < 0) {
+                    sb_regress_case *c = &now->c[sl[k].run];
+                    if (!c->crashed) snprintf(c->failure, sizeof c->failure, "cannot start: %s", strerror(errno));
+                    c->crashed = 1;
+                    continue;
+                }
+                sl[k].pid = pid;
+                running++;
+            }
+            if (running == 0) break;
+            int status;
+            struct rusage ru;
+            pid_t pid = wait4(-1, &status, 0, &ru);
+            if (pid < 0) {
+                if (errno == EINTR) continue;
+                break;
+            }
+            for (int k = 0; k < jobs; k++)
+                if (sl[k].pid == pid) {
+                    sb_regress_case *c = &now->c[sl[k].run];
+                    int had = c->n_rep;
+                    refused |= finish(c, &sl[k], status, &ru, err);
+                    if (!o->quiet && c->n_rep > had)
+                        fprintf(out, "  round %d/%d  %-60s %7.2f s CPU\n", rep + 1, o->repeat, c->id, c->cpu[had]);
+                    else if (!o->quiet)
+                        fprintf(out, "  round %d/%d  %-60s failed: %s\n", rep + 1, o->repeat, c->id, c->failure);
+                    fflush(out);
+                    sl[k].pid = 0;
+                    running--;
+                }
+        }
+        /* a refusal stops the suite: let the runs under way finish */
+        while (running > 0) {
+            int status;
+            if (wait(&status) > 0 || errno != EINTR) running--;
+        }
+    }
+    free(sl);
+    free(runs);
+    sb_plan_free(&plan);
+    if (refused) return SB_EXIT_INPUT;
+    if (sb_median(p->calib, (size_t)p->n_calib, &p->calib_median) || !(p->calib_median > 0)) {
+        fprintf(err, "shellbench regress: the calibration took no measurable CPU time\n");
+        return SB_EXIT_INTERNAL;
+    }
+    for (int k = 0; k < now->n; k++)
+        for (int i = 0; i < now->c[k].n_rep; i++) now->c[k].norm[i] = now->c[k].cpu[i] / p->calib_median;
+    return SB_EXIT_CONVERGED;
+}

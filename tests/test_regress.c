@@ -1,0 +1,225 @@
+/* test_regress.c — the nightly regression (core/regress, docs/regression.md):
+ * the Mann-Whitney U test against hand-computed values, the verdict rules on
+ * made-up samples, the baseline file round trip and its errors, and the
+ * command end to end on a one-case suite: an unchanged build is not flagged,
+ * an injected slowdown (run.checkpoint=1e-9: a checkpoint after every
+ * iteration, work that changes no count) is, a changed iteration count is
+ * flagged (also when the times are equal), and bad input exits 2. */
+#include "sb_test.h"
+#include "cli_sh.h"
+#include "sb_regress.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static char tmpdir[256];
+
+SB_TEST(mann_whitney_exact_and_normal)
+{
+    sb_mwu r;
+    const double a[] = { 1, 2, 3 }, b[] = { 4, 5, 6 };
+    CHECK_EQ_INT(sb_regress_mwu(a, 3, b, 3, &r), SB_OK);
+    CHECK(r.exact);
+    CHECK_NEAR(r.u, 0, 0);
+    CHECK_NEAR(r.p, 2.0 / 20, 1e-15);   /* one order of 20 in each tail */
+    CHECK_EQ_INT(sb_regress_mwu(b, 3, a, 3, &r), SB_OK);
+    CHECK_NEAR(r.u, 9, 0);
+    CHECK_NEAR(r.p, 2.0 / 20, 1e-15);
+    const double x[] = { 1, 2, 3, 4, 5 }, y[] = { 6, 7, 8, 9, 10 };
+    CHECK_EQ_INT(sb_regress_mwu(x, 5, y, 5, &r), SB_OK);
+    CHECK_NEAR(r.p, 2.0 / 252, 1e-15);
+    /* interleaved: x = 1,3,5,7 against y = 2,4,6,8: U = 0+1+2+3 = 6; orders
+     * with U <= 6 out of C(8,4) = 70 are 1,1,2,3,5,5,7 for u = 0..6 = 24 */
+    const double p[] = { 1, 3, 5, 7 }, q[] = { 2, 4, 6, 8 };
+    CHECK_EQ_INT(sb_regress_mwu(p, 4, q, 4, &r), SB_OK);
+    CHECK_NEAR(r.u, 6, 0);
+    CHECK_NEAR(r.p, 2.0 * 24 / 70, 1e-14);
+    /* ties: the normal approximation; identical samples give p = 1 */
+    const double t1[] = { 1, 1, 2, 2 }, t2[] = { 1, 1, 2, 2 };
+    CHECK_EQ_INT(sb_regress_mwu(t1, 4, t2, 4, &r), SB_OK);
+    CHECK(!r.exact);
+    CHECK_NEAR(r.p, 1, 1e-12);
+    /* large samples: the exact and the normal p agree to a few 1e-3 */
+    double u[30], v[30];
+    for (int i = 0; i < 30; i++) u[i] = i + 0.25 * (i % 3), v[i] = i + 4.1;
+    CHECK_EQ_INT(sb_regress_mwu(u, 30, v, 30, &r), SB_OK);
+    CHECK(r.exact);
+    double pe = r.p;
+    u[0] = u[1];   /* one tie forces the approximation */
+    sb_mwu r2;
+    CHECK_EQ_INT(sb_regress_mwu(u, 30, v, 30, &r2), SB_OK);
+    CHECK(!r2.exact);
+    CHECK_MSG(fabs(r2.p - pe) < 0.02, "exact %g, normal %g", pe, r2.p);
+    CHECK(sb_regress_mwu(u, 0, v, 3, &r) != SB_OK);
+}
+
+static void fill(sb_regress_case *c, double t, int n)
+{
+    c->ok = 1;
+    c->fig.status = 0;
+    snprintf(c->fig.reason, sizeof c->fig.reason, "grad_tol");
+    c->fig.n[SB_RF_ITERATIONS] = 7;
+    c->fig.x[SB_RF_WORK_ASSEMBLY] = 7.25;
+    c->fig.has_energy = 1;
+    c->fig.energy = -1.5;
+    c->fig.n_probes = 1;
+    c->fig.probe[0][2] = -0.01;
+    c->n_rep = n;
+    for (int i = 0; i < n; i++) c->norm[i] = c->cpu[i] = t * (1 + 0.01 * i), c->wall[i] = t;
+}
+
+SB_TEST(verdicts)
+{
+    sb_regress_rules ru;
+    sb_regress_rules_default(&ru);
+    sb_regress_set base, now;
+    memset(&base, 0, sizeof base);
+    memset(&now, 0, sizeof now);
+    const char *ids[] = { "same", "slower", "faster", "small", "iters", "energy", "failed", "new", "roundoff", "noisy" };
+    for (int k = 0; k < 10; k++)
+        if (k != 7) fill(sb_regress_set_add(&base, ids[k]), 1.0, 5);   /* "new" is not in the baseline */
+    const double scale[] = { 1.0, 2.0, 0.5, 1.05, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0 };
+    for (int k = 0; k < 10; k++) fill(sb_regress_set_add(&now, ids[k]), scale[k], 5);
+    now.c[4].fig.n[SB_RF_ITERATIONS] = 8;            /* a changed count at equal time */
+    now.c[5].fig.energy = -1.5 * (1 + 1e-6);          /* beyond rtol */
+    now.c[6].ok = 0, now.c[6].crashed = 1;
+    snprintf(now.c[6].failure, sizeof now.c[6].failure, "repeat 1: killed by a signal");
+    now.c[8].fig.energy = -1.5 * (1 + 1e-13);         /* round-off: within rtol */
+    now.c[8].fig.probe[0][0] = 1e-17;                 /* a zero coordinate off by round-off */
+    for (int i = 0; i < 5; i++) now.c[9].norm[i] = i % 2 ? 1.3 : 0.8;   /* large spread, no shift */
+    int reg = sb_regress_judge(&now, &base, &ru);
+    const sb_verdict want[] = { SB_VERDICT_SAME, SB_VERDICT_SLOWER, SB_VERDICT_FASTER, SB_VERDICT_SAME,
+                                SB_VERDICT_CHANGED, SB_VERDICT_CHANGED, SB_VERDICT_FAILED, SB_VERDICT_NEW,
+                                SB_VERDICT_SAME, SB_VERDICT_SAME };
+    for (int k = 0; k < 10; k++)
+        CHECK_MSG(now.c[k].verdict == want[k], "%s: %s (%s)", ids[k], sb_verdict_name(now.c[k].verdict), now.c[k].detail);
+    CHECK(strstr(now.c[4].detail, "iterations 7 -> 8") != NULL);
+    CHECK(strstr(now.c[5].detail, "energy_final") != NULL);
+    CHECK(strstr(now.c[3].detail, "below the minimum effect") != NULL);
+    CHECK_EQ_INT(reg, 4);   /* slower, iters, energy, failed */
+    /* against no baseline everything is new, nothing a regression */
+    CHECK_EQ_INT(sb_regress_judge(&now, NULL, &ru), 1);   /* the failed case still counts */
+    CHECK(now.c[0].verdict == SB_VERDICT_NEW);
+    CHECK(sb_verdict_is_regression(SB_VERDICT_SLOWER) && !sb_verdict_is_regression(SB_VERDICT_FASTER));
+    sb_regress_set_free(&base);
+    sb_regress_set_free(&now);
+}
+
+SB_TEST(baseline_round_trip_and_errors)
+{
+    sb_regress_set s, r;
+    memset(&s, 0, sizeof s);
+    snprintf(s.prov.build, sizeof s.prov.build, "v1-2-gabc");
+    snprintf(s.prov.date, sizeof s.prov.date, "2026-12-04T00:00:00Z");
+    snprintf(s.prov.blas_core, sizeof s.prov.blas_core, "Prescott");
+    s.prov.repeat = 3, s.prov.n_calib = 3, s.prov.calib_median = 0.1, s.prov.load_max = 2.5, s.prov.cores = 2;
+    for (int i = 0; i < 3; i++) s.prov.calib[i] = 0.1 + 0.001 * i;
+    sb_regress_case *c = sb_regress_set_add(&s, "plate/bhem-tr-r4.h5");
+    fill(c, 0.123456789012345678, 3);
+    c->fig.x[SB_RF_CHOL_FLOPS] = 123456789.0;
+    c->fig.energy = -1.0 / 3.0;
+    char path[400], err[1024];
+    snprintf(path, sizeof path, "%s/base.json", tmpdir);
+    CHECK_EQ_INT(sb_regress_baseline_write(&s, path, err, sizeof err), SB_OK);
+    CHECK_EQ_INT(sb_regress_baseline_read(path, &r, err, sizeof err), SB_OK);
+    CHECK_EQ_INT(r.n, 1);
+    if (r.n == 1) {
+        char what[400];
+        CHECK_MSG(!sb_regress_figures_differ(&c->fig, &r.c[0].fig, 0.0, what, sizeof what), "%s", what);
+        CHECK_EQ_INT(r.c[0].n_rep, 3);
+        CHECK(r.c[0].norm[1] == c->norm[1]);   /* 17 digits: exactly */
+        CHECK(!strcmp(r.prov.build, "v1-2-gabc"));
+        CHECK(r.prov.calib[2] == s.prov.calib[2]);
+        CHECK(r.prov.load_max == 2.5 && r.prov.cores == 2);
+    }
+    sb_regress_set_free(&r);
+    /* damaged files: the file and the member are named */
+    FILE *f = fopen(path, "w");
+    fprintf(f, "{\"format\": \"shellbench-nightly-baseline\", \"version\": 1, \"provenance\": {\"build\": \"x\"}, \"cases\": []}\n");
+    fclose(f);
+    CHECK_EQ_INT(sb_regress_baseline_read(path, &r, err, sizeof err), SB_ERR_INPUT);
+    CHECK_MSG(strstr(err, path) && strstr(err, "/provenance/date"), "%s", err);
+    f = fopen(path, "w");
+    fprintf(f, "{\"format\": \"something else\"}\n");
+    fclose(f);
+    CHECK_EQ_INT(sb_regress_baseline_read(path, &r, err, sizeof err), SB_ERR_INPUT);
+    CHECK_MSG(strstr(err, "/format"), "%s", err);
+    f = fopen(path, "w");
+    fprintf(f, "{\"format\": \n");
+    fclose(f);
+    CHECK_EQ_INT(sb_regress_baseline_read(path, &r, err, sizeof err), SB_ERR_INPUT);
+    CHECK_MSG(strstr(err, path) && strstr(err, ":2:"), "%s", err);
+    sb_regress_set_free(&s);
+}
+
+static int count(const char *hay, const char *needle)
+{
+    int n = 0;
+    for (const char *p = strstr(hay, needle); p; p = strstr(p + 1, needle)) n++;
+    return n;
+}
+
+SB_TEST(regress_command_end_to_end)
+{
+    static char out[200000], err[20000];
+    const char *bin = sb_test_bin();
+    char suite[400], common[2000];
+    snprintf(suite, sizeof suite, "%s/suite.json", tmpdir);
+    FILE *f = fopen(suite, "w");
+    fprintf(f, "{\"study\": \"tiny\", \"records\": \"%s/rec\", \"scenes\": [\"plate_clamped\"], \"methods\": [\"bhem\"],\n"
+               " \"solvers\": [\"lsnewton\"], \"res\": [4]}\n", tmpdir);
+    fclose(f);
+    snprintf(common, sizeof common, "cd %s && %s regress --suite %s --baseline %s/b/base.json --history %s/h/hist.csv "
+             "--out %s/out --repeat 4 --quiet", sb_test_root(), bin, suite, tmpdir, tmpdir, tmpdir);
+    /* no baseline yet: an input error */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s", common), 2);
+    CHECK_MSG(strstr(err, "--update-baseline"), "%s", err);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --update-baseline", common), 0);
+    CHECK_MSG(strstr(out, "baseline written"), "%s%s", out, err);
+    /* unchanged: no regression */
+    int rc = sb_sh(out, sizeof out, err, sizeof err, "%s", common);
+    CHECK_MSG(rc == 0 && !strstr(out, "**slower**") && !strstr(out, "**changed**"), "rc %d: %s%s", rc, out, err);
+    /* injected slowdown: a checkpoint after every iteration (no count changes) */
+    rc = sb_sh(out, sizeof out, err, sizeof err, "%s --set run.checkpoint=1e-9", common);
+    CHECK_MSG(rc == 1 && strstr(out, "**slower**") && strstr(out, "confirmed"), "rc %d: %s%s", rc, out, err);
+    /* a changed count (the gradient test loosened): flagged whatever the time */
+    rc = sb_sh(out, sizeof out, err, sizeof err, "%s --set run.gtol=1e-4", common);
+    CHECK_MSG(rc == 1 && strstr(out, "**changed**"), "rc %d: %s%s", rc, out, err);
+    /* bad input: exit 2 with the parameter named */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --set method.nonsense=1", common), 2);
+    CHECK_MSG(strstr(err, "method.nonsense"), "%s", err);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --repeat 1", common), 2);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --frobnicate", common), 2);
+    /* the history: one line per case per completed invocation, plus the header */
+    char hist[400];
+    snprintf(hist, sizeof hist, "%s/h/hist.csv", tmpdir);
+    f = fopen(hist, "r");
+    CHECK(f != NULL);
+    if (f) {
+        size_t n = fread(out, 1, sizeof out - 1, f);
+        out[n] = 0;
+        fclose(f);
+        CHECK_MSG(count(out, "\n") == 5 && count(out, "plate_clamped/bhem-lsnewton-r4.h5") == 4, "%s", out);
+        CHECK(strstr(out, ",slower,") && strstr(out, ",changed,") && strstr(out, ",new,"));
+    }
+    char report[400];
+    snprintf(report, sizeof report, "%s/out/report.md", tmpdir);
+    CHECK(access(report, R_OK) == 0);
+}
+
+int main(int argc, char **argv)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_test_regress_XXXXXX");
+    if (!mkdtemp(tmpdir)) return 1;
+    static const sb_test_case cases[] = {
+        SB_CASE(mann_whitney_exact_and_normal), SB_CASE(verdicts), SB_CASE(baseline_round_trip_and_errors),
+        SB_CASE(regress_command_end_to_end), SB_END,
+    };
+    int rc = sb_test_main(argc, argv, cases);
+    char cmd[400];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    if (system(cmd)) { /* best effort */ }
+    return rc;
+}
