@@ -13,8 +13,10 @@
  *
  * Bisection (assumes convergence at dt implies convergence at smaller dt):
  * dt_max first (converges: the answer is ">= dt_max", the paper's cap of
- * 1 s); then dt_min (fails: "< dt_min"); then `bisections` geometric
- * midpoints of [largest converging, smallest failing].  Probes are named by
+ * 1 s); then down by the factor `descent` (default: straight to dt_min)
+ * until a probe converges or dt_min fails too ("< dt_min"); then
+ * `bisections` geometric midpoints of [largest converging, smallest
+ * failing].  Probes are named by
  * their dt (6 significant digits, the value actually run), so a second sweep
  * replays the same sequence from the records and continues where it stopped. */
 #include "sb_study_fig.h"
@@ -165,9 +167,11 @@ static void walk(const sb_study *st, const sb_plan_run *base, dt_walk *w)
             snprintf(w->at_hi, sizeof w->at_hi, "%s", why);
         }
         /* the next probe */
-        if (w->probes == 1) dt = o ? 0 : round6(D->dt_min);
-        else if (w->lo == 0) dt = 0;                       /* fails at dt_min too */
-        else if (bis++ < D->bisections) {
+        if (w->probes == 1) dt = o ? 0 : round6(fmax(D->dt_max / D->descent, D->dt_min));
+        else if (w->lo == 0) {                             /* still failing: down by `descent`, never below dt_min */
+            double down = round6(fmax(dt / D->descent, D->dt_min));
+            dt = (dt > D->dt_min && down < dt) ? down : 0; /* fails at dt_min too */
+        } else if (bis++ < D->bisections) {
             double mid = round6(sqrt(w->lo * w->hi));
             dt = (mid > w->lo && mid < w->hi) ? mid : 0;   /* 6 digits cannot split it further */
         } else dt = 0;
@@ -327,11 +331,12 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
                 "their duration in seconds), at most %d iterations per step (`run.max_iter`).  A probe converges when every "
                 "step converges; for the linearized solve, when every step's residual after its one Newton step meets the "
                 "stopping test the other solvers meet (‖g‖ < max(1e-7, 1e-9 ‖g₀‖), Eq. 7.1).  Bisection: dt = %g first "
-                "(the cap), then dt = %g, then %d geometric midpoints between the largest converging and the smallest "
-                "failing dt; it assumes that convergence at dt implies convergence at smaller dt.  Study file `%s`, "
+                "(the cap), then dt divided by %g at each failing probe, down to at most dt = %g (failing there too: "
+                "\"< %g\"), then %d geometric midpoints between the largest converging and the smallest failing dt; it "
+                "assumes that convergence at dt implies convergence at smaller dt.  Study file `%s`, "
                 "records under `%s`.  The RMTR paper's other robustness studies, the condition numbers and the penalty "
-                "parameter (Fig. 9), are reproduced in results/rmtr/cond.md and results/rmtr/cond_sigma.md.\n\n", st->dt.steps, st->dt.max_iter, st->dt.dt_max, st->dt.dt_min,
-            st->dt.bisections, st->path, st->records);
+                "parameter (Fig. 9), are reproduced in results/rmtr/cond.md and results/rmtr/cond_sigma.md.\n\n", st->dt.steps, st->dt.max_iter, st->dt.dt_max, st->dt.descent,
+            st->dt.dt_min, st->dt.dt_min, st->dt.bisections, st->path, st->records);
     for (int i = 0; i < st->n_scenes; i++) {
         fprintf(md, "## %s\n\n| method | solver | dofs | largest converging dt (s) | outcome at dt = %g | why the smallest "
                     "failing dt fails | probes |\n|---|---|--:|---|---|---|--:|\n", st->scenes[i].name, st->dt.dt_max);
