@@ -37,9 +37,13 @@ const char *sb_cost_axis(int cost);       /* axis label with its unit */
 int sb_fig_work_precision(const sb_study_data *d, int i, int cost, const char *stem, const char *gnuplot,
                           char *err, size_t errlen);
 /* Performance profile: rho_s(tau) for the ns configurations (labels) over
- * np problems (ratio[p * ns + s]). */
-int sb_fig_profile(int np, int ns, const double *ratio, char (*labels)[128], const char *title, const char *stem,
-                   const char *gnuplot, char *err, size_t errlen);
+ * np problems (ratio[p * ns + s]); style[s] is configuration s's config id,
+ * so that it has the same colour as in the other figures (NULL: s). */
+int sb_fig_profile(int np, int ns, const double *ratio, char (*labels)[128], const int *style, const char *title,
+                   const char *stem, const char *gnuplot, char *err, size_t errlen);
+/* the colour ("#rrggbb") of configuration c in every figure: 12 distinct
+ * colours, then dash patterns (sb_study_figs.c) */
+const char *sb_fig_colour(int c);
 /* log10 ||g|| against cumulative iteration, one line per configuration at
  * the resolution nearest the scene's middle dofs (start 0). */
 int sb_fig_convergence(const sb_study_data *d, int i, const char *stem, const char *gnuplot, char *err, size_t errlen);

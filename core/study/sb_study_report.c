@@ -183,7 +183,7 @@ static void profiles(sb_rep *R)
             snprintf(stem, sizeof stem, "%s/%s", R->dir, name);
             snprintf(title, sizeof title, "performance profile: %s to reach error %g (%d scenes)", sb_cost_name(cost), st->targets[tg], np);
             fprintf(R->md, "### %s to reach error %g\n\n", sb_cost_name(cost), st->targets[tg]);
-            if (sb_fig_profile(np, ns, ratio, labels, title, stem, R->o->gnuplot, msg, sizeof msg) == 0) figure(R, name, title);
+            if (sb_fig_profile(np, ns, ratio, labels, cfg, title, stem, R->o->gnuplot, msg, sizeof msg) == 0) figure(R, name, title);
             else fprintf(R->err, "shellbench report: warning: %s\n", msg);
             fprintf(R->md, "| configuration | ρ(1) cheapest | ρ(2) | ρ(4) | ρ(∞) reaches the target |\n|---|--:|--:|--:|--:|\n");
             for (int s = 0; s < ns; s++)
