@@ -303,6 +303,46 @@ static int dt_figure(const sb_study *st, const sb_plan *plan, int i, const char 
     return sb_gp_finish(&g, png, svg, 900, 500, err, len);
 }
 
+/* The picture of scene i: the converged probe with the largest dt (ties:
+ * the first configuration in the plan), its final state after the study's
+ * steps.  Returns 1 when its path was refused, else 0. */
+static int dt_thumbnail(const sb_study *st, const sb_plan *plan, int i, const char *dir, FILE *md, FILE *err)
+{
+    double best_dt = 0;
+    sb_plan_run best;
+    char msg[1500];
+    for (int k = 0; k < plan->n; k++) {
+        const sb_plan_run *r = &plan->runs[k];
+        if (r->scene != i || r->state != SB_PLAN_RUN) continue;
+        dt_walk w;
+        walk(st, r, &w);
+        if (w.lo > best_dt) {
+            sb_plan_run q = *r;
+            q.dt = w.lo;
+            if (sb_plan_finish_run(st, &q, msg, sizeof msg)) continue;
+            best = q, best_dt = w.lo;
+        }
+    }
+    const char *name = st->scenes[i].name;
+    if (!(best_dt > 0)) {
+        fprintf(md, "*%s: no picture (no probe converged).*\n\n", name);
+        return 0;
+    }
+    char png[1300], label[128];
+    snprintf(png, sizeof png, "%s/thumb-%s.png", dir, name);
+    sb_plan_config_label(st, &best, label, sizeof label);
+    int rc = sb_study_thumbnail(best.out, png, msg, sizeof msg);
+    if (rc) {
+        fprintf(err, "shellbench report: %s%s\n", rc == SB_FIG_REFUSED ? "" : "warning: ", msg);
+        fprintf(md, "*%s: no picture (%s).*\n\n", name, rc == SB_FIG_REFUSED ? "its path was refused" : "the record cannot be drawn");
+        return rc == SB_FIG_REFUSED;
+    }
+    fprintf(md, "![%s: final state](thumb-%s.png)  \n*%s: state after %d steps of the converging probe with the largest "
+                "dt, %s at dt = %g s, %ld dofs (`shellbench render`, %dx%d, %d samples per pixel).*\n\n", name, name,
+            name, st->dt.steps, label, best_dt, best.dofs, SB_THUMB_W, SB_THUMB_H, SB_THUMB_SPP);
+    return 0;
+}
+
 int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FILE *err)
 {
     sb_plan plan;
@@ -315,6 +355,12 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
     mkdir(dir, 0777);
     snprintf(path, sizeof path, "%s/report.md", dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    int refused = 0;
+    if (sb_study_output_ok(path, "report", msg, sizeof msg)) {
+        fprintf(err, "shellbench report: %s\n", msg);
+        sb_plan_free(&plan);
+        return SB_EXIT_INPUT;
+    }
     FILE *md = fopen(tmp, "w");
     if (!md) {
         fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
@@ -358,16 +404,36 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
         char name[256], stem[1300];
         snprintf(name, sizeof name, "dt-%s", st->scenes[i].name);
         snprintf(stem, sizeof stem, "%s/%s", dir, name);
-        if (dt_figure(st, &plan, i, stem, o->gnuplot, msg, sizeof msg) == 0) fprintf(md, "\n![%s](%s.png)  \n[SVG](%s.svg)\n\n", name, name, name);
-        else fprintf(err, "shellbench report: warning: %s\n", msg), fprintf(md, "\n");
+        int rc = dt_figure(st, &plan, i, stem, o->gnuplot, msg, sizeof msg);
+        if (rc == 0) fprintf(md, "\n![%s](%s.png)  \n[SVG](%s.svg)\n\n", name, name, name);
+        else fprintf(err, "shellbench report: %s%s\n", rc == SB_FIG_REFUSED ? "" : "warning: ", msg), fprintf(md, "\n");
+        refused += rc == SB_FIG_REFUSED;
+        refused += dt_thumbnail(st, &plan, i, dir, md, err);
     }
     int bad = ferror(md);
-    if (fclose(md) || bad || rename(tmp, path)) {
+    if (fclose(md) || bad) {
         fprintf(err, "shellbench report: cannot write %s\n", path);
+        unlink(tmp);
+        sb_plan_free(&plan);
+        return SB_EXIT_INTERNAL;
+    }
+    if (sb_study_output_ok(path, "report", msg, sizeof msg)) {   /* again: it may have changed meanwhile */
+        fprintf(err, "shellbench report: %s\n", msg);
+        unlink(tmp);
+        sb_plan_free(&plan);
+        return SB_EXIT_INPUT;
+    }
+    if (rename(tmp, path)) {
+        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
+        unlink(tmp);
         sb_plan_free(&plan);
         return SB_EXIT_INTERNAL;
     }
     fprintf(err, "shellbench report: %s\n", path);
     sb_plan_free(&plan);
+    if (refused) {
+        fprintf(err, "shellbench report: %d output path%s refused (above): exit 2\n", refused, refused > 1 ? "s" : "");
+        return SB_EXIT_INPUT;
+    }
     return 0;
 }

@@ -1,7 +1,8 @@
 /* sb_study_fig.h — the study report's figures (gnuplot PNG + SVG): one
  * gnuplot run per figure (sb_study_gnuplot.c), the figures themselves in
  * sb_study_figs.c.  Every function returns 0, or -1 with a warning sentence
- * in err (the report goes on without that figure). */
+ * in err (the report goes on without that figure), or SB_FIG_REFUSED (an
+ * output path that must not be written: below). */
 #ifndef SB_STUDY_FIG_H
 #define SB_STUDY_FIG_H
 
@@ -25,6 +26,22 @@ void  sb_gp_quoted(FILE *f, const char *s);
 /* run gnuplot: the body into png and svg (replaced atomically), clean up */
 int   sb_gp_finish(sb_gp *g, const char *png, const char *svg, int width, int height, char *err, size_t errlen);
 void  sb_gp_abandon(sb_gp *g);
+
+/* Output safety (sb_study_thumb.c): every file a report writes is checked
+ * with sb_output_check (new or regular files only; a symbolic link, FIFO,
+ * device or directory is refused with a sentence, since the file is renamed
+ * onto its path).  Functions below return SB_FIG_REFUSED for such a path:
+ * the report then exits 2. */
+#define SB_FIG_REFUSED (-2)
+int sb_study_output_ok(const char *path, const char *what, char *err, size_t errlen);
+
+/* A picture of a record's final state (`shellbench render` at
+ * SB_THUMB_W x SB_THUMB_H, SB_THUMB_SPP samples per pixel): 0, -1 (the
+ * record cannot be drawn: the sentence in err) or SB_FIG_REFUSED. */
+#define SB_THUMB_W 240
+#define SB_THUMB_H 180
+#define SB_THUMB_SPP 4
+int sb_study_thumbnail(const char *record, const char *png, char *err, size_t errlen);
 
 /* cost measures of the diagrams and profiles */
 enum { SB_COST_SECONDS = 0, SB_COST_WORK = 1 };
