@@ -107,6 +107,9 @@ SB_TEST(an_interrupted_study_resumed_gives_the_same_report)
     /* every scene's picture: the finest converged run's final state, a PNG beside the report */
     CHECK(first && strstr(first, "![plate_clamped: final state](thumb-plate_clamped.png)  \n*plate_clamped: final state of "
                                  "the finest converged run, "));
+    /* the related reports are linked (the paths relative to the report's directory) */
+    CHECK(first && strstr(first, "## Related studies and reports") && strstr(first, "* [results/rmtr/cond.md](") &&
+          strstr(first, "* [results/dt_stability/report.md]("));
     char png[700];
     snprintf(png, sizeof png, "%s/thumb-plate_clamped.png", st->records);
     char *pic = slurp(png);

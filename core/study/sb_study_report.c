@@ -346,6 +346,61 @@ static void header(sb_rep *R)
     }
 }
 
+/* The path of `target` (relative to the current directory, normally the
+ * project root) as seen from directory `dir`: a relative link that works in
+ * the report wherever it is written.  0, or -1 when either does not exist. */
+static int rel_link(const char *dir, const char *target, char *buf, size_t len)
+{
+    char a[4096], b[4096];
+    if (!realpath(dir, a) || !realpath(target, b)) return -1;
+    /* common leading directories */
+    size_t i = 0, cut = 0;
+    while (a[i] && b[i] && a[i] == b[i]) {
+        if (a[i] == '/') cut = i + 1;
+        i++;
+    }
+    if (!a[i] && b[i] == '/') cut = i + 1;
+    size_t n = 0;
+    buf[0] = 0;
+    /* one ".." per directory of a below the common part */
+    if (a[cut] || (cut > 0 && a[cut - 1] != '/')) {
+        for (const char *p = a + cut; *p; p++)
+            if (*p == '/') n += (size_t)snprintf(buf + n, n < len ? len - n : 0, "../");
+        if (a[cut]) n += (size_t)snprintf(buf + n, n < len ? len - n : 0, "../");
+    }
+    snprintf(buf + (n < len ? n : len - 1), n < len ? len - n : 1, "%s", b + cut);
+    return 0;
+}
+
+/* the other reports of the suite that answer related questions (issue 23:
+ * the condition-number and penalty studies and the dt study), linked when
+ * they exist */
+static void related(sb_rep *R)
+{
+    static const char *const rep[][2] = {
+        { "results/dt_stability/report.md", "dt study: the largest time step at which each solver still converges on "
+                                            "the four cloth scenes (RMTR paper Fig. 10)" },
+        { "results/rmtr/cond.md", "condition numbers of the Hessian against dofs (RMTR paper Fig. 9, left)" },
+        { "results/rmtr/cond_sigma.md", "condition numbers against the penalty parameter (RMTR paper Fig. 9, right)" },
+        { "results/accuracy/report.md", "the accuracy study: the analytic and unique-solution scenes at 4-5 "
+                                        "resolutions per method" },
+        { "results/rmtr_report.md", "the RMTR paper's tables reproduced" },
+        { "results/bhem_report.md", "the BHEM paper's validation scenes reproduced" },
+        { "results/linear_fem_report.md", "the linear triangle FEM baseline" },
+    };
+    char self[4096], link[4096], path[1300];
+    snprintf(path, sizeof path, "%s/report.md", R->dir);
+    int have_self = realpath(path, self) != NULL, n = 0;
+    for (size_t k = 0; k < sizeof rep / sizeof rep[0]; k++) {
+        char real[4096];
+        if (!realpath(rep[k][0], real) || (have_self && strcmp(real, self) == 0)) continue;
+        if (rel_link(R->dir, rep[k][0], link, sizeof link)) continue;
+        if (!n++) fprintf(R->md, "## Related studies and reports\n\n");
+        fprintf(R->md, "* [%s](%s): %s\n", rep[k][0], link, rep[k][1]);
+    }
+    if (n) fprintf(R->md, "\n");
+}
+
 static int mkdir_p(const char *dir)
 {
     char tmp[1100];
@@ -404,6 +459,7 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
     sb_rep_run_tables(&R);
     sb_rep_without_records(&R);
     convergence(&R);
+    related(&R);
     fprintf(R.md, "## How to read this report\n\nSee docs/study.md: the study file, the reference policy per scene, how the "
                   "cost to reach a target is interpolated, and how to read the diagrams, profiles and the selection table.\n");
     int bad = ferror(R.md);
