@@ -103,7 +103,8 @@ void sb_rep_run_tables(sb_rep *R)
          * reference's has made no error, so the columns say "distance" */
         const int several = st->scenes[i].solution == SB_SOLUTION_MULTIPLE;
         fprintf(R->md, "### %s\n\n", st->scenes[i].name);
-        sb_rep_thumb(R, i);
+        /* the picture: here for the scenes without a work-precision diagram (which shows it for the others) */
+        if (st->scenes[i].solution == SB_SOLUTION_MULTIPLE || st->scenes[i].error == SB_ERRKIND_NONE) sb_rep_thumb(R, i);
         if (several)
             fprintf(R->md, "Several solutions: the last three columns are distances (/ diameter) to the minimum the "
                            "reference found, not errors; a run in another minimum can be as good (compare energies "
