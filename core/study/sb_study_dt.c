@@ -260,7 +260,7 @@ static int dt_figure(const sb_study *st, const sb_plan *plan, int i, const char 
              st->dt.steps, st->dt.max_iter);
     fprintf(body, "set title ");
     sb_gp_quoted(body, title);
-    fprintf(body, "\nset logscale y\nset yrange [%g:%g]\nset ylabel 'largest converging dt (s)'\nset grid ytics\n"
+    fprintf(body, "\nset logscale y\nset format y '%%g'\nset yrange [%g:%g]\nset ylabel 'largest converging dt (s)'\nset grid ytics\n"
                   "set key outside right top vertical Left reverse\nset xrange [-0.5:%d.5]\nset xtics (", st->dt.dt_min / 2,
             st->dt.dt_max * 2, st->n_solvers - 1);
     for (int s = 0; s < st->n_solvers; s++) {
