@@ -110,6 +110,15 @@ SB_TEST(an_interrupted_study_resumed_gives_the_same_report)
     /* the related reports are linked (the paths relative to the report's directory) */
     CHECK(first && strstr(first, "## Related studies and reports") && strstr(first, "* [results/rmtr/cond.md](") &&
           strstr(first, "* [results/dt_stability/report.md]("));
+    const char *lk = first ? strstr(first, "* [results/rmtr/cond.md](") : NULL;
+    if (lk) {
+        lk += strlen("* [results/rmtr/cond.md](");
+        char rel[600], joined[1400], r1[4096], r2[4096];
+        snprintf(rel, sizeof rel, "%.*s", (int)strcspn(lk, ")"), lk);
+        snprintf(joined, sizeof joined, "%s/%s", st->records, rel);
+        CHECK_MSG(rel[0] != '/' && realpath(joined, r1) && realpath("results/rmtr/cond.md", r2) && strcmp(r1, r2) == 0,
+                  "the link %s from %s leads to results/rmtr/cond.md", rel, st->records);
+    }
     char png[700];
     snprintf(png, sizeof png, "%s/thumb-plate_clamped.png", st->records);
     char *pic = slurp(png);

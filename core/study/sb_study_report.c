@@ -351,24 +351,20 @@ static void header(sb_rep *R)
  * the report wherever it is written.  0, or -1 when either does not exist. */
 static int rel_link(const char *dir, const char *target, char *buf, size_t len)
 {
-    char a[4096], b[4096];
+    char a[4100], b[4100];
     if (!realpath(dir, a) || !realpath(target, b)) return -1;
-    /* common leading directories */
-    size_t i = 0, cut = 0;
-    while (a[i] && b[i] && a[i] == b[i]) {
+    size_t la = strlen(a);
+    if (la == 0 || a[la - 1] != '/') a[la] = '/', a[la + 1] = 0;   /* the directory as "DIR/" */
+    /* the common leading directories end at the last '/' both share */
+    size_t cut = 0;
+    for (size_t i = 0; a[i] && b[i] && a[i] == b[i]; i++)
         if (a[i] == '/') cut = i + 1;
-        i++;
-    }
-    if (!a[i] && b[i] == '/') cut = i + 1;
+    /* one "../" per directory of dir below them, then the rest of target */
     size_t n = 0;
     buf[0] = 0;
-    /* one ".." per directory of a below the common part */
-    if (a[cut] || (cut > 0 && a[cut - 1] != '/')) {
-        for (const char *p = a + cut; *p; p++)
-            if (*p == '/') n += (size_t)snprintf(buf + n, n < len ? len - n : 0, "../");
-        if (a[cut]) n += (size_t)snprintf(buf + n, n < len ? len - n : 0, "../");
-    }
-    snprintf(buf + (n < len ? n : len - 1), n < len ? len - n : 1, "%s", b + cut);
+    for (const char *p = a + cut; *p; p++)
+        if (*p == '/' && n + 3 < len) memcpy(buf + n, "../", 4), n += 3;
+    snprintf(buf + n, len - n, "%s", b + cut);
     return 0;
 }
 
