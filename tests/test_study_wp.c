@@ -288,6 +288,17 @@ SB_TEST(report_tables_pictures_and_refused_outputs)
     CHECK_EQ_INT(sb_study_report(st, &o, devnull), SB_EXIT_INPUT);
     CHECK(link_intact(fig, ftgt));
     CHECK(access(rp, F_OK) == 0);
+    /* a link planted at the temporary report.md.tmp is removed, never written through */
+    CHECK(unlink(fig) == 0);
+    char tmpl[760], ttgt[700];
+    snprintf(tmpl, sizeof tmpl, "%s.tmp", rp);
+    snprintf(ttgt, sizeof ttgt, "%s/target-tmp.md", tmpdir);
+    CHECK(make_link(tmpl, ttgt));
+    CHECK_EQ_INT(sb_study_report(st, &o, devnull), 0);
+    char *t = slurp(ttgt);
+    CHECK_MSG(t && strcmp(t, "mine") == 0, "the target of a link at report.md.tmp is left alone");
+    struct stat rs;
+    CHECK(lstat(rp, &rs) == 0 && S_ISREG(rs.st_mode) && access(tmpl, F_OK) != 0);
     sb_study_free(st);
     /* the dt report (no probes recorded: its tables still stand) */
     snprintf(path, sizeof path, "%s/dt.json", tmpdir);

@@ -361,7 +361,7 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
         sb_plan_free(&plan);
         return SB_EXIT_INPUT;
     }
-    FILE *md = fopen(tmp, "w");
+    FILE *md = sb_study_open_tmp(tmp);
     if (!md) {
         fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
         sb_plan_free(&plan);

@@ -34,6 +34,9 @@ void  sb_gp_abandon(sb_gp *g);
  * the report then exits 2. */
 #define SB_FIG_REFUSED (-2)
 int sb_study_output_ok(const char *path, const char *what, char *err, size_t errlen);
+/* the temporary file a report is written to before its rename: created
+ * anew (O_EXCL | O_NOFOLLOW, after removing whatever was at the path) */
+FILE *sb_study_open_tmp(const char *tmp);
 
 /* A picture of a record's final state (`shellbench render` at
  * SB_THUMB_W x SB_THUMB_H, SB_THUMB_SPP samples per pixel): 0, -1 (the

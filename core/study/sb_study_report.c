@@ -430,7 +430,7 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
         sb_study_data_free(&d);
         return SB_EXIT_INPUT;
     }
-    if (mkdir_p(R.dir) || !(R.md = fopen(tmp, "w"))) {
+    if (mkdir_p(R.dir) || !(R.md = sb_study_open_tmp(tmp))) {
         fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
         sb_study_data_free(&d);
         return SB_EXIT_INPUT;

@@ -7,7 +7,9 @@
 #include "sb_output.h"
 #include "sb_render.h"
 
+#include <fcntl.h>
 #include <string.h>
+#include <unistd.h>
 
 int sb_study_output_ok(const char *path, const char *what, char *err, size_t errlen)
 {
@@ -23,6 +25,16 @@ int sb_study_output_ok(const char *path, const char *what, char *err, size_t err
         return SB_FIG_REFUSED;
     }
     return 0;
+}
+
+FILE *sb_study_open_tmp(const char *tmp)
+{
+    unlink(tmp);   /* a stale one, or a link planted there: removed, never followed */
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0666);
+    if (fd < 0) return NULL;
+    FILE *f = fdopen(fd, "w");
+    if (!f) close(fd);
+    return f;
 }
 
 int sb_study_thumbnail(const char *record, const char *png, char *err, size_t errlen)
