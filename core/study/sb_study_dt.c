@@ -133,8 +133,8 @@ typedef struct dt_walk {
     double lo, hi;          /* largest converging / smallest failing dt (0 / inf: none yet) */
     int probes;
     double next;            /* the next dt to probe (0: done) */
-    char at_max[64];        /* outcome at dt_max */
-    char at_hi[64];         /* why the smallest failing dt fails */
+    char at_max[256];       /* outcome at dt_max */
+    char at_hi[256];        /* why the smallest failing dt fails */
     double tried[DT_MAX_PROBES];
     int ok[DT_MAX_PROBES];
 } dt_walk;
