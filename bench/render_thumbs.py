@@ -3,7 +3,7 @@ final state rendered by `shellbench render` (docs/render.md) into a PNG
 beside the report, and the Markdown that shows them.
 
     from render_thumbs import thumbnails
-    lines = thumbnails(BIN, [(caption, record.h5[, [extra render options]]), ...],
+    lines = thumbnails(BIN, [(caption, record.h5[, [extra render options][, png name]]), ...],
                        "results/rmtr/images", "rmtr/images")
 
 A picture is made only when its PNG is missing (the committed pictures are
@@ -28,8 +28,8 @@ def thumbnails(bin_, items, outdir, reldir, per_row=3, size="320x240", spp=8):
     for item in items:
         caption, record = item[0], item[1]
         extra = item[2] if len(item) > 2 else ()
-        name = os.path.basename(record)
-        if name.endswith(".h5"):
+        name = item[3] if len(item) > 3 else os.path.basename(record)   # the PNG's name (records of several
+        if name.endswith(".h5"):                                          # scenes may share a basename)
             name = name[:-3]
         png = os.path.join(outdir, name + ".png")
         if not os.path.exists(record) and not os.path.exists(png):

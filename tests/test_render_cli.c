@@ -168,6 +168,21 @@ SB_TEST(resumed_run_keeps_its_time_series)
     CHECK(access(b, F_OK) == 0);
 }
 
+SB_TEST(a_checkpoint_renders_labelled_as_one)
+{
+    /* an unfinished run's .partial draws its last saved state, exit 0, and says so */
+    static char out[4096];
+    CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene tests/scenes/membrane_dynamic.json --method fixture_membrane "
+                    "--solver lsnewton --res 4 --out %s/part.h5 --quiet --stop-after-steps 1", sb_test_root(), sb_test_bin(),
+                    tmpdir), 4);
+    CHECK_EQ_INT(sh(out, sizeof out, "%s render %s/part.h5.partial --out %s/part.png --size 40x30 --spp 1", sb_test_bin(),
+                    tmpdir, tmpdir), 0);
+    CHECK(strstr(out, "a checkpoint of an unfinished run") && strstr(out, "labelled CHECKPOINT"));
+    char path[512];
+    snprintf(path, sizeof path, "%s/part.png", tmpdir);
+    CHECK(is_png(path));
+}
+
 SB_TEST(unrenderable_records_and_bad_options_exit_2)
 {
     static char out[8192];
@@ -263,8 +278,8 @@ int main(int argc, char **argv)
     mkdir(tmpdir, 0755);
     static const sb_test_case cases[] = {
         SB_CASE(every_method_renders_its_own_primitives), SB_CASE(tessellation_steps_and_time_series),
-        SB_CASE(resumed_run_keeps_its_time_series), SB_CASE(unrenderable_records_and_bad_options_exit_2),
-        SB_CASE(image_outputs_refused),
+        SB_CASE(resumed_run_keeps_its_time_series), SB_CASE(a_checkpoint_renders_labelled_as_one),
+        SB_CASE(unrenderable_records_and_bad_options_exit_2), SB_CASE(image_outputs_refused),
         SB_CASE(report_entry_point_renders_a_thumbnail), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);

@@ -60,6 +60,9 @@ static const bad bads[] = {
       "s.json:7:3: at /dt: \"dt\" belongs to a study of kind \"dt_stability\"" },
     { HEAD "  \"kind\": \"dt_stability\",\n" UNIQUE MS "  \"res\": [4],\n  \"dt\": {\"max\": 1}\n}",
       "s.json:4:14: at /scenes/0: a dt study needs dynamic scenes" },
+    { HEAD "  \"kind\": \"dt_stability\",\n  \"scenes\": [{\"scene\": \"trampoline\", \"solution\": \"unique\"}],\n" MS
+      "  \"res\": [4],\n  \"dt\": {\"max\": 1, \"min\": 1e-5, \"descent\": 1}\n}",
+      "s.json:8:44: at /dt/descent: must be a factor above 1.5" },
     { HEAD UNIQUE MS "  \"res\": [4],\n  \"rules\": [{\"method\": \"rmtr\"}]\n}",
       "s.json:7:13: at /rules/0: the rule does nothing" },
     { HEAD UNIQUE MS "  \"res\": [4]\n  \"samples\": 5\n}",

@@ -123,6 +123,26 @@ SB_TEST(an_interrupted_study_resumed_gives_the_same_report)
     CHECK_MSG(first && second && strcmp(first, second) == 0, "the resumed study's report differs from the uninterrupted one's");
     CHECK(first && strstr(first, "| strip_end_moment | rmtr/tr | 4 | 0 | refused | method rmtr on scene strip_end_moment"));
     CHECK(first && strstr(first, "| strip_end_moment | bhem/tr | — | 0 | skipped | 20 load steps"));
+    /* every scene's picture: the finest converged run's final state, a PNG beside the report */
+    CHECK(first && strstr(first, "![plate_clamped: final state](thumb-plate_clamped.png)  \n*plate_clamped: final state of "
+                                 "the finest converged run, "));
+    /* the related reports are linked (the paths relative to the report's directory) */
+    CHECK(first && strstr(first, "## Related studies and reports") && strstr(first, "* [results/rmtr/cond.md](") &&
+          strstr(first, "* [results/dt_stability/report.md]("));
+    const char *lk = first ? strstr(first, "* [results/rmtr/cond.md](") : NULL;
+    if (lk) {
+        lk += strlen("* [results/rmtr/cond.md](");
+        char rel[600], joined[1400], r1[4096], r2[4096];
+        snprintf(rel, sizeof rel, "%.*s", (int)strcspn(lk, ")"), lk);
+        snprintf(joined, sizeof joined, "%s/%s", st->records, rel);
+        CHECK_MSG(rel[0] != '/' && realpath(joined, r1) && realpath("results/rmtr/cond.md", r2) && strcmp(r1, r2) == 0,
+                  "the link %s from %s leads to results/rmtr/cond.md", rel, st->records);
+    }
+    char png[700];
+    snprintf(png, sizeof png, "%s/thumb-plate_clamped.png", st->records);
+    char *pic = slurp(png);
+    CHECK_MSG(pic && memcmp(pic, "\x89PNG", 4) == 0, "%s is a PNG", png);
+    free(pic);
     /* a third sweep has nothing to do */
     CHECK_EQ_INT(sweep(st, 2, 0), 0);
     sb_plan_free(&p);

@@ -7,6 +7,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static char tmpdir[256];
@@ -194,6 +195,133 @@ SB_TEST(selection_and_profiles_from_hand_made_records)
     free(st);
 }
 
+static char *slurp(const char *path)
+{
+    static char md[1 << 17];
+    FILE *f = fopen(path, "r");
+    if (!f) return NULL;
+    size_t n = fread(md, 1, sizeof md - 1, f);
+    md[n] = 0;
+    fclose(f);
+    return md;
+}
+
+/* a symbolic link at PATH to TARGET (which holds "mine"); 1 when both are
+ * still as made */
+static int make_link(const char *path, const char *target)
+{
+    FILE *f = fopen(target, "w");
+    if (!f) return 0;
+    fputs("mine", f);
+    fclose(f);
+    return symlink(target, path) == 0;
+}
+
+static int link_intact(const char *path, const char *target)
+{
+    struct stat st;
+    char buf[16] = "";
+    FILE *f = fopen(target, "r");
+    if (f) {
+        if (!fgets(buf, sizeof buf, f)) buf[0] = 0;
+        fclose(f);
+    }
+    return lstat(path, &st) == 0 && S_ISLNK(st.st_mode) && strcmp(buf, "mine") == 0;
+}
+
+/* Per-run tables say "distance to the reference's minimum" on a scene with
+ * several solutions and "error" on a unique one; a record that cannot be
+ * drawn leaves a sentence instead of a picture; a report.md or a figure that
+ * is a symbolic link is refused (exit 2) and the link and its target are
+ * left alone, for the accuracy report and the dt report. */
+SB_TEST(report_tables_pictures_and_refused_outputs)
+{
+    char path[600], err[2048], text[2048], rp[700], tgt[700];
+    snprintf(path, sizeof path, "%s/several.json", tmpdir);
+    snprintf(text, sizeof text, "{\"study\": \"several\", \"records\": \"%s/several\", \"scenes\": [\"plate_clamped\", "
+             "{\"scene\": \"tests/scenes/drooping_1step.json\", \"solution\": \"multiple\"}], \"methods\": [\"rmtr\"], "
+             "\"solvers\": [\"tr\"], \"res\": [4]}", tmpdir);
+    sb_study *st = calloc(1, sizeof *st);
+    CHECK(st != NULL);
+    if (!st) return;
+    int rc = sb_study_parse_string(text, path, NULL, st, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    if (rc) { free(st); return; }
+    sb_plan plan;
+    CHECK(sb_study_plan(st, &plan, err, sizeof err) == 0);
+    for (int k = 0; k < plan.n; k++)
+        CHECK(fake_record(plan.runs[k].out, st->scenes[plan.runs[k].scene].scene, "rmtr", "tr", plan.runs[k].dofs, 1, 10,
+                          1e-3) == 0);
+    sb_plan_free(&plan);
+    sb_study_report_options o = { NULL, "/nonexistent/gnuplot", 1 };
+    FILE *devnull = fopen("/dev/null", "w");
+    CHECK(sb_study_report(st, &o, devnull) == 0);
+    snprintf(rp, sizeof rp, "%s/several/report.md", tmpdir);
+    char *md = slurp(rp);
+    CHECK(md != NULL);
+    if (md) {
+        char *runs = strstr(md, "## Runs"), *uniq = runs ? strstr(runs, "### plate_clamped") : NULL,
+             *sev = runs ? strstr(runs, "### drooping_1step") : NULL;
+        CHECK(uniq && sev && uniq < sev);
+        if (uniq && sev) {
+            char *a = strstr(uniq, "| probe error | RMS field error | max field error |");
+            char *b = strstr(sev, "| probe distance to the reference's minimum | RMS distance to it | max distance to it |");
+            CHECK_MSG(a && a < sev, "the unique scene's table has error columns");
+            CHECK_MSG(b != NULL, "the table of the scene with several solutions has distance columns");
+            CHECK_MSG(!strstr(sev, "| probe error |"), "no error columns after the scene with several solutions");
+        }
+        /* hand-made records hold no final state: a sentence, not a picture */
+        CHECK(strstr(md, "*plate_clamped: no picture: the record cannot be drawn") != NULL);
+        CHECK(!strstr(md, "](thumb-"));
+    }
+    /* report.md a symbolic link: refused before anything is written */
+    snprintf(tgt, sizeof tgt, "%s/target.md", tmpdir);
+    CHECK(unlink(rp) == 0 && make_link(rp, tgt));
+    CHECK_EQ_INT(sb_study_report(st, &o, devnull), SB_EXIT_INPUT);
+    CHECK_MSG(link_intact(rp, tgt), "the symbolic link report.md and its target are left alone");
+    /* a figure a symbolic link: the report is written, the figure refused, exit 2 */
+    CHECK(unlink(rp) == 0);
+    char fig[700], ftgt[700];
+    snprintf(fig, sizeof fig, "%s/several/wp-plate_clamped-work.png", tmpdir);
+    snprintf(ftgt, sizeof ftgt, "%s/target.png", tmpdir);
+    CHECK(make_link(fig, ftgt));
+    CHECK_EQ_INT(sb_study_report(st, &o, devnull), SB_EXIT_INPUT);
+    CHECK(link_intact(fig, ftgt));
+    CHECK(access(rp, F_OK) == 0);
+    /* a link planted at the temporary report.md.tmp is removed, never written through */
+    CHECK(unlink(fig) == 0);
+    char tmpl[760], ttgt[700];
+    snprintf(tmpl, sizeof tmpl, "%s.tmp", rp);
+    snprintf(ttgt, sizeof ttgt, "%s/target-tmp.md", tmpdir);
+    CHECK(make_link(tmpl, ttgt));
+    CHECK_EQ_INT(sb_study_report(st, &o, devnull), 0);
+    char *t = slurp(ttgt);
+    CHECK_MSG(t && strcmp(t, "mine") == 0, "the target of a link at report.md.tmp is left alone");
+    struct stat rs;
+    CHECK(lstat(rp, &rs) == 0 && S_ISREG(rs.st_mode) && access(tmpl, F_OK) != 0);
+    sb_study_free(st);
+    /* the dt report (no probes recorded: its tables still stand) */
+    snprintf(path, sizeof path, "%s/dt.json", tmpdir);
+    snprintf(text, sizeof text, "{\"study\": \"dt\", \"kind\": \"dt_stability\", \"records\": \"%s/dt\", \"scenes\": "
+             "[{\"scene\": \"trampoline\", \"solution\": \"unique\"}], \"methods\": [\"rmtr\"], \"solvers\": [\"tr\"], "
+             "\"res\": [4], \"dt\": {\"max\": 1, \"min\": 0.01}}", tmpdir);
+    rc = sb_study_parse_string(text, path, NULL, st, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    if (!rc) {
+        CHECK(sb_study_report(st, &o, devnull) == 0);
+        snprintf(rp, sizeof rp, "%s/dt/report.md", tmpdir);
+        md = slurp(rp);
+        CHECK(md && strstr(md, "| rmtr | tr | ") && strstr(md, "*trampoline: no picture (no probe converged).*"));
+        snprintf(tgt, sizeof tgt, "%s/target-dt.md", tmpdir);
+        CHECK(unlink(rp) == 0 && make_link(rp, tgt));
+        CHECK_EQ_INT(sb_study_report(st, &o, devnull), SB_EXIT_INPUT);
+        CHECK(link_intact(rp, tgt));
+        sb_study_free(st);
+    }
+    fclose(devnull);
+    free(st);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_study_wp_XXXXXX");
@@ -203,7 +331,7 @@ int main(int argc, char **argv)
         SB_CASE(pareto_front_of_hand_made_points),
         SB_CASE(cost_to_reach_interpolates_log_log_and_never_extrapolates),
         SB_CASE(performance_profile_of_a_hand_made_table),
-        SB_CASE(selection_and_profiles_from_hand_made_records), SB_END,
+        SB_CASE(selection_and_profiles_from_hand_made_records), SB_CASE(report_tables_pictures_and_refused_outputs), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];

@@ -6,7 +6,7 @@ build/bench/bench_linear_fem).  Never re-runs anything.
 
     python3 bench/linear_fem/report.py [results/linear_fem] > results/linear_fem_report.md
 """
-import glob, json, math, os, sys
+import csv, glob, io, json, math, os, subprocess, sys
 
 DIR = sys.argv[1] if len(sys.argv) > 1 else "results/linear_fem"
 RUNS = os.path.join(DIR, "runs")
@@ -238,6 +238,51 @@ P("Notes: rmtr's Scordelis–Lo runs do not hold the roof's boundary with the de
   "The hinge on one cell across a strip (roll_quarter/roll_full, N x 1) is far too soft: its free edges let "
   "the twist terms of its anisotropic energy relax (with 2 cells across, bench/scenes/strip_end_moment, the "
   "error is 6-10 %).\n")
+# ---- pictures of final states (bench/render_thumbs.py, `shellbench render`) ----------
+# run.sh keeps JSON summaries only (--out none), so this bench has no record to draw; the
+# pictures are linear_fem's records of the accuracy study (results/accuracy, committed):
+# the same bundled scenes, the finest converged linear_fem run of each.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from render_thumbs import thumbnails  # noqa: E402
+
+BIN = os.environ.get("SB_BIN", "build/shellbench")
+ACC = os.path.join(os.path.dirname(DIR.rstrip("/")) or ".", "accuracy")
+SCENE_PICS = (("clamped plate", "plate_clamped"), ("simply supported plate", "plate_simply_supported"),
+              ("Scordelis–Lo roof, linear regime", "scordelis_lo_linear"), ("heavy cantilever", "cantilever"),
+              ("roll-up under an end moment", "strip_end_moment"), ("trampoline", "trampoline"))
+
+
+def finest_converged(paths):
+    """the converged record with the most dofs (`shellbench report --format csv`), or None"""
+    if not paths:
+        return None
+    p = subprocess.run([BIN, "report", "--format", "csv"] + paths, capture_output=True, text=True)
+    rows = list(csv.DictReader(io.StringIO(p.stdout)))
+    ok = [r for r in rows if r.get("status_code") == "0"]
+    if len(rows) != len(paths) or not ok:
+        return None
+    best = max(ok, key=lambda r: int(r["dofs"]))
+    return paths[rows.index(best)], best
+
+
+items = []
+for cap, scene in SCENE_PICS:
+    # the unperturbed start only (-sN: perturbed starts)
+    paths = sorted(f for f in glob.glob(os.path.join(ACC, scene, "linear_fem-*.h5")) if "-s" not in os.path.basename(f))
+    got = finest_converged(paths)
+    if got:
+        items.append(("%s: linear_fem/%s, %s dofs" % (cap, got[1]["solver"], got[1]["dofs"]), got[0], (),
+                      scene + "-" + os.path.basename(got[0])))
+rows = thumbnails(BIN, items, os.path.join(DIR, "images"), "linear_fem/images", size="240x180", spp=4)
+P("## Final states\n")
+if rows:
+    P("This bench keeps JSON summaries, not records (`run.sh` runs with `--out none`), so its own runs cannot be "
+      "drawn.  The pictures are linear_fem records of the accuracy study (results/accuracy/report.md) on the same "
+      "bundled scenes, drawn by `shellbench render` from their final states (the mesh's own triangles).\n")
+    out.extend(rows)
+else:
+    P("(no picture: this bench keeps no records, and no linear_fem record of results/accuracy was found)\n")
+
 P("## Findings computed from the records\n")
 for f in findings:
     P("* " + f)

@@ -246,10 +246,12 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
             const int step = rq->step >= 0 ? rq->step : sum.steps;
             char state[96];
             if (sum.status == 0) snprintf(state, sizeof state, "converged");
-            else if (sum.status == SB_STATUS_UNFINISHED) snprintf(state, sizeof state, "checkpoint");
+            else if (sum.status == SB_STATUS_UNFINISHED) snprintf(state, sizeof state, "CHECKPOINT, run unfinished");
             else snprintf(state, sizeof state, "NOT converged (%s)", sum.reason_name);
-            snprintf(o.subtitle, sizeof o.subtitle, "%s %d/%d | %s | %ld dofs", rq->step >= 0 ? "step" : "final, step",
-                     step, sum.steps_planned, state, sum.dofs);
+            /* a checkpoint (.partial) draws the last saved state, not a final one */
+            snprintf(o.subtitle, sizeof o.subtitle, "%s %d/%d | %s | %ld dofs",
+                     rq->step >= 0 ? "step" : sum.status == SB_STATUS_UNFINISHED ? "saved, step" : "final, step", step,
+                     sum.steps_planned, state, sum.dofs);
         }
         rc = sb_render_surface(&surf, have_mat ? &mat : NULL, &o, &img, st, err, errlen);
         if (rc && !strstr(err, path)) {
@@ -270,9 +272,12 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         const char *val[] = { o.title, path, desc, param, software };
         if (sb_image_write_png(&img, rq->out, 5, key, val, err, errlen)) rc = SB_ERR_IO;
         if (!rc && info)
-            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s", rq->out, o.width, o.height,
+            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s%s", rq->out, o.width, o.height,
                      o.spp, surf.what, surf.n_patches ? sb_isect_names[o.isect] : "triangle",
-                     st ? st->seconds : 0.0);
+                     st ? st->seconds : 0.0,
+                     sum.status == SB_STATUS_UNFINISHED && rq->step < 0
+                         ? "; a checkpoint of an unfinished run: the state after its last saved step, labelled CHECKPOINT"
+                         : "");
     }
     sb_image_free(&img);
     sb_surface_free(&surf);

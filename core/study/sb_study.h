@@ -84,6 +84,8 @@ typedef struct sb_study_rule {
 /* dt_stability: bisection over dt in log scale (RMTR paper Fig. 10) */
 typedef struct sb_study_dt {
     double dt_max, dt_min;           /* the cap (paper: 1 s) and the smallest dt tried */
+    double descent;                  /* after a failure at dt_max: probe dt_max / descent^k down to dt_min
+                                        until one converges (default dt_max / dt_min: dt_min at once) */
     int bisections;                  /* halvings of the log-interval after the first failure */
     int steps;                       /* time steps of every run (the horizon is steps * dt) */
     int max_iter;                    /* iteration cap per step */

@@ -13,8 +13,10 @@
  *
  * Bisection (assumes convergence at dt implies convergence at smaller dt):
  * dt_max first (converges: the answer is ">= dt_max", the paper's cap of
- * 1 s); then dt_min (fails: "< dt_min"); then `bisections` geometric
- * midpoints of [largest converging, smallest failing].  Probes are named by
+ * 1 s); then down by the factor `descent` (default: straight to dt_min)
+ * until a probe converges or dt_min fails too ("< dt_min"); then
+ * `bisections` geometric midpoints of [largest converging, smallest
+ * failing].  Probes are named by
  * their dt (6 significant digits, the value actually run), so a second sweep
  * replays the same sequence from the records and continues where it stopped. */
 #include "sb_study_fig.h"
@@ -131,8 +133,8 @@ typedef struct dt_walk {
     double lo, hi;          /* largest converging / smallest failing dt (0 / inf: none yet) */
     int probes;
     double next;            /* the next dt to probe (0: done) */
-    char at_max[64];        /* outcome at dt_max */
-    char at_hi[64];         /* why the smallest failing dt fails */
+    char at_max[256];       /* outcome at dt_max */
+    char at_hi[256];        /* why the smallest failing dt fails */
     double tried[DT_MAX_PROBES];
     int ok[DT_MAX_PROBES];
 } dt_walk;
@@ -165,9 +167,11 @@ static void walk(const sb_study *st, const sb_plan_run *base, dt_walk *w)
             snprintf(w->at_hi, sizeof w->at_hi, "%s", why);
         }
         /* the next probe */
-        if (w->probes == 1) dt = o ? 0 : round6(D->dt_min);
-        else if (w->lo == 0) dt = 0;                       /* fails at dt_min too */
-        else if (bis++ < D->bisections) {
+        if (w->probes == 1) dt = o ? 0 : round6(fmax(D->dt_max / D->descent, D->dt_min));
+        else if (w->lo == 0) {                             /* still failing: down by `descent`, never below dt_min */
+            double down = round6(fmax(dt / D->descent, D->dt_min));
+            dt = (dt > D->dt_min && down < dt) ? down : 0; /* fails at dt_min too */
+        } else if (bis++ < D->bisections) {
             double mid = round6(sqrt(w->lo * w->hi));
             dt = (mid > w->lo && mid < w->hi) ? mid : 0;   /* 6 digits cannot split it further */
         } else dt = 0;
@@ -256,7 +260,7 @@ static int dt_figure(const sb_study *st, const sb_plan *plan, int i, const char 
              st->dt.steps, st->dt.max_iter);
     fprintf(body, "set title ");
     sb_gp_quoted(body, title);
-    fprintf(body, "\nset logscale y\nset yrange [%g:%g]\nset ylabel 'largest converging dt (s)'\nset grid ytics\n"
+    fprintf(body, "\nset logscale y\nset format y '%%g'\nset yrange [%g:%g]\nset ylabel 'largest converging dt (s)'\nset grid ytics\n"
                   "set key outside right top vertical Left reverse\nset xrange [-0.5:%d.5]\nset xtics (", st->dt.dt_min / 2,
             st->dt.dt_max * 2, st->n_solvers - 1);
     for (int s = 0; s < st->n_solvers; s++) {
@@ -299,6 +303,46 @@ static int dt_figure(const sb_study *st, const sb_plan *plan, int i, const char 
     return sb_gp_finish(&g, png, svg, 900, 500, err, len);
 }
 
+/* The picture of scene i: the converged probe with the largest dt (ties:
+ * the first configuration in the plan), its final state after the study's
+ * steps.  Returns 1 when its path was refused, else 0. */
+static int dt_thumbnail(const sb_study *st, const sb_plan *plan, int i, const char *dir, FILE *md, FILE *err)
+{
+    double best_dt = 0;
+    sb_plan_run best;
+    char msg[1500];
+    for (int k = 0; k < plan->n; k++) {
+        const sb_plan_run *r = &plan->runs[k];
+        if (r->scene != i || r->state != SB_PLAN_RUN) continue;
+        dt_walk w;
+        walk(st, r, &w);
+        if (w.lo > best_dt) {
+            sb_plan_run q = *r;
+            q.dt = w.lo;
+            if (sb_plan_finish_run(st, &q, msg, sizeof msg)) continue;
+            best = q, best_dt = w.lo;
+        }
+    }
+    const char *name = st->scenes[i].name;
+    if (!(best_dt > 0)) {
+        fprintf(md, "*%s: no picture (no probe converged).*\n\n", name);
+        return 0;
+    }
+    char png[1300], label[128];
+    snprintf(png, sizeof png, "%s/thumb-%s.png", dir, name);
+    sb_plan_config_label(st, &best, label, sizeof label);
+    int rc = sb_study_thumbnail(best.out, png, msg, sizeof msg);
+    if (rc) {
+        fprintf(err, "shellbench report: %s%s\n", rc == SB_FIG_REFUSED ? "" : "warning: ", msg);
+        fprintf(md, "*%s: no picture (%s).*\n\n", name, rc == SB_FIG_REFUSED ? "its path was refused" : "the record cannot be drawn");
+        return rc == SB_FIG_REFUSED;
+    }
+    fprintf(md, "![%s: final state](thumb-%s.png)  \n*%s: state after %d steps of the converging probe with the largest "
+                "dt, %s at dt = %g s, %ld dofs (`shellbench render`, %dx%d, %d samples per pixel).*\n\n", name, name,
+            name, st->dt.steps, label, best_dt, best.dofs, SB_THUMB_W, SB_THUMB_H, SB_THUMB_SPP);
+    return 0;
+}
+
 int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FILE *err)
 {
     sb_plan plan;
@@ -311,7 +355,13 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
     mkdir(dir, 0777);
     snprintf(path, sizeof path, "%s/report.md", dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *md = fopen(tmp, "w");
+    int refused = 0;
+    if (sb_study_output_ok(path, "report", msg, sizeof msg)) {
+        fprintf(err, "shellbench report: %s\n", msg);
+        sb_plan_free(&plan);
+        return SB_EXIT_INPUT;
+    }
+    FILE *md = sb_study_open_tmp(tmp);
     if (!md) {
         fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
         sb_plan_free(&plan);
@@ -327,11 +377,12 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
                 "their duration in seconds), at most %d iterations per step (`run.max_iter`).  A probe converges when every "
                 "step converges; for the linearized solve, when every step's residual after its one Newton step meets the "
                 "stopping test the other solvers meet (‖g‖ < max(1e-7, 1e-9 ‖g₀‖), Eq. 7.1).  Bisection: dt = %g first "
-                "(the cap), then dt = %g, then %d geometric midpoints between the largest converging and the smallest "
-                "failing dt; it assumes that convergence at dt implies convergence at smaller dt.  Study file `%s`, "
+                "(the cap), then dt divided by %g at each failing probe, down to at most dt = %g (failing there too: "
+                "\"< %g\"), then %d geometric midpoints between the largest converging and the smallest failing dt; it "
+                "assumes that convergence at dt implies convergence at smaller dt.  Study file `%s`, "
                 "records under `%s`.  The RMTR paper's other robustness studies, the condition numbers and the penalty "
-                "parameter (Fig. 9), are reproduced in results/rmtr/cond.md and results/rmtr/cond_sigma.md.\n\n", st->dt.steps, st->dt.max_iter, st->dt.dt_max, st->dt.dt_min,
-            st->dt.bisections, st->path, st->records);
+                "parameter (Fig. 9), are reproduced in results/rmtr/cond.md and results/rmtr/cond_sigma.md.\n\n", st->dt.steps, st->dt.max_iter, st->dt.dt_max, st->dt.descent,
+            st->dt.dt_min, st->dt.dt_min, st->dt.bisections, st->path, st->records);
     for (int i = 0; i < st->n_scenes; i++) {
         fprintf(md, "## %s\n\n| method | solver | dofs | largest converging dt (s) | outcome at dt = %g | why the smallest "
                     "failing dt fails | probes |\n|---|---|--:|---|---|---|--:|\n", st->scenes[i].name, st->dt.dt_max);
@@ -353,16 +404,36 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
         char name[256], stem[1300];
         snprintf(name, sizeof name, "dt-%s", st->scenes[i].name);
         snprintf(stem, sizeof stem, "%s/%s", dir, name);
-        if (dt_figure(st, &plan, i, stem, o->gnuplot, msg, sizeof msg) == 0) fprintf(md, "\n![%s](%s.png)  \n[SVG](%s.svg)\n\n", name, name, name);
-        else fprintf(err, "shellbench report: warning: %s\n", msg), fprintf(md, "\n");
+        int rc = dt_figure(st, &plan, i, stem, o->gnuplot, msg, sizeof msg);
+        if (rc == 0) fprintf(md, "\n![%s](%s.png)  \n[SVG](%s.svg)\n\n", name, name, name);
+        else fprintf(err, "shellbench report: %s%s\n", rc == SB_FIG_REFUSED ? "" : "warning: ", msg), fprintf(md, "\n");
+        refused += rc == SB_FIG_REFUSED;
+        refused += dt_thumbnail(st, &plan, i, dir, md, err);
     }
     int bad = ferror(md);
-    if (fclose(md) || bad || rename(tmp, path)) {
+    if (fclose(md) || bad) {
         fprintf(err, "shellbench report: cannot write %s\n", path);
+        unlink(tmp);
+        sb_plan_free(&plan);
+        return SB_EXIT_INTERNAL;
+    }
+    if (sb_study_output_ok(path, "report", msg, sizeof msg)) {   /* again: it may have changed meanwhile */
+        fprintf(err, "shellbench report: %s\n", msg);
+        unlink(tmp);
+        sb_plan_free(&plan);
+        return SB_EXIT_INPUT;
+    }
+    if (rename(tmp, path)) {
+        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
+        unlink(tmp);
         sb_plan_free(&plan);
         return SB_EXIT_INTERNAL;
     }
     fprintf(err, "shellbench report: %s\n", path);
     sb_plan_free(&plan);
+    if (refused) {
+        fprintf(err, "shellbench report: %d output path%s refused (above): exit 2\n", refused, refused > 1 ? "s" : "");
+        return SB_EXIT_INPUT;
+    }
     return 0;
 }

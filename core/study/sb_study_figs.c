@@ -27,6 +27,27 @@ static const char *error_axis(sb_error_kind e)
     }
 }
 
+/* Curve styles: gnuplot's default cycle has 8 colours, so a ninth
+ * configuration would repeat the first one's.  12 distinct colours (the
+ * Okabe-Ito set and six more, none grey: grey is the Pareto front), point
+ * types on a cycle of 7 and, beyond 12 configurations, a dash pattern per
+ * round of the palette: no two of the first 84 curves look alike. */
+static const char *const palette[] = { "#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9",
+                                       "#000000", "#8c564b", "#7b3294", "#a6a600", "#d62728", "#1b7837" };
+#define N_PALETTE ((int)(sizeof palette / sizeof palette[0]))
+static const int point_types[] = { 5, 7, 9, 11, 13, 15, 3 };
+
+const char *sb_fig_colour(int c) { return palette[((c % N_PALETTE) + N_PALETTE) % N_PALETTE]; }
+
+/* "lc rgb '#rrggbb' dt D" (and " pt P" when with_points) of curve c */
+static const char *curve_style(int c, int with_points, char *buf, size_t len)
+{
+    int u = c < 0 ? 0 : c;
+    int n = snprintf(buf, len, "lc rgb '%s' dt %d", sb_fig_colour(u), 1 + (u / N_PALETTE) % 5);
+    if (with_points && n > 0 && (size_t)n < len) snprintf(buf + n, len - n, " pt %d", point_types[u % 7]);
+    return buf;
+}
+
 static void png_svg(const char *stem, char *png, char *svg, size_t len)
 {
     snprintf(png, len, "%s.png", stem);
@@ -86,11 +107,12 @@ int sb_fig_work_precision(const sb_study_data *d, int i, int cost, const char *s
         sb_study_config_label(d, c, label, sizeof label);
         fprintf(body, "%s", curves ? ", \\\n     " : "");
         sb_gp_quoted(body, path);
-        fprintf(body, " using 1:2 with linespoints lw 2 pt %d ps 1.2 lt %d title ", 5 + 2 * (c % 5), 1 + c % 9);
+        char sty[96];
+        fprintf(body, " using 1:2 with linespoints lw 2 ps 1.2 %s title ", curve_style(c, 1, sty, sizeof sty));
         sb_gp_quoted(body, label);
         fprintf(body, ", \\\n     ");
         sb_gp_quoted(body, path);
-        fprintf(body, " using 1:2:(sprintf('%%d', $3)) with labels offset char 0.9,0.7 font ',7' tc lt %d notitle", 1 + c % 9);
+        fprintf(body, " using 1:2:(sprintf('%%d', $3)) with labels offset char 0.9,0.7 font ',7' tc rgb '%s' notitle", sb_fig_colour(c));
         curves++;
     }
     if (curves == 0) {
@@ -133,8 +155,8 @@ int sb_fig_work_precision(const sb_study_data *d, int i, int cost, const char *s
     return rc;
 }
 
-int sb_fig_profile(int np, int ns, const double *ratio, char (*labels)[128], const char *title, const char *stem,
-                   const char *gnuplot, char *err, size_t errlen)
+int sb_fig_profile(int np, int ns, const double *ratio, char (*labels)[128], const int *style, const char *title,
+                   const char *stem, const char *gnuplot, char *err, size_t errlen)
 {
     sb_gp g;
     char path[700], png[1100], svg[1100];
@@ -169,7 +191,8 @@ int sb_fig_profile(int np, int ns, const double *ratio, char (*labels)[128], con
         fclose(f);
         fprintf(body, "%s", s ? ", \\\n     " : "");
         sb_gp_quoted(body, path);
-        fprintf(body, " using 1:2 with steps lw 2 lt %d title ", 1 + s % 9);
+        char sty[96];
+        fprintf(body, " using 1:2 with steps lw 2 %s title ", curve_style(style ? style[s] : s, 0, sty, sizeof sty));
         sb_gp_quoted(body, labels[s]);
     }
     free(r);
@@ -246,7 +269,8 @@ int sb_fig_convergence(const sb_study_data *d, int i, const char *stem, const ch
         snprintf(label, sizeof label, "%s (%ld dofs)%s", cl, d->pt[k].dofs, d->pt[k].status ? " NOT converged" : "");
         fprintf(body, "%s", lines ? ", \\\n     " : "");
         sb_gp_quoted(body, path);
-        fprintf(body, " using 1:2 with lines lw 1.5 lt %d title ", 1 + c % 9);
+        char sty[96];
+        fprintf(body, " using 1:2 with lines lw 1.5 %s title ", curve_style(c, 0, sty, sizeof sty));
         sb_gp_quoted(body, label);
         lines++;
     }

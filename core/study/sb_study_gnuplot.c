@@ -1,8 +1,9 @@
 /* sb_study_gnuplot.c — one figure through gnuplot as PNG and SVG: data
  * files and the script in a private temporary directory, gnuplot writing to
- * OUT.tmp.<pid>, renamed onto OUT only when it succeeded.  A missing or
- * failing gnuplot is a warning for the caller (the report's tables stand
- * without figures). */
+ * OUT.tmp.<pid>, renamed onto OUT only when it succeeded and OUT is new or a
+ * regular file (sb_study_output_ok: never over a symbolic link, FIFO or
+ * device).  A missing or failing gnuplot is a warning for the caller (the
+ * report's tables stand without figures). */
 #include "sb_study_fig.h"
 
 #include <errno.h>
@@ -101,11 +102,14 @@ int sb_gp_finish(sb_gp *g, const char *png, const char *svg, int width, int heig
     }
     if (status) {
         snprintf(err, errlen, "figure %s not written: cannot write the gnuplot script in %s", png, g->dir);
+    } else if (sb_study_output_ok(png, "figure", err, errlen) || sb_study_output_ok(svg, "figure", err, errlen)) {
+        status = SB_FIG_REFUSED;   /* before gnuplot runs, and again before the renames */
     } else {
         int rc = run_prog(g->prog, script, log);
         first_line(log, why, sizeof why);
         if (rc == 127) snprintf(err, errlen, "figure %s not written: gnuplot (\"%s\") is not installed or not on PATH", png, g->prog), status = -1;
         else if (rc != 0) snprintf(err, errlen, "figure %s not written: gnuplot exited with status %d%s%s", png, rc, why[0] ? ": " : "", why), status = -1;
+        else if (sb_study_output_ok(png, "figure", err, errlen) || sb_study_output_ok(svg, "figure", err, errlen)) status = SB_FIG_REFUSED;
         else if (rename(tpng, png) || rename(tsvg, svg)) snprintf(err, errlen, "figure %s not written: %s", png, strerror(errno)), status = -1;
     }
     unlink(tpng);

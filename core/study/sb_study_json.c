@@ -323,7 +323,7 @@ static int parse_vary(sbj_ctx *c, const json_t *root, sb_study *st)
 
 static int parse_dt(sbj_ctx *c, const json_t *root, sb_study *st)
 {
-    static const char *const keys[] = { "max", "min", "bisections", "steps", "max_iter", NULL };
+    static const char *const keys[] = { "max", "min", "descent", "bisections", "steps", "max_iter", NULL };
     json_t *o;
     int r = sbj_get_object(c, root, "dt", st->kind == SB_STUDY_DT_STABILITY, &o);
     if (r) return r;
@@ -331,15 +331,21 @@ static int parse_dt(sbj_ctx *c, const json_t *root, sb_study *st)
     if (!o) return SB_OK;
     sb_study_dt *d = &st->dt;
     long b = 6, steps = 5, mi = 1000;
+    int has_descent = 0;
     d->dt_max = 1.0;
     d->dt_min = 1e-3;
+    d->descent = 0;
     size_t mark = sbj_push(c, "dt");
     if (!(r = sbj_check_keys(c, o, keys)) && !(r = sbj_get_number(c, o, "max", 0, &d->dt_max, NULL)) &&
         !(r = sbj_require_positive(c, "max", d->dt_max)) && !(r = sbj_get_number(c, o, "min", 0, &d->dt_min, NULL)) &&
         !(r = sbj_require_positive(c, "min", d->dt_min)) && !(r = sbj_get_int(c, o, "bisections", 0, 0, 30, &b)) &&
         !(r = sbj_get_int(c, o, "steps", 0, 1, 100000, &steps)) && !(r = sbj_get_int(c, o, "max_iter", 0, 1, 100000000, &mi))) {
         if (!(d->dt_min < d->dt_max)) r = sbj_fail(c, "min", 0, "must be smaller than max = %g", d->dt_max);
+        else if (!(r = sbj_get_number(c, o, "descent", 0, &d->descent, &has_descent)) && has_descent &&
+                 !(d->descent > 1.5)) r = sbj_fail(c, "descent", 0, "must be a factor above 1.5 (each failing probe below "
+                                                   "the cap divides dt by it until dt = min)");
     }
+    if (!r && !(d->descent > 0)) d->descent = d->dt_max / d->dt_min;
     sbj_pop(c, mark);
     d->bisections = (int)b;
     d->steps = (int)steps;

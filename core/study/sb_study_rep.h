@@ -12,7 +12,16 @@ typedef struct sb_rep {
     FILE *md, *err;
     char dir[1024];
     int n_costs, costs[2];     /* the cost measures shown (seconds first) */
+    int refused;               /* output paths refused (sb_study_output_ok): the report exits 2 */
+    /* per scene: its picture thumb-SCENE.png (1 drawn) and its caption, or
+     * why there is none */
+    int thumb[SB_STUDY_MAX_SCENES];
+    char thumb_caption[SB_STUDY_MAX_SCENES][400];
 } sb_rep;
+
+/* the picture of scene i (and its caption) into the report, or the line
+ * saying why there is none */
+void sb_rep_thumb(sb_rep *R, int i);
 
 /* "%.3g", or an em dash for a non-finite value */
 void sb_rep_g3(char *buf, size_t len, double v);

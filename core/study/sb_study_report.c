@@ -115,6 +115,71 @@ out:
     free(how);
 }
 
+/* a figure that was not written: a warning, or (a refused output path) an
+ * error that makes the report exit 2 */
+static void fig_failed(sb_rep *R, int rc, const char *msg)
+{
+    if (rc == SB_FIG_REFUSED) R->refused++, fprintf(R->err, "shellbench report: %s\n", msg);
+    else fprintf(R->err, "shellbench report: warning: %s\n", msg);
+}
+
+/* The record drawn for scene i: the finest converged record of the
+ * unperturbed start (most dofs; ties: the first in the plan), else the
+ * scene's reference record; NULL when there is neither. */
+static const char *thumb_record(const sb_rep *R, int i, char *what, size_t len)
+{
+    const sb_study_data *d = R->d;
+    int best = -1;
+    for (int k = 0; k < d->plan.n; k++) {
+        const sb_study_point *q = &d->pt[k];
+        if (d->plan.runs[k].scene != i || d->plan.runs[k].start != 0 || q->state != SB_POINT_RECORDED || q->status) continue;
+        if (best < 0 || q->dofs > d->pt[best].dofs) best = k;
+    }
+    if (best >= 0) {
+        char label[128];
+        sb_study_config_label(d, d->pt[best].config, label, sizeof label);
+        snprintf(what, len, "final state of the finest converged run, %s at %ld dofs", label, d->pt[best].dofs);
+        return d->plan.runs[best].out;
+    }
+    if (d->has_ref[i]) {
+        snprintf(what, len, "final state of the reference, %s/%s at %ld dofs (no converged run of the study)",
+                 d->ref[i].method, d->ref[i].solver, d->ref[i].dofs);
+        return d->ref[i].path;
+    }
+    return NULL;
+}
+
+/* every scene's picture, drawn once into the report's directory */
+static void thumbnails(sb_rep *R)
+{
+    for (int i = 0; i < R->st->n_scenes; i++) {
+        char what[300], png[1300], msg[1500];
+        const char *rec = thumb_record(R, i, what, sizeof what);
+        R->thumb[i] = 0;
+        if (!rec) {
+            snprintf(R->thumb_caption[i], sizeof R->thumb_caption[i], "no picture: no converged run and no reference record");
+            continue;
+        }
+        snprintf(png, sizeof png, "%s/thumb-%s.png", R->dir, R->st->scenes[i].name);
+        int rc = sb_study_thumbnail(rec, png, msg, sizeof msg);
+        if (rc == 0) {
+            R->thumb[i] = 1;
+            snprintf(R->thumb_caption[i], sizeof R->thumb_caption[i], "%s (`shellbench render`, %dx%d, %d samples per pixel)",
+                     what, SB_THUMB_W, SB_THUMB_H, SB_THUMB_SPP);
+        } else {
+            fig_failed(R, rc, msg);
+            snprintf(R->thumb_caption[i], sizeof R->thumb_caption[i], "no picture: %s", rc == SB_FIG_REFUSED ? "its path was refused" : "the record cannot be drawn (the report's warnings say why)");
+        }
+    }
+}
+
+void sb_rep_thumb(sb_rep *R, int i)
+{
+    if (R->thumb[i]) fprintf(R->md, "![%s: final state](thumb-%s.png)  \n*%s: %s.*\n\n", R->st->scenes[i].name,
+                             R->st->scenes[i].name, R->st->scenes[i].name, R->thumb_caption[i]);
+    else fprintf(R->md, "*%s: %s.*\n\n", R->st->scenes[i].name, R->thumb_caption[i]);
+}
+
 static void figure(sb_rep *R, const char *stem_name, const char *alt)
 {
     fprintf(R->md, "![%s](%s.png)  \n[SVG](%s.svg)\n\n", alt, stem_name, stem_name);
@@ -123,7 +188,7 @@ static void figure(sb_rep *R, const char *stem_name, const char *alt)
 static void work_precision(sb_rep *R)
 {
     const sb_study *st = R->st;
-    char stem[1200], name[256], msg[1024];
+    char stem[1300], name[256], msg[1024];
     fprintf(R->md, "## Work-precision diagrams\n\nError against cost, log-log; one curve per method/solver (the "
                    "unperturbed start, converged runs only), one point per resolution labelled by its dofs; the grey "
                    "staircase and circles mark the Pareto front (no other run is both cheaper and more accurate); "
@@ -131,6 +196,7 @@ static void work_precision(sb_rep *R)
     for (int i = 0; i < st->n_scenes; i++) {
         if (!unique_ranked(st, i)) continue;
         fprintf(R->md, "### %s — %s\n\n", st->scenes[i].name, error_words(st->scenes[i].error));
+        sb_rep_thumb(R, i);
         if (R->d->has_ref[i] && isfinite(R->d->ref_check[i]) && st->scenes[i].error != SB_ERRKIND_PROBE)
             fprintf(R->md, "Reference: %ld dofs; its own run at half the resolution differs by %.2g (RMS / diameter), so field "
                            "errors below about %.1g are not resolved.\n\n", R->d->ref[i].dofs, R->d->ref_check[i], R->d->ref_check[i] / 3);
@@ -138,8 +204,9 @@ static void work_precision(sb_rep *R)
             int cost = R->costs[k];
             snprintf(name, sizeof name, "wp-%s-%s", st->scenes[i].name, cost == SB_COST_SECONDS ? "seconds" : "work");
             snprintf(stem, sizeof stem, "%s/%s", R->dir, name);
-            if (sb_fig_work_precision(R->d, i, cost, stem, R->o->gnuplot, msg, sizeof msg) == 0) figure(R, name, name);
-            else fprintf(R->err, "shellbench report: warning: %s\n", msg), fprintf(R->md, "(%s)\n\n", msg);
+            int rc = sb_fig_work_precision(R->d, i, cost, stem, R->o->gnuplot, msg, sizeof msg);
+            if (rc == 0) figure(R, name, name);
+            else fig_failed(R, rc, msg), fprintf(R->md, "(%s)\n\n", msg);
         }
     }
 }
@@ -178,13 +245,14 @@ static void profiles(sb_rep *R)
             for (int p = 0; p < np; p++)
                 for (int s = 0; s < ns; s++) t[p * ns + s] = reach(R, scenes[p], cfg[s], cost, st->targets[tg], NULL, 0);
             sb_profile_ratios(np, ns, t, ratio);
-            char name[256], stem[1200], title[256], msg[1024];
+            char name[256], stem[1300], title[256], msg[1024];
             snprintf(name, sizeof name, "profile-%s-%g", cost == SB_COST_SECONDS ? "seconds" : "work", st->targets[tg]);
             snprintf(stem, sizeof stem, "%s/%s", R->dir, name);
             snprintf(title, sizeof title, "performance profile: %s to reach error %g (%d scenes)", sb_cost_name(cost), st->targets[tg], np);
             fprintf(R->md, "### %s to reach error %g\n\n", sb_cost_name(cost), st->targets[tg]);
-            if (sb_fig_profile(np, ns, ratio, labels, title, stem, R->o->gnuplot, msg, sizeof msg) == 0) figure(R, name, title);
-            else fprintf(R->err, "shellbench report: warning: %s\n", msg);
+            int rc = sb_fig_profile(np, ns, ratio, labels, cfg, title, stem, R->o->gnuplot, msg, sizeof msg);
+            if (rc == 0) figure(R, name, title);
+            else fig_failed(R, rc, msg);
             fprintf(R->md, "| configuration | ρ(1) cheapest | ρ(2) | ρ(4) | ρ(∞) reaches the target |\n|---|--:|--:|--:|--:|\n");
             for (int s = 0; s < ns; s++)
                 fprintf(R->md, "| %s | %.2f | %.2f | %.2f | %.2f |\n", labels[s], sb_profile_rho(np, ns, ratio, s, 1.0),
@@ -224,18 +292,19 @@ static void references(sb_rep *R)
 static void convergence(sb_rep *R)
 {
     const sb_study *st = R->st;
-    char name[256], stem[1200], msg[1024];
+    char name[256], stem[1300], msg[1024];
     fprintf(R->md, "## Convergence\n\nlog10 ‖g‖ of every outer iteration on the finest level over all steps, one line "
                    "per configuration at the resolution nearest the scene's middle dof count.\n\n");
     for (int i = 0; i < st->n_scenes; i++) {
         snprintf(name, sizeof name, "convergence-%s", st->scenes[i].name);
         snprintf(stem, sizeof stem, "%s/%s", R->dir, name);
-        if (sb_fig_convergence(R->d, i, stem, R->o->gnuplot, msg, sizeof msg) == 0) {
+        int rc = sb_fig_convergence(R->d, i, stem, R->o->gnuplot, msg, sizeof msg);
+        if (rc == 0) {
             fprintf(R->md, "### %s%s\n\n", st->scenes[i].name,
                     st->scenes[i].solution == SB_SOLUTION_MULTIPLE ? " (several solutions: runs may end in different minima)" : "");
             figure(R, name, name);
         } else {
-            fprintf(R->err, "shellbench report: warning: %s\n", msg);
+            fig_failed(R, rc, msg);
         }
     }
 }
@@ -277,9 +346,60 @@ static void header(sb_rep *R)
     }
 }
 
+/* The path of `target` (relative to the current directory, normally the
+ * project root) as seen from directory `dir`: a relative link that works in
+ * the report wherever it is written.  0, or -1 when either does not exist. */
+static int rel_link(const char *dir, const char *target, char *buf, size_t len)
+{
+    char a[4100], b[4100];
+    if (!realpath(dir, a) || !realpath(target, b)) return -1;
+    size_t la = strlen(a);
+    if (la == 0 || a[la - 1] != '/') a[la] = '/', a[la + 1] = 0;   /* the directory as "DIR/" */
+    /* the common leading directories end at the last '/' both share */
+    size_t cut = 0;
+    for (size_t i = 0; a[i] && b[i] && a[i] == b[i]; i++)
+        if (a[i] == '/') cut = i + 1;
+    /* one "../" per directory of dir below them, then the rest of target */
+    size_t n = 0;
+    buf[0] = 0;
+    for (const char *p = a + cut; *p; p++)
+        if (*p == '/' && n + 3 < len) memcpy(buf + n, "../", 4), n += 3;
+    snprintf(buf + n, len - n, "%s", b + cut);
+    return 0;
+}
+
+/* the other reports of the suite that answer related questions (issue 23:
+ * the condition-number and penalty studies and the dt study), linked when
+ * they exist */
+static void related(sb_rep *R)
+{
+    static const char *const rep[][2] = {
+        { "results/dt_stability/report.md", "dt study: the largest time step at which each solver still converges on "
+                                            "the four cloth scenes (RMTR paper Fig. 10)" },
+        { "results/rmtr/cond.md", "condition numbers of the Hessian against dofs (RMTR paper Fig. 9, left)" },
+        { "results/rmtr/cond_sigma.md", "condition numbers against the penalty parameter (RMTR paper Fig. 9, right)" },
+        { "results/accuracy/report.md", "the accuracy study: the analytic and unique-solution scenes at 4-5 "
+                                        "resolutions per method" },
+        { "results/rmtr_report.md", "the RMTR paper's tables reproduced" },
+        { "results/bhem_report.md", "the BHEM paper's validation scenes reproduced" },
+        { "results/linear_fem_report.md", "the linear triangle FEM baseline" },
+    };
+    char self[4096], link[4096], path[1300];
+    snprintf(path, sizeof path, "%s/report.md", R->dir);
+    int have_self = realpath(path, self) != NULL, n = 0;
+    for (size_t k = 0; k < sizeof rep / sizeof rep[0]; k++) {
+        char real[4096];
+        if (!realpath(rep[k][0], real) || (have_self && strcmp(real, self) == 0)) continue;
+        if (rel_link(R->dir, rep[k][0], link, sizeof link)) continue;
+        if (!n++) fprintf(R->md, "## Related studies and reports\n\n");
+        fprintf(R->md, "* [%s](%s): %s\n", rep[k][0], link, rep[k][1]);
+    }
+    if (n) fprintf(R->md, "\n");
+}
+
 static int mkdir_p(const char *dir)
 {
-    char tmp[1024];
+    char tmp[1100];
     snprintf(tmp, sizeof tmp, "%s/", dir);
     for (char *p = tmp + 1; *p; p++)
         if (*p == '/') {
@@ -295,19 +415,28 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
     sb_study_data d;
     if (st->kind == SB_STUDY_DT_STABILITY) return sb_study_dt_report(st, o, err);
     if (sb_study_data_load(st, &d, err)) return SB_EXIT_INPUT;
-    sb_rep R = { st, &d, o, NULL, err, "", 0, { 0, 0 } };
+    sb_rep R;
+    memset(&R, 0, sizeof R);
+    R.st = st, R.d = &d, R.o = o, R.err = err;
     snprintf(R.dir, sizeof R.dir, "%s", o->out_dir ? o->out_dir : st->records);
     if (o->deterministic) R.costs[R.n_costs++] = SB_COST_WORK;
     else R.costs[R.n_costs++] = SB_COST_SECONDS, R.costs[R.n_costs++] = SB_COST_WORK;
     char path[1200], tmp[1300];
     snprintf(path, sizeof path, "%s/report.md", R.dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    if (mkdir_p(R.dir) || !(R.md = fopen(tmp, "w"))) {
+    char why[1400];
+    if (sb_study_output_ok(path, "report", why, sizeof why)) {
+        fprintf(err, "shellbench report: %s\n", why);
+        sb_study_data_free(&d);
+        return SB_EXIT_INPUT;
+    }
+    if (mkdir_p(R.dir) || !(R.md = sb_study_open_tmp(tmp))) {
         fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
         sb_study_data_free(&d);
         return SB_EXIT_INPUT;
     }
     header(&R);
+    thumbnails(&R);
     fprintf(R.md, "## Method selection\n\nPer scene with a unique solution and error target: the configuration "
                   "(method/solver) that reaches the target cheapest, the runner-up and the ratio of their costs.  The cost "
                   "to reach a target is interpolated log-log between the two resolutions that bracket it, never "
@@ -326,16 +455,33 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
     sb_rep_run_tables(&R);
     sb_rep_without_records(&R);
     convergence(&R);
+    related(&R);
     fprintf(R.md, "## How to read this report\n\nSee docs/study.md: the study file, the reference policy per scene, how the "
                   "cost to reach a target is interpolated, and how to read the diagrams, profiles and the selection table.\n");
     int bad = ferror(R.md);
-    if (fclose(R.md) || bad || rename(tmp, path)) {
+    if (fclose(R.md) || bad) {
         fprintf(err, "shellbench report: cannot write %s\n", path);
+        unlink(tmp);
+        sb_study_data_free(&d);
+        return SB_EXIT_INTERNAL;
+    }
+    if (sb_study_output_ok(path, "report", why, sizeof why)) {   /* again: it may have changed meanwhile */
+        fprintf(err, "shellbench report: %s\n", why);
+        unlink(tmp);
+        sb_study_data_free(&d);
+        return SB_EXIT_INPUT;
+    }
+    if (rename(tmp, path)) {
+        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
         unlink(tmp);
         sb_study_data_free(&d);
         return SB_EXIT_INTERNAL;
     }
     fprintf(err, "shellbench report: %s\n", path);
     sb_study_data_free(&d);
+    if (R.refused) {
+        fprintf(err, "shellbench report: %d output path%s refused (above): exit 2\n", R.refused, R.refused > 1 ? "s" : "");
+        return SB_EXIT_INPUT;
+    }
     return 0;
 }

@@ -99,8 +99,20 @@ void sb_rep_run_tables(sb_rep *R)
     fprintf(R->md, "## Runs\n\nEvery record of the study (the unperturbed start); errors as defined per scene above "
                    "(probe: relative to the analytic value or, with a reference record, distance / diameter).\n\n");
     for (int i = 0; i < st->n_scenes; i++) {
-        fprintf(R->md, "### %s\n\n| configuration | res | dofs | status | steps | iterations | %sassembly WU | probe error | RMS field error | max field error |\n"
-                       "|---|--:|--:|---|--:|--:|%s--:|--:|--:|--:|\n", st->scenes[i].name, R->o->deterministic ? "" : "seconds | ",
+        /* several solutions: a run ending in another minimum than the
+         * reference's has made no error, so the columns say "distance" */
+        const int several = st->scenes[i].solution == SB_SOLUTION_MULTIPLE;
+        fprintf(R->md, "### %s\n\n", st->scenes[i].name);
+        /* the picture: here for the scenes without a work-precision diagram (which shows it for the others) */
+        if (st->scenes[i].solution == SB_SOLUTION_MULTIPLE || st->scenes[i].error == SB_ERRKIND_NONE) sb_rep_thumb(R, i);
+        if (several)
+            fprintf(R->md, "Several solutions: the last three columns are distances (/ diameter) to the minimum the "
+                           "reference found, not errors; a run in another minimum can be as good (compare energies "
+                           "under *Scenes with several solutions*).\n\n");
+        fprintf(R->md, "| configuration | res | dofs | status | steps | iterations | %sassembly WU | %s |\n"
+                       "|---|--:|--:|---|--:|--:|%s--:|--:|--:|--:|\n", R->o->deterministic ? "" : "seconds | ",
+                several ? "probe distance to the reference's minimum | RMS distance to it | max distance to it"
+                        : "probe error | RMS field error | max field error",
                 R->o->deterministic ? "" : "--:|");
         for (int k = 0; k < d->plan.n; k++) {
             const sb_plan_run *r = &d->plan.runs[k];

@@ -1,0 +1,60 @@
+/* sb_study_thumb.c — the study reports' pictures and their output checks
+ * (sb_study_fig.h): a small ray-traced image of a record's final state
+ * (core/render, `shellbench render` with fewer pixels and samples), and the
+ * check every file a report writes passes before it is renamed onto its
+ * path (core/record/sb_output.h: new or regular files only). */
+#include "sb_study_fig.h"
+#include "sb_output.h"
+#include "sb_render.h"
+
+#include <fcntl.h>
+#include <string.h>
+#include <unistd.h>
+
+int sb_study_output_ok(const char *path, const char *what, char *err, size_t errlen)
+{
+    sb_output_kind kind;
+    char msg[1200];
+    if (sb_output_check(path, what, &kind, msg, sizeof msg)) {
+        snprintf(err, errlen, "%s", msg);
+        return SB_FIG_REFUSED;
+    }
+    if (kind == SB_OUTPUT_DISCARD) {
+        snprintf(err, errlen, "will not write %s %s: a report's files are written by renaming onto their paths, "
+                 "which would replace the null device", what, path);
+        return SB_FIG_REFUSED;
+    }
+    return 0;
+}
+
+FILE *sb_study_open_tmp(const char *tmp)
+{
+    unlink(tmp);   /* a stale one, or a link planted there: removed, never followed */
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0666);
+    if (fd < 0) return NULL;
+    FILE *f = fdopen(fd, "w");
+    if (!f) close(fd);
+    return f;
+}
+
+int sb_study_thumbnail(const char *record, const char *png, char *err, size_t errlen)
+{
+    int rc = sb_study_output_ok(png, "picture", err, errlen);
+    if (rc) return rc;
+    sb_render_request rq;
+    memset(&rq, 0, sizeof rq);
+    sb_render_options_default(&rq.opt);
+    rq.record = record;
+    rq.out = png;
+    rq.step = -1;
+    rq.quiet = 1;
+    rq.opt.width = SB_THUMB_W;
+    rq.opt.height = SB_THUMB_H;
+    rq.opt.spp = SB_THUMB_SPP;
+    char msg[1024];
+    if (sb_render_record(&rq, NULL, NULL, 0, msg, sizeof msg)) {
+        snprintf(err, errlen, "picture %s not drawn: %s", png, msg);
+        return -1;
+    }
+    return 0;
+}
