@@ -135,6 +135,65 @@ SB_TEST(test_lshape_and_annulus)
     }
 }
 
+/* Crossed cells on wide annulus sectors (issue 21, gap 5).  The centre vertex
+ * used to sit at the (s,t) midpoint, the polar midpoint in xi, while the
+ * triangles are straight in xi: at cells wider than ~28 deg (r 0.5..1, 8
+ * cells) the outer triangle degenerated and then inverted, and linear_fem's
+ * line search failed at the first iteration.  The signed xi areas summed to
+ * the right total, so the area test above did not see it. */
+static double min_area_ratio(const sb_mesh *m)   /* crossed, no merge: triangles 4c..4c+3 form cell c */
+{
+    double q = INFINITY;
+    for (int c = 0; 4 * c < m->nt; c++) {
+        double a[4], sum = 0;
+        for (int k = 0; k < 4; k++) {
+            const int *v = m->tri + 3 * (4 * c + k);
+            const double *p0 = m->X + 3 * v[0], *p1 = m->X + 3 * v[1], *p2 = m->X + 3 * v[2];
+            a[k] = 0.5 * ((p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]));
+            sum += a[k];
+        }
+        for (int k = 0; k < 4; k++) q = fmin(q, 4 * a[k] / sum);
+    }
+    return q;
+}
+
+SB_TEST(test_crossed_wide_sector)
+{
+    const double span[5] = { 90, 200, 240, 300, 359.9 };
+    const int res[5] = { 8, 8, 8, 8, 16 };
+    for (int k = 0; k < 5; k++) {
+        char dom[256];
+        snprintf(dom, sizeof dom, "{\"type\": \"annulus_sector\", \"r_in\": 0.5, \"r_out\": 1, \"theta\": [0, %g]}", span[k]);
+        sb_scene sc;
+        if (parse(&sc, dom, PLANE)) { CHECK(0); continue; }
+        sb_mesh m;
+        sb_mesh_spec spec = { res[k], res[k], SB_MESH_CROSSED, 0, 1 };
+        char err[256];
+        CHECK_EQ_INT(sb_mesh_from_domain(&sc, &spec, &m, NULL, err, sizeof err), SB_OK);
+        if (!check_mesh(T, &m, "crossed sector")) {
+            const double q = min_area_ratio(&m);
+            printf("    %g deg, %d x %d crossed: smallest triangle %.3f of a quarter of its cell\n", span[k], res[k], res[k], q);
+            CHECK_MSG(q > 0.05, "%g deg: smallest triangle %.3g of a quarter of its cell", span[k], q);
+            /* every centre vertex lies inside its (s,t) cell and on the mid-angle ray */
+            for (int v = (res[k] + 1) * (res[k] + 1); v < m.nv; v++) {
+                const double ds = m.st[2 * v] * res[k] - floor(m.st[2 * v] * res[k]);
+                const double dt = m.st[2 * v + 1] * res[k] - floor(m.st[2 * v + 1] * res[k]);
+                CHECK(ds > 0.01 && ds < 0.99);
+                CHECK_NEAR(dt, 0.5, 1e-9);
+            }
+        }
+        sb_mesh_free(&m);
+        /* cells with no point inside both the (s,t) cell and the straight
+         * quadrilateral are refused with a sentence, not meshed wrongly */
+        if (span[k] > 350) {
+            sb_mesh_spec wide = { 8, 8, SB_MESH_CROSSED, 0, 1 };
+            CHECK_EQ_INT(sb_mesh_from_domain(&sc, &wide, &m, NULL, err, sizeof err), SB_ERR_INPUT);
+            CHECK_MSG(strstr(err, "crossed") && strstr(err, "method.cells_t"), "message: %s", err);
+        }
+        sb_scene_free(&sc);
+    }
+}
+
 /* local Delaunay property of every interior edge, in xi */
 static double max_opposite_angle_sum(const sb_mesh *m)
 {
@@ -322,7 +381,7 @@ SB_TEST(test_locate)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
-        SB_CASE(test_rectangle_patterns), SB_CASE(test_lshape_and_annulus), SB_CASE(test_jitter),
+        SB_CASE(test_rectangle_patterns), SB_CASE(test_lshape_and_annulus), SB_CASE(test_crossed_wide_sector), SB_CASE(test_jitter),
         SB_CASE(test_flips), SB_CASE(test_refine4), SB_CASE(test_locate), SB_END
     };
     return sb_test_main(argc, argv, cases);

@@ -15,7 +15,8 @@
  * Patterns (corners v00, v10, v11, v01 of cell (i, j), counter-clockwise):
  *   regular    diagonal v00-v11 in every cell
  *   alternate  diagonal v00-v11 when i + j is even, v10-v01 when odd
- *   crossed    a vertex at the cell centre, four triangles around it
+ *   crossed    a vertex at the cell centre (the mean in xi of its corners,
+ *              cell_centre), four triangles around it
  *   jitter     alternate, then sb_mesh_jitter (interior vertices displaced,
  *              Delaunay flips)
  *
@@ -175,6 +176,35 @@ static int merge_coincident(sb_mesh *m)
     return SB_OK;
 }
 
+/* The centre vertex of a crossed cell [s0,s1] x [t0,t1].  The triangles are
+ * straight in xi and, for location and interpolation, in (s,t): the centre
+ * must lie inside the cell in (s,t) and inside the straight quadrilateral of
+ * its corners in xi.  Where the domain map is affine the (s,t) midpoint does
+ * both.  On an annulus sector (s radial, t angular, cell [r0,r1] x dtheta) the
+ * (s,t) midpoint lies at radius (r0 + r1)/2 while the outer chord of the cell
+ * passes the mid-angle ray at r1 cos(dtheta/2): for cells wider than
+ * 2 acos((r0 + r1)/(2 r1)) (28.7 deg for the outer row r 0.9375..1 of an
+ * r 0.5..1 annulus cut into 8) the outer triangle inverted, the rest Hessian
+ * was indefinite and Newton's line search failed at once (issue 21).  The
+ * centre now sits on the mid-angle ray at the radius of the corners' mean
+ * ((r0 + r1)/2 cos(dtheta/2), the best point in xi), raised to a quarter of
+ * the way from the inner arc r0 (where the (s,t) cell begins) to the outer
+ * chord when the mean falls below that.  Returns 1 when no point lies in both
+ * (r1 cos(dtheta/2) <= r0, up to a margin): the caller refuses the mesh. */
+static int cell_centre(const sb_domain *d, double s0, double s1, double t0, double t1, double st[2])
+{
+    st[0] = 0.5 * (s0 + s1);
+    st[1] = 0.5 * (t0 + t1);
+    if (d->kind != SB_DOMAIN_ANNULUS_SECTOR) return 0;
+    const double dr = d->r_out - d->r_in, r0 = d->r_in + s0 * dr, r1 = d->r_in + s1 * dr;
+    const double half = 0.5 * (t1 - t0) * (d->theta[1] - d->theta[0]);
+    const double chord = r1 * cos(half);                /* the outer chord on the mid-angle ray */
+    const double mean = 0.5 * (r0 + r1) * cos(half);    /* the corners' mean */
+    if (!(chord > r0 + 1e-2 * (r1 - r0))) return 1;
+    st[0] = (fmax(mean, r0 + 0.25 * (chord - r0)) - d->r_in) / dr;
+    return 0;
+}
+
 /* pin vertices at the scene's point parts (bcs and loads) */
 static void pin_points(sb_mesh *m, const sb_scene *sc)
 {
@@ -251,8 +281,14 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
             int T[4][3], n = 0;
             if (crossed) {
                 const int c = m->nv++;
-                m->st[2 * c] = 0.5 * (su[i] + su[i + 1]);
-                m->st[2 * c + 1] = 0.5 * (tu[j] + tu[j + 1]);
+                if (cell_centre(&sc->domain, su[i], su[i + 1], tu[j], tu[j + 1], m->st + 2 * c)) {
+                    rc = failf(err, errlen, "method.mesh = crossed: the annulus cells of %.3g deg by %.3g are too wide "
+                               "in angle for a centre vertex inside both the (s,t) cell and its straight "
+                               "quadrilateral (raise method.cells_t or use another pattern)",
+                               (tu[j + 1] - tu[j]) * (sc->domain.theta[1] - sc->domain.theta[0]) * 180 / M_PI,
+                               (su[i + 1] - su[i]) * (sc->domain.r_out - sc->domain.r_in));
+                    goto done;
+                }
                 m->vgen[c] = 0;
                 m->vflag[c] = 0;
                 int q[4] = { v00, v10, v11, v01 };
