@@ -11,17 +11,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int parse(sb_scene *sc, const char *domain, const char *geometry)
+static int parse_bl(sb_scene *sc, const char *domain, const char *geometry, const char *boundary, const char *loads)
 {
     char json[2048], err[512];
     snprintf(json, sizeof json,
              "{\"name\": \"m\", \"domain\": %s, \"geometry\": %s, \"material\": {\"model\": \"stvk\", \"young\": 1, "
-             "\"poisson\": 0, \"thickness\": 0.01, \"density\": 1}, \"boundary\": [], \"loads\": [], "
-             "\"time\": {\"mode\": \"dynamic\", \"dt\": 0.1, \"steps\": 1}}", domain, geometry);
+             "\"poisson\": 0, \"thickness\": 0.01, \"density\": 1}, \"boundary\": %s, \"loads\": %s, "
+             "\"time\": {\"mode\": \"dynamic\", \"dt\": 0.1, \"steps\": 1}}", domain, geometry, boundary, loads);
     int rc = sb_scene_parse_string(json, "mesh.json", sc, err, sizeof err);
     if (rc) printf("    scene: %s\n", err);
     return rc;
 }
+static int parse(sb_scene *sc, const char *domain, const char *geometry) { return parse_bl(sc, domain, geometry, "[]", "[]"); }
 
 #define RECT "{\"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [2, 1]}"
 #define LSHAPE "{\"type\": \"l_shape\", \"origin\": [0, 0], \"size\": [1, 1], \"notch\": [0.3, 0.3], \"notch_corner\": \"11\"}"
@@ -129,6 +130,56 @@ SB_TEST(test_lshape_and_annulus)
             }
             const double exact = (d == 0 ? 0.25 : 1.0) * M_PI * (1.0 - (d == 2 ? 0.0 : 0.25));
             CHECK_MSG(a > 0.9 * exact && a < exact, "domain %d pattern %d: area %g, exact %g", d, p, a, exact);
+            sb_mesh_free(&m);
+        }
+        sb_scene_free(&sc);
+    }
+}
+
+/* Seams and slits (docs/scene_format.md "Closed surfaces and slits"): a full
+ * annulus or cylinder is closed when nothing but free names its seam edges,
+ * and keeps its seam open as a slit when a condition or load names one. */
+SB_TEST(test_slit)
+{
+    static const struct { const char *dom, *geo, *bc, *loads; unsigned slit; int chi; const char *a, *b; } cases[] = {
+        { RING, PLANE, "[]", "[]", 0, 0, "start", "end" },
+        { RING, PLANE, "[{\"type\": \"free\", \"on\": [\"start\"]}]", "[]", 0, 0, "start", "end" },
+        { RING, PLANE, "[{\"type\": \"clamped\", \"on\": [\"start\"]}]",
+          "[{\"type\": \"line\", \"on\": [\"end\"], \"force_per_length\": [0, 0, 1]}]", 2, 1, "start", "end" },
+        { RING, PLANE, "[]", "[{\"type\": \"line\", \"on\": [\"end\"], \"force_per_length\": [0, 0, 1]}]", 2, 1, "start", "end" },
+        /* a slit disc: the lips stay apart, the centre is still one vertex */
+        { DISC, PLANE, "[{\"type\": \"clamped\", \"on\": [\"start\"]}]", "[]", 2, 1, "start", "end" },
+        { RECT, "{\"type\": \"cylinder\", \"radius\": 0.3, \"angle\": [0, 360], \"length\": 1}", "[]", "[]", 0, 0, "left", "right" },
+        { RECT, "{\"type\": \"cylinder\", \"radius\": 0.3, \"angle\": [0, 360], \"length\": 1}",
+          "[{\"type\": \"fixed\", \"on\": [\"left\"]}]", "[]", 1, 1, "left", "right" },
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        sb_scene sc;
+        if (parse_bl(&sc, cases[c].dom, cases[c].geo, cases[c].bc, cases[c].loads)) { CHECK(0); continue; }
+        for (int p = 0; p < 4; p++) {
+            sb_mesh m;
+            sb_mesh_spec spec = { 6, 8, (sb_mesh_pattern)p, 0.3, 3 };
+            char err[256];
+            CHECK_EQ_INT(sb_mesh_from_domain(&sc, &spec, &m, NULL, err, sizeof err), SB_OK);
+            if (check_mesh(T, &m, "slit")) { sb_mesh_free(&m); continue; }
+            CHECK_MSG(m.slit == cases[c].slit, "case %zu pattern %d: slit %u", c, p, m.slit);
+            CHECK_MSG(m.nv - m.ne + m.nt == cases[c].chi, "case %zu pattern %d: Euler characteristic %d", c, p,
+                      m.nv - m.ne + m.nt);
+            /* the lips are boundary edges carrying their own names; a closed seam has none */
+            const int along = cases[c].a[0] == 'l' ? 8 : 6;
+            for (int k = 0; k < 2; k++) {
+                sb_part part;
+                sb_domain_edge_part(&sc.domain, k ? cases[c].b : cases[c].a, &part);
+                const int ne = sb_mesh_part_edges(&m, &part, NULL);
+                CHECK_MSG(ne == (cases[c].slit ? along : 0), "case %zu pattern %d: %d edges on %s", c, p, ne,
+                          part.name);
+            }
+            sb_mesh_refinement r;
+            sb_mesh f;
+            CHECK_EQ_INT(sb_mesh_refine4(&m, &sc, &f, &r), SB_OK);
+            CHECK(f.slit == m.slit);
+            sb_mesh_refinement_free(&r);
+            sb_mesh_free(&f);
             sb_mesh_free(&m);
         }
         sb_scene_free(&sc);
@@ -381,7 +432,7 @@ SB_TEST(test_locate)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
-        SB_CASE(test_rectangle_patterns), SB_CASE(test_lshape_and_annulus), SB_CASE(test_crossed_wide_sector), SB_CASE(test_jitter),
+        SB_CASE(test_rectangle_patterns), SB_CASE(test_lshape_and_annulus), SB_CASE(test_crossed_wide_sector), SB_CASE(test_slit), SB_CASE(test_jitter),
         SB_CASE(test_flips), SB_CASE(test_refine4), SB_CASE(test_locate), SB_END
     };
     return sb_test_main(argc, argv, cases);

@@ -23,7 +23,15 @@
  * Identification.  Vertices whose reference positions coincide (within 1e-9
  * of the size of the surface) are merged: a closed annulus or cylinder gets
  * one seam, an annulus with r_in = 0 one centre vertex; triangles that lose a
- * corner to the merge are dropped.  Merged vertices are pinned (SB_MESH_V_SEAM). */
+ * corner to the merge are dropped.  Merged vertices are pinned (SB_MESH_V_SEAM).
+ * Slits (docs/scene_format.md "Closed surfaces and slits", the rule of
+ * bhem_detect_periodic): when a boundary condition other than free, or a
+ * load, names an edge of a seam (s = 0 or 1, t = 0 or 1: start / end of a
+ * full annulus, left / right of a full cylinder), a vertex on one lip is
+ * never merged with one on the other: the seam stays open, its two edges keep
+ * their own conditions, and sb_mesh.slit says so.  (A point where the lips
+ * meet another identification, the centre of a disc, is still merged through
+ * the vertices between them.) */
 #include "sb_mesh.h"
 #include "sb_geometry.h"
 
@@ -101,8 +109,42 @@ static int cmp_vkey(const void *a, const void *b)
     return p->x < q->x ? -1 : p->x > q->x ? 1 : (p->v > q->v) - (p->v < q->v);
 }
 
-/* merge vertices with coincident reference positions; compact */
-static int merge_coincident(sb_mesh *m)
+/* Does a bc (other than free) or a load name an edge on the seam of direction
+ * dir (s = 0 / 1 when dir = 0, t = 0 / 1 when dir = 1)?  As bhem_grid.c. */
+static int part_on_seam(const sb_part *p, int dir)
+{
+    return p->kind == SB_PART_EDGE && p->st0[dir] == p->st1[dir] && (p->st0[dir] == 0.0 || p->st0[dir] == 1.0);
+}
+
+static unsigned seams_named(const sb_scene *sc)
+{
+    unsigned mask = 0;
+    for (int dir = 0; dir < 2; dir++) {
+        for (int b = 0; b < sc->n_bcs; b++)
+            for (int k = 0; k < sc->bcs[b].n_parts && sc->bcs[b].kind != SB_BC_FREE; k++)
+                if (part_on_seam(&sc->bcs[b].parts[k], dir)) mask |= 1u << dir;
+        for (int l = 0; l < sc->n_loads; l++)
+            for (int k = 0; k < sc->loads[l].n_parts; k++)
+                if (part_on_seam(&sc->loads[l].parts[k], dir)) mask |= 1u << dir;
+    }
+    return mask;
+}
+
+/* vertices a, b on the two lips of a seam in one of the directions of mask */
+static unsigned across_lips(const sb_mesh *m, int a, int b, unsigned mask)
+{
+    unsigned hit = 0;
+    for (int dir = 0; dir < 2; dir++) {
+        if (!(mask & (1u << dir))) continue;
+        const double u = m->st[2 * a + dir], w = m->st[2 * b + dir];
+        if ((u == 0.0 && w == 1.0) || (u == 1.0 && w == 0.0)) hit |= 1u << dir;
+    }
+    return hit;
+}
+
+/* merge vertices with coincident reference positions, except across the lips
+ * of the seams in keep_open (sets m->slit); compact */
+static int merge_coincident(sb_mesh *m, unsigned keep_open)
 {
     const int nv = m->nv;
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
@@ -127,6 +169,8 @@ static int merge_coincident(sb_mesh *m)
             const double *a = m->X + 3 * k[i].v, *b = m->X + 3 * k[j].v;
             double d = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
             if (d > tol) continue;
+            const unsigned lips = across_lips(m, k[i].v, k[j].v, keep_open);
+            if (lips) { m->slit |= lips; continue; }
             int ri = k[i].v, rj = k[j].v;
             while (rep[ri] != ri) ri = rep[ri];
             while (rep[rj] != rj) rj = rep[rj];
@@ -253,6 +297,13 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
         }
     if (!ncell) { rc = failf(err, errlen, "no cell of the %d x %d grid lies in the domain", ns, nt); goto done; }
     const int crossed = spec->pattern == SB_MESH_CROSSED;
+    /* A disc (annulus with r_in = 0): the cells at s = 0 are triangles (v00 =
+     * v01, the centre) and one of their two triangles is dropped; the kept one
+     * carries the centre's corner coordinates, (0, t0) with the diagonal
+     * v00-v11, (0, t1) with v10-v01.  The last cell keeps (0, 1) so that its
+     * edge along `end` lies on `end` in (s,t) too (a slit disc's lip, a bc on
+     * the end of a disc sector), every other cell (0, t0). */
+    const int disc = sc->domain.kind == SB_DOMAIN_ANNULUS_SECTOR && sc->domain.r_in == 0.0;
     const int nvmax = (ns + 1) * (nt + 1) + (crossed ? ncell : 0), ntmax = (crossed ? 4 : 2) * ncell;
     if ((rc = sb_mesh_reserve(m, nvmax, ntmax, 0))) goto done;
     m->nv = 0;
@@ -296,7 +347,7 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
                     T[n][0] = q[k]; T[n][1] = q[(k + 1) % 4]; T[n][2] = c;
                     n++;
                 }
-            } else if (spec->pattern == SB_MESH_REGULAR || ((i + j) % 2 == 0)) {
+            } else if (disc && i == 0 ? j < nt - 1 : spec->pattern == SB_MESH_REGULAR || ((i + j) % 2 == 0)) {
                 T[0][0] = v00; T[0][1] = v10; T[0][2] = v11;
                 T[1][0] = v00; T[1][1] = v11; T[1][2] = v01;
                 n = 2;
@@ -316,7 +367,7 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
             }
         }
     sb_mesh_set_geometry(m, sc);
-    if ((rc = merge_coincident(m))) goto done;
+    if ((rc = merge_coincident(m, seams_named(sc)))) goto done;
     if (m->nt < 1) { rc = failf(err, errlen, "the %d x %d grid leaves no triangle after identifying seams", ns, nt); goto done; }
     if ((rc = sb_mesh_build_edges(m))) {
         if (rc == SB_ERR_INPUT)
