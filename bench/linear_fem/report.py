@@ -286,7 +286,7 @@ except OSError:
 
 P("Notes: rmtr's Scordelis–Lo runs take `method.beta_scale = 1e8` (as bench/studies/accuracy.json): with the "
   "default penalty scale (set for the paper's 1 m denim cloth) the roof's boundary (E h = 1e8 N/m) is not held "
-  "(170 %% error, penalty_violated at --res 4).  "
+  "(170 % error, penalty_violated at --res 4).  "
   "The hinge on one cell across a strip (roll_quarter/roll_full, N x 1) is far too soft: its free edges let "
   "the twist terms of its anisotropic energy relax (with 2 cells across, bench/scenes/strip_end_moment, the "
   "error is 8-13 %).\n")

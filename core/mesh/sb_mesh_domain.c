@@ -15,8 +15,9 @@
  * Patterns (corners v00, v10, v11, v01 of cell (i, j), counter-clockwise):
  *   regular    diagonal v00-v11 in every cell
  *   alternate  diagonal v00-v11 when i + j is even, v10-v01 when odd
- *   crossed    a vertex at the cell centre (the mean in xi of its corners,
- *              cell_centre), four triangles around it
+ *   crossed    a vertex at the cell centre (cell_centre: the (s,t) midpoint,
+ *              on an annulus a point inside the straight quadrilateral), four
+ *              triangles around it
  *   jitter     alternate, then sb_mesh_jitter (interior vertices displaced,
  *              Delaunay flips)
  *
