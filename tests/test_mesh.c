@@ -186,7 +186,7 @@ SB_TEST(test_slit)
     }
 }
 
-/* Crossed cells on wide annulus sectors (issue 21, gap 5).  The centre vertex
+/* Crossed (and jittered, below) cells on wide annulus sectors (issue 21, gap 5).  The centre vertex
  * used to sit at the (s,t) midpoint, the polar midpoint in xi, while the
  * triangles are straight in xi: at cells wider than ~28 deg (r 0.5..1, 8
  * cells) the outer triangle degenerated and then inverted, and linear_fem's
@@ -232,6 +232,20 @@ SB_TEST(test_crossed_wide_sector)
                 CHECK(ds > 0.01 && ds < 0.99);
                 CHECK_NEAR(dt, 0.5, 1e-9);
             }
+        }
+        sb_mesh_free(&m);
+        /* jitter: its thinness guard was in (s,t) only, and at 359.9 deg,
+         * 8 x 8 (seed 1) it moved a vertex across its neighbours' chord in xi */
+        sb_mesh_spec jit = { 8, 8, SB_MESH_JITTER, 0.3, 1 };
+        CHECK_EQ_INT(sb_mesh_from_domain(&sc, &jit, &m, NULL, err, sizeof err), SB_OK);
+        if (!check_mesh(T, &m, "jittered sector")) {
+            int neg = 0;
+            for (int t = 0; t < m.nt; t++) {
+                const int *v = m.tri + 3 * t;
+                const double *p0 = m.X + 3 * v[0], *p1 = m.X + 3 * v[1], *p2 = m.X + 3 * v[2];
+                neg += 0.5 * ((p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])) <= 0;
+            }
+            CHECK_MSG(neg == 0, "%g deg, jitter: %d triangles with non-positive xi area", span[k], neg);
         }
         sb_mesh_free(&m);
         /* cells with no point inside both the (s,t) cell and the straight
