@@ -11,17 +11,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int parse(sb_scene *sc, const char *domain, const char *geometry)
+static int parse_bl(sb_scene *sc, const char *domain, const char *geometry, const char *boundary, const char *loads)
 {
     char json[2048], err[512];
     snprintf(json, sizeof json,
              "{\"name\": \"m\", \"domain\": %s, \"geometry\": %s, \"material\": {\"model\": \"stvk\", \"young\": 1, "
-             "\"poisson\": 0, \"thickness\": 0.01, \"density\": 1}, \"boundary\": [], \"loads\": [], "
-             "\"time\": {\"mode\": \"dynamic\", \"dt\": 0.1, \"steps\": 1}}", domain, geometry);
+             "\"poisson\": 0, \"thickness\": 0.01, \"density\": 1}, \"boundary\": %s, \"loads\": %s, "
+             "\"time\": {\"mode\": \"dynamic\", \"dt\": 0.1, \"steps\": 1}}", domain, geometry, boundary, loads);
     int rc = sb_scene_parse_string(json, "mesh.json", sc, err, sizeof err);
     if (rc) printf("    scene: %s\n", err);
     return rc;
 }
+static int parse(sb_scene *sc, const char *domain, const char *geometry) { return parse_bl(sc, domain, geometry, "[]", "[]"); }
 
 #define RECT "{\"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [2, 1]}"
 #define LSHAPE "{\"type\": \"l_shape\", \"origin\": [0, 0], \"size\": [1, 1], \"notch\": [0.3, 0.3], \"notch_corner\": \"11\"}"
@@ -130,6 +131,129 @@ SB_TEST(test_lshape_and_annulus)
             const double exact = (d == 0 ? 0.25 : 1.0) * M_PI * (1.0 - (d == 2 ? 0.0 : 0.25));
             CHECK_MSG(a > 0.9 * exact && a < exact, "domain %d pattern %d: area %g, exact %g", d, p, a, exact);
             sb_mesh_free(&m);
+        }
+        sb_scene_free(&sc);
+    }
+}
+
+/* Seams and slits (docs/scene_format.md "Closed surfaces and slits"): a full
+ * annulus or cylinder is closed when nothing but free names its seam edges,
+ * and keeps its seam open as a slit when a condition or load names one. */
+SB_TEST(test_slit)
+{
+    static const struct { const char *dom, *geo, *bc, *loads; unsigned slit; int chi; const char *a, *b; } cases[] = {
+        { RING, PLANE, "[]", "[]", 0, 0, "start", "end" },
+        { RING, PLANE, "[{\"type\": \"free\", \"on\": [\"start\"]}]", "[]", 0, 0, "start", "end" },
+        { RING, PLANE, "[{\"type\": \"clamped\", \"on\": [\"start\"]}]",
+          "[{\"type\": \"line\", \"on\": [\"end\"], \"force_per_length\": [0, 0, 1]}]", 2, 1, "start", "end" },
+        { RING, PLANE, "[]", "[{\"type\": \"line\", \"on\": [\"end\"], \"force_per_length\": [0, 0, 1]}]", 2, 1, "start", "end" },
+        /* a slit disc: the lips stay apart, the centre is still one vertex */
+        { DISC, PLANE, "[{\"type\": \"clamped\", \"on\": [\"start\"]}]", "[]", 2, 1, "start", "end" },
+        { RECT, "{\"type\": \"cylinder\", \"radius\": 0.3, \"angle\": [0, 360], \"length\": 1}", "[]", "[]", 0, 0, "left", "right" },
+        { RECT, "{\"type\": \"cylinder\", \"radius\": 0.3, \"angle\": [0, 360], \"length\": 1}",
+          "[{\"type\": \"fixed\", \"on\": [\"left\"]}]", "[]", 1, 1, "left", "right" },
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        sb_scene sc;
+        if (parse_bl(&sc, cases[c].dom, cases[c].geo, cases[c].bc, cases[c].loads)) { CHECK(0); continue; }
+        for (int p = 0; p < 4; p++) {
+            sb_mesh m;
+            sb_mesh_spec spec = { 6, 8, (sb_mesh_pattern)p, 0.3, 3 };
+            char err[256];
+            CHECK_EQ_INT(sb_mesh_from_domain(&sc, &spec, &m, NULL, err, sizeof err), SB_OK);
+            if (check_mesh(T, &m, "slit")) { sb_mesh_free(&m); continue; }
+            CHECK_MSG(m.slit == cases[c].slit, "case %zu pattern %d: slit %u", c, p, m.slit);
+            CHECK_MSG(m.nv - m.ne + m.nt == cases[c].chi, "case %zu pattern %d: Euler characteristic %d", c, p,
+                      m.nv - m.ne + m.nt);
+            /* the lips are boundary edges carrying their own names; a closed seam has none */
+            const int along = cases[c].a[0] == 'l' ? 8 : 6;
+            for (int k = 0; k < 2; k++) {
+                sb_part part;
+                sb_domain_edge_part(&sc.domain, k ? cases[c].b : cases[c].a, &part);
+                const int ne = sb_mesh_part_edges(&m, &part, NULL);
+                CHECK_MSG(ne == (cases[c].slit ? along : 0), "case %zu pattern %d: %d edges on %s", c, p, ne,
+                          part.name);
+            }
+            sb_mesh_refinement r;
+            sb_mesh f;
+            CHECK_EQ_INT(sb_mesh_refine4(&m, &sc, &f, &r), SB_OK);
+            CHECK(f.slit == m.slit);
+            sb_mesh_refinement_free(&r);
+            sb_mesh_free(&f);
+            sb_mesh_free(&m);
+        }
+        sb_scene_free(&sc);
+    }
+}
+
+/* Crossed (and jittered, below) cells on wide annulus sectors (issue 21, gap 5).  The centre vertex
+ * used to sit at the (s,t) midpoint, the polar midpoint in xi, while the
+ * triangles are straight in xi: at cells wider than ~28 deg (r 0.5..1, 8
+ * cells) the outer triangle degenerated and then inverted, and linear_fem's
+ * line search failed at the first iteration.  The signed xi areas summed to
+ * the right total, so the area test above did not see it. */
+static double min_area_ratio(const sb_mesh *m)   /* crossed, no merge: triangles 4c..4c+3 form cell c */
+{
+    double q = INFINITY;
+    for (int c = 0; 4 * c < m->nt; c++) {
+        double a[4], sum = 0;
+        for (int k = 0; k < 4; k++) {
+            const int *v = m->tri + 3 * (4 * c + k);
+            const double *p0 = m->X + 3 * v[0], *p1 = m->X + 3 * v[1], *p2 = m->X + 3 * v[2];
+            a[k] = 0.5 * ((p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]));
+            sum += a[k];
+        }
+        for (int k = 0; k < 4; k++) q = fmin(q, 4 * a[k] / sum);
+    }
+    return q;
+}
+
+SB_TEST(test_crossed_wide_sector)
+{
+    const double span[5] = { 90, 200, 240, 300, 359.9 };
+    const int res[5] = { 8, 8, 8, 8, 16 };
+    for (int k = 0; k < 5; k++) {
+        char dom[256];
+        snprintf(dom, sizeof dom, "{\"type\": \"annulus_sector\", \"r_in\": 0.5, \"r_out\": 1, \"theta\": [0, %g]}", span[k]);
+        sb_scene sc;
+        if (parse(&sc, dom, PLANE)) { CHECK(0); continue; }
+        sb_mesh m;
+        sb_mesh_spec spec = { res[k], res[k], SB_MESH_CROSSED, 0, 1 };
+        char err[256];
+        CHECK_EQ_INT(sb_mesh_from_domain(&sc, &spec, &m, NULL, err, sizeof err), SB_OK);
+        if (!check_mesh(T, &m, "crossed sector")) {
+            const double q = min_area_ratio(&m);
+            printf("    %g deg, %d x %d crossed: smallest triangle %.3f of a quarter of its cell\n", span[k], res[k], res[k], q);
+            CHECK_MSG(q > 0.05, "%g deg: smallest triangle %.3g of a quarter of its cell", span[k], q);
+            /* every centre vertex lies inside its (s,t) cell and on the mid-angle ray */
+            for (int v = (res[k] + 1) * (res[k] + 1); v < m.nv; v++) {
+                const double ds = m.st[2 * v] * res[k] - floor(m.st[2 * v] * res[k]);
+                const double dt = m.st[2 * v + 1] * res[k] - floor(m.st[2 * v + 1] * res[k]);
+                CHECK(ds > 0.01 && ds < 0.99);
+                CHECK_NEAR(dt, 0.5, 1e-9);
+            }
+        }
+        sb_mesh_free(&m);
+        /* jitter: its thinness guard was in (s,t) only, and at 359.9 deg,
+         * 8 x 8 (seed 1) it moved a vertex across its neighbours' chord in xi */
+        sb_mesh_spec jit = { 8, 8, SB_MESH_JITTER, 0.3, 1 };
+        CHECK_EQ_INT(sb_mesh_from_domain(&sc, &jit, &m, NULL, err, sizeof err), SB_OK);
+        if (!check_mesh(T, &m, "jittered sector")) {
+            int neg = 0;
+            for (int t = 0; t < m.nt; t++) {
+                const int *v = m.tri + 3 * t;
+                const double *p0 = m.X + 3 * v[0], *p1 = m.X + 3 * v[1], *p2 = m.X + 3 * v[2];
+                neg += 0.5 * ((p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])) <= 0;
+            }
+            CHECK_MSG(neg == 0, "%g deg, jitter: %d triangles with non-positive xi area", span[k], neg);
+        }
+        sb_mesh_free(&m);
+        /* cells with no point inside both the (s,t) cell and the straight
+         * quadrilateral are refused with a sentence, not meshed wrongly */
+        if (span[k] > 350) {
+            sb_mesh_spec wide = { 8, 8, SB_MESH_CROSSED, 0, 1 };
+            CHECK_EQ_INT(sb_mesh_from_domain(&sc, &wide, &m, NULL, err, sizeof err), SB_ERR_INPUT);
+            CHECK_MSG(strstr(err, "crossed") && strstr(err, "method.cells_t"), "message: %s", err);
         }
         sb_scene_free(&sc);
     }
@@ -322,7 +446,7 @@ SB_TEST(test_locate)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
-        SB_CASE(test_rectangle_patterns), SB_CASE(test_lshape_and_annulus), SB_CASE(test_jitter),
+        SB_CASE(test_rectangle_patterns), SB_CASE(test_lshape_and_annulus), SB_CASE(test_crossed_wide_sector), SB_CASE(test_slit), SB_CASE(test_jitter),
         SB_CASE(test_flips), SB_CASE(test_refine4), SB_CASE(test_locate), SB_END
     };
     return sb_test_main(argc, argv, cases);

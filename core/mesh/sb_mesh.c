@@ -74,6 +74,7 @@ int sb_mesh_copy(const sb_mesh *s, sb_mesh *d)
     memcpy(d->edge_t, s->edge_t, 2 * sizeof(int) * (size_t)s->ne);
     memcpy(d->edge_k, s->edge_k, 2 * sizeof(int) * (size_t)s->ne);
     memcpy(d->edge_part, s->edge_part, sizeof(unsigned) * (size_t)s->ne);
+    d->slit = s->slit;
     return SB_OK;
 }
 

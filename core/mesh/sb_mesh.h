@@ -55,6 +55,10 @@ typedef struct sb_mesh {
     int *edge_t;             /* 2 ne: second = -1 on the boundary */
     int *edge_k;             /* 2 ne: corner opposite the edge in each triangle */
     unsigned *edge_part;     /* ne: bit p = boundary edge on named part p (sb_domain_part_names) */
+    /* seams kept open (sb_mesh_from_domain): bit 0 the s = 0 / 1 seam, bit 1 the
+     * t = 0 / 1 seam, set when the chart closes the surface there but a
+     * condition or load names one of the two edges (a slit; docs/scene_format.md) */
+    unsigned slit;
 } sb_mesh;
 
 void sb_mesh_init(sb_mesh *m);

@@ -15,14 +15,24 @@
  * Patterns (corners v00, v10, v11, v01 of cell (i, j), counter-clockwise):
  *   regular    diagonal v00-v11 in every cell
  *   alternate  diagonal v00-v11 when i + j is even, v10-v01 when odd
- *   crossed    a vertex at the cell centre, four triangles around it
+ *   crossed    a vertex at the cell centre (cell_centre: the (s,t) midpoint,
+ *              on an annulus a point inside the straight quadrilateral), four
+ *              triangles around it
  *   jitter     alternate, then sb_mesh_jitter (interior vertices displaced,
  *              Delaunay flips)
  *
  * Identification.  Vertices whose reference positions coincide (within 1e-9
  * of the size of the surface) are merged: a closed annulus or cylinder gets
  * one seam, an annulus with r_in = 0 one centre vertex; triangles that lose a
- * corner to the merge are dropped.  Merged vertices are pinned (SB_MESH_V_SEAM). */
+ * corner to the merge are dropped.  Merged vertices are pinned (SB_MESH_V_SEAM).
+ * Slits (docs/scene_format.md "Closed surfaces and slits", the rule of
+ * bhem_detect_periodic): when a boundary condition other than free, or a
+ * load, names an edge of a seam (s = 0 or 1, t = 0 or 1: start / end of a
+ * full annulus, left / right of a full cylinder), a vertex on one lip is
+ * never merged with one on the other: the seam stays open, its two edges keep
+ * their own conditions, and sb_mesh.slit says so.  (A point where the lips
+ * meet another identification, the centre of a disc, is still merged through
+ * the vertices between them.) */
 #include "sb_mesh.h"
 #include "sb_geometry.h"
 
@@ -100,8 +110,42 @@ static int cmp_vkey(const void *a, const void *b)
     return p->x < q->x ? -1 : p->x > q->x ? 1 : (p->v > q->v) - (p->v < q->v);
 }
 
-/* merge vertices with coincident reference positions; compact */
-static int merge_coincident(sb_mesh *m)
+/* Does a bc (other than free) or a load name an edge on the seam of direction
+ * dir (s = 0 / 1 when dir = 0, t = 0 / 1 when dir = 1)?  As bhem_grid.c. */
+static int part_on_seam(const sb_part *p, int dir)
+{
+    return p->kind == SB_PART_EDGE && p->st0[dir] == p->st1[dir] && (p->st0[dir] == 0.0 || p->st0[dir] == 1.0);
+}
+
+static unsigned seams_named(const sb_scene *sc)
+{
+    unsigned mask = 0;
+    for (int dir = 0; dir < 2; dir++) {
+        for (int b = 0; b < sc->n_bcs; b++)
+            for (int k = 0; k < sc->bcs[b].n_parts && sc->bcs[b].kind != SB_BC_FREE; k++)
+                if (part_on_seam(&sc->bcs[b].parts[k], dir)) mask |= 1u << dir;
+        for (int l = 0; l < sc->n_loads; l++)
+            for (int k = 0; k < sc->loads[l].n_parts; k++)
+                if (part_on_seam(&sc->loads[l].parts[k], dir)) mask |= 1u << dir;
+    }
+    return mask;
+}
+
+/* vertices a, b on the two lips of a seam in one of the directions of mask */
+static unsigned across_lips(const sb_mesh *m, int a, int b, unsigned mask)
+{
+    unsigned hit = 0;
+    for (int dir = 0; dir < 2; dir++) {
+        if (!(mask & (1u << dir))) continue;
+        const double u = m->st[2 * a + dir], w = m->st[2 * b + dir];
+        if ((u == 0.0 && w == 1.0) || (u == 1.0 && w == 0.0)) hit |= 1u << dir;
+    }
+    return hit;
+}
+
+/* merge vertices with coincident reference positions, except across the lips
+ * of the seams in keep_open (sets m->slit); compact */
+static int merge_coincident(sb_mesh *m, unsigned keep_open)
 {
     const int nv = m->nv;
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
@@ -126,6 +170,8 @@ static int merge_coincident(sb_mesh *m)
             const double *a = m->X + 3 * k[i].v, *b = m->X + 3 * k[j].v;
             double d = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
             if (d > tol) continue;
+            const unsigned lips = across_lips(m, k[i].v, k[j].v, keep_open);
+            if (lips) { m->slit |= lips; continue; }
             int ri = k[i].v, rj = k[j].v;
             while (rep[ri] != ri) ri = rep[ri];
             while (rep[rj] != rj) rj = rep[rj];
@@ -173,6 +219,35 @@ static int merge_coincident(sb_mesh *m)
     free(rep);
     free(newid);
     return SB_OK;
+}
+
+/* The centre vertex of a crossed cell [s0,s1] x [t0,t1].  The triangles are
+ * straight in xi and, for location and interpolation, in (s,t): the centre
+ * must lie inside the cell in (s,t) and inside the straight quadrilateral of
+ * its corners in xi.  Where the domain map is affine the (s,t) midpoint does
+ * both.  On an annulus sector (s radial, t angular, cell [r0,r1] x dtheta) the
+ * (s,t) midpoint lies at radius (r0 + r1)/2 while the outer chord of the cell
+ * passes the mid-angle ray at r1 cos(dtheta/2): for cells wider than
+ * 2 acos((r0 + r1)/(2 r1)) (28.7 deg for the outer row r 0.9375..1 of an
+ * r 0.5..1 annulus cut into 8) the outer triangle inverted, the rest Hessian
+ * was indefinite and Newton's line search failed at once (issue 21).  The
+ * centre now sits on the mid-angle ray at the radius of the corners' mean
+ * ((r0 + r1)/2 cos(dtheta/2), the best point in xi), raised to a quarter of
+ * the way from the inner arc r0 (where the (s,t) cell begins) to the outer
+ * chord when the mean falls below that.  Returns 1 when no point lies in both
+ * (r1 cos(dtheta/2) <= r0, up to a margin): the caller refuses the mesh. */
+static int cell_centre(const sb_domain *d, double s0, double s1, double t0, double t1, double st[2])
+{
+    st[0] = 0.5 * (s0 + s1);
+    st[1] = 0.5 * (t0 + t1);
+    if (d->kind != SB_DOMAIN_ANNULUS_SECTOR) return 0;
+    const double dr = d->r_out - d->r_in, r0 = d->r_in + s0 * dr, r1 = d->r_in + s1 * dr;
+    const double half = 0.5 * (t1 - t0) * (d->theta[1] - d->theta[0]);
+    const double chord = r1 * cos(half);                /* the outer chord on the mid-angle ray */
+    const double mean = 0.5 * (r0 + r1) * cos(half);    /* the corners' mean */
+    if (!(chord > r0 + 1e-2 * (r1 - r0))) return 1;
+    st[0] = (fmax(mean, r0 + 0.25 * (chord - r0)) - d->r_in) / dr;
+    return 0;
 }
 
 /* pin vertices at the scene's point parts (bcs and loads) */
@@ -223,6 +298,13 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
         }
     if (!ncell) { rc = failf(err, errlen, "no cell of the %d x %d grid lies in the domain", ns, nt); goto done; }
     const int crossed = spec->pattern == SB_MESH_CROSSED;
+    /* A disc (annulus with r_in = 0): the cells at s = 0 are triangles (v00 =
+     * v01, the centre) and one of their two triangles is dropped; the kept one
+     * carries the centre's corner coordinates, (0, t0) with the diagonal
+     * v00-v11, (0, t1) with v10-v01.  The last cell keeps (0, 1) so that its
+     * edge along `end` lies on `end` in (s,t) too (a slit disc's lip, a bc on
+     * the end of a disc sector), every other cell (0, t0). */
+    const int disc = sc->domain.kind == SB_DOMAIN_ANNULUS_SECTOR && sc->domain.r_in == 0.0;
     const int nvmax = (ns + 1) * (nt + 1) + (crossed ? ncell : 0), ntmax = (crossed ? 4 : 2) * ncell;
     if ((rc = sb_mesh_reserve(m, nvmax, ntmax, 0))) goto done;
     m->nv = 0;
@@ -251,8 +333,14 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
             int T[4][3], n = 0;
             if (crossed) {
                 const int c = m->nv++;
-                m->st[2 * c] = 0.5 * (su[i] + su[i + 1]);
-                m->st[2 * c + 1] = 0.5 * (tu[j] + tu[j + 1]);
+                if (cell_centre(&sc->domain, su[i], su[i + 1], tu[j], tu[j + 1], m->st + 2 * c)) {
+                    rc = failf(err, errlen, "method.mesh = crossed: the annulus cells of %.3g deg by %.3g are too wide "
+                               "in angle for a centre vertex inside both the (s,t) cell and its straight "
+                               "quadrilateral (raise method.cells_t or use another pattern)",
+                               (tu[j + 1] - tu[j]) * (sc->domain.theta[1] - sc->domain.theta[0]) * 180 / M_PI,
+                               (su[i + 1] - su[i]) * (sc->domain.r_out - sc->domain.r_in));
+                    goto done;
+                }
                 m->vgen[c] = 0;
                 m->vflag[c] = 0;
                 int q[4] = { v00, v10, v11, v01 };
@@ -260,7 +348,7 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
                     T[n][0] = q[k]; T[n][1] = q[(k + 1) % 4]; T[n][2] = c;
                     n++;
                 }
-            } else if (spec->pattern == SB_MESH_REGULAR || ((i + j) % 2 == 0)) {
+            } else if (disc && i == 0 ? j < nt - 1 : spec->pattern == SB_MESH_REGULAR || ((i + j) % 2 == 0)) {
                 T[0][0] = v00; T[0][1] = v10; T[0][2] = v11;
                 T[1][0] = v00; T[1][1] = v11; T[1][2] = v01;
                 n = 2;
@@ -280,7 +368,7 @@ int sb_mesh_from_domain(const sb_scene *sc, const sb_mesh_spec *spec, sb_mesh *m
             }
         }
     sb_mesh_set_geometry(m, sc);
-    if ((rc = merge_coincident(m))) goto done;
+    if ((rc = merge_coincident(m, seams_named(sc)))) goto done;
     if (m->nt < 1) { rc = failf(err, errlen, "the %d x %d grid leaves no triangle after identifying seams", ns, nt); goto done; }
     if ((rc = sb_mesh_build_edges(m))) {
         if (rc == SB_ERR_INPUT)

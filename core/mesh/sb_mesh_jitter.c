@@ -7,8 +7,13 @@
  * h_s / h_t the shortest nonzero |ds| / |dt| of its edges (sb_rng_alloc,
  * core/base/sb_gsl.h).  Boundary,
  * pinned and seam vertices stay.  A displacement that leaves any triangle
- * with less than a quarter of its (s,t) area is halved, for the vertices of
- * that triangle, until no triangle is that thin (at most 40 rounds).
+ * with less than a quarter of its (s,t) area, or of its area in xi, is
+ * halved, for the vertices of that triangle, until no triangle is that thin
+ * (at most 40 rounds).  Both areas: the triangles are straight in xi, and on
+ * an annulus sector (xi not affine in (s,t)) a vertex moved inside its (s,t)
+ * cells can cross the straight chord of its neighbours in xi (issue 21: an
+ * inverted triangle at 359.9 deg, --res 8, and Newton's line search failed at
+ * once); where the domain map is affine the two tests agree.
  *
  * Delaunay.  An interior edge is flipped when the two angles opposite it,
  * measured in material coordinates xi, sum to more than pi (Lawson 1977);
@@ -45,12 +50,22 @@ static double area2(const double *a, const double *b, const double *c)
     return (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
 }
 
+static void xi_of(const sb_scene *sc, const double *st, double *xi);
+
+/* twice the xi area of the triangle with corner coordinates p (6 values) */
+static double area2_xi(const sb_scene *sc, const double *p)
+{
+    double x[6];
+    for (int k = 0; k < 3; k++) xi_of(sc, p + 2 * k, x + 2 * k);
+    return area2(x, x + 2, x + 4);
+}
+
 int sb_mesh_jitter(sb_mesh *m, const sb_scene *sc, double amp, unsigned long seed, const char **rng_name)
 {
     const int nv = m->nv, nt = m->nt;
     double *h = malloc(sizeof(double) * 2 * (size_t)nv), *d = malloc(sizeof(double) * 2 * (size_t)nv);
     double *st0 = malloc(sizeof(double) * 6 * (size_t)nt), *vst0 = malloc(sizeof(double) * 2 * (size_t)nv);
-    double *a0 = malloc(sizeof(double) * (size_t)nt);
+    double *a0 = malloc(sizeof(double) * 2 * (size_t)nt);   /* (s,t) and xi areas */
     unsigned char *mov = malloc((size_t)nv);
     int rc = SB_OK;
     if (!h || !d || !st0 || !vst0 || !a0 || !mov) { rc = SB_ERR_NOMEM; goto done; }
@@ -75,7 +90,10 @@ int sb_mesh_jitter(sb_mesh *m, const sb_scene *sc, double amp, unsigned long see
         for (int c = 0; c < 2; c++) d[2 * v + c] = isfinite(h[2 * v + c]) ? amp * h[2 * v + c] * d[2 * v + c] : 0.0;
     memcpy(st0, m->tri_st, sizeof(double) * 6 * (size_t)nt);
     memcpy(vst0, m->st, sizeof(double) * 2 * (size_t)nv);
-    for (int t = 0; t < nt; t++) a0[t] = area2(st0 + 6 * t, st0 + 6 * t + 2, st0 + 6 * t + 4);
+    for (int t = 0; t < nt; t++) {
+        a0[t] = area2(st0 + 6 * t, st0 + 6 * t + 2, st0 + 6 * t + 4);
+        a0[nt + t] = area2_xi(sc, st0 + 6 * t);
+    }
     for (int round = 0; round <= 40; round++) {
         for (int t = 0; t < nt; t++)
             for (int k = 0; k < 3; k++) {
@@ -86,7 +104,7 @@ int sb_mesh_jitter(sb_mesh *m, const sb_scene *sc, double amp, unsigned long see
         int bad = 0;
         for (int t = 0; t < nt; t++) {
             const double *p = m->tri_st + 6 * t;
-            if (area2(p, p + 2, p + 4) >= 0.25 * a0[t]) continue;
+            if (area2(p, p + 2, p + 4) >= 0.25 * a0[t] && area2_xi(sc, p) >= 0.25 * a0[nt + t]) continue;
             bad++;
             for (int k = 0; k < 3; k++) {
                 const int v = m->tri[3 * t + k];

@@ -28,6 +28,7 @@ int sb_mesh_refine4(const sb_mesh *c, const sb_scene *sc, sb_mesh *f, sb_mesh_re
     if (rc) return rc;
     f->nv = nvc + nec;
     f->nt = 4 * ntc;
+    f->slit = c->slit;
     memcpy(f->st, c->st, sizeof(double) * 2 * (size_t)nvc);
     memcpy(f->vgen, c->vgen, sizeof(int) * (size_t)nvc);
     for (int v = 0; v < nvc; v++) f->vflag[v] = c->vflag[v] & (SB_MESH_V_PINNED | SB_MESH_V_SEAM);

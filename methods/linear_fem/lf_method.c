@@ -266,6 +266,9 @@ static void lf_describe(const void *state, char *buf, size_t len)
     if (S->pattern == SB_MESH_JITTER)
         snprintf(jit, sizeof jit, " (jitter %.2f, gsl_rng %s, seed %lu)", S->jitter, S->rng_name ? S->rng_name : "?",
                  S->seed);
+    if (L->mesh.slit)   /* a closed surface whose seam edges carry conditions (docs/scene_format.md) */
+        snprintf(jit + strlen(jit), sizeof jit - strlen(jit), ", closed in %s but slit",
+                 L->mesh.slit == 3 ? "s and t" : L->mesh.slit == 1 ? "s" : "t");
     snprintf(buf, len, "%dx%d %s mesh%s: %d vertices, %d triangles, %d edges; %s bending%s; %d dofs, %d level%s, "
              "%s Hessian, %s mass", S->res, S->cells_t, mesh_choices[S->pattern], jit, L->nv, L->nt, L->ne,
              bend_choices[S->bending],
