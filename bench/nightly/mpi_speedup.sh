@@ -41,7 +41,11 @@ CORES=$(nproc)
   echo "# MPI sweep speedup (bench/nightly/mpi_speedup.sh)"
   echo
   echo "Study \`$STUDY\`: $NRUNS runs; build \`$("$BIN" --version | cut -d' ' -f2)\`, $(date -u +%Y-%m-%dT%H:%MZ), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $CORES cores, shared with other work (load average before each sweep in the table)."
-  echo "Sum of the runs' own seconds (serial records): $SUM s; longest run: $LONGEST s."
+  echo "Sum of the runs' own seconds (serial records): $SUM s; longest run: $LONGEST s; the rest of the serial"
+  echo "sweep's wall time is per-run overhead (process start, scene and method set-up, writing and syncing the record)."
+  BOUND=$(echo "m = $SUM / $CORES; if ($LONGEST > m) m = $LONGEST; m" | bc -l)
+  printf 'Lower bound of the makespan on %d cores, max(longest run, sum / cores): %.1f s (best speedup over the serial sweep about %.1f).\n' \
+    "$CORES" "$BOUND" "$(echo "${WALL[serial]} / $BOUND" | bc -l)"
   echo
   echo "| sweep | wall s | speedup vs serial | vs mpirun -n 1 | load before |"
   echo "|---|--:|--:|--:|--:|"
