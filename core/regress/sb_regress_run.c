@@ -185,6 +185,7 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
     snprintf(p->suite, sizeof p->suite, "%s", st->path);
     p->repeat = o->repeat;
     p->cores = sb_sysinfo_cores();
+    p->calib_version = SB_REGRESS_CALIB_VERSION;
     p->load_max = NAN;
     int jobs = o->jobs > 0 ? o->jobs : 1, refused = 0;
     slot *sl = calloc((size_t)jobs, sizeof *sl);
