@@ -89,6 +89,7 @@ SB_TEST(verdicts)
     now.c[8].fig.energy = -1.5 * (1 + 1e-13);         /* round-off: within rtol */
     now.c[8].fig.probe[0][0] = 1e-17;                 /* a zero coordinate off by round-off */
     for (int i = 0; i < 5; i++) now.c[9].norm[i] = i % 2 ? 1.3 : 0.8;   /* large spread, no shift */
+    base.prov.calib_version = now.prov.calib_version = SB_REGRESS_CALIB_VERSION;
     int reg = sb_regress_judge(&now, &base, &ru);
     const sb_verdict want[] = { SB_VERDICT_SAME, SB_VERDICT_SLOWER, SB_VERDICT_FASTER, SB_VERDICT_SAME,
                                 SB_VERDICT_CHANGED, SB_VERDICT_CHANGED, SB_VERDICT_FAILED, SB_VERDICT_NEW,
@@ -99,6 +100,11 @@ SB_TEST(verdicts)
     CHECK(strstr(now.c[5].detail, "energy_final") != NULL);
     CHECK(strstr(now.c[3].detail, "below the minimum effect") != NULL);
     CHECK_EQ_INT(reg, 4);   /* slower, iters, energy, failed */
+    /* another calibration kernel: counts still judged, times not */
+    base.prov.calib_version = 1;
+    CHECK_EQ_INT(sb_regress_judge(&now, &base, &ru), 3);   /* iters, energy, failed */
+    CHECK(now.c[1].verdict == SB_VERDICT_SAME && strstr(now.c[1].detail, "calibration kernel"));
+    CHECK(now.c[4].verdict == SB_VERDICT_CHANGED);
     /* against no baseline everything is new, nothing a regression */
     CHECK_EQ_INT(sb_regress_judge(&now, NULL, &ru), 1);   /* the failed case still counts */
     CHECK(now.c[0].verdict == SB_VERDICT_NEW);
@@ -115,6 +121,7 @@ SB_TEST(baseline_round_trip_and_errors)
     snprintf(s.prov.date, sizeof s.prov.date, "2026-12-04T00:00:00Z");
     snprintf(s.prov.blas_core, sizeof s.prov.blas_core, "Prescott");
     s.prov.repeat = 3, s.prov.n_calib = 3, s.prov.calib_median = 0.1, s.prov.load_max = 2.5, s.prov.cores = 2;
+    s.prov.calib_version = SB_REGRESS_CALIB_VERSION;
     for (int i = 0; i < 3; i++) s.prov.calib[i] = 0.1 + 0.001 * i;
     sb_regress_case *c = sb_regress_set_add(&s, "plate/bhem-tr-r4.h5");
     fill(c, 0.123456789012345678, 3);
@@ -132,7 +139,7 @@ SB_TEST(baseline_round_trip_and_errors)
         CHECK(r.c[0].norm[1] == c->norm[1]);   /* 17 digits: exactly */
         CHECK(!strcmp(r.prov.build, "v1-2-gabc"));
         CHECK(r.prov.calib[2] == s.prov.calib[2]);
-        CHECK(r.prov.load_max == 2.5 && r.prov.cores == 2);
+        CHECK(r.prov.load_max == 2.5 && r.prov.cores == 2 && r.prov.calib_version == SB_REGRESS_CALIB_VERSION);
     }
     sb_regress_set_free(&r);
     /* damaged files: the file and the member are named */

@@ -202,7 +202,8 @@ int sb_cli_regress(int argc, char **argv)
         return rc;
     }
     int regressions = sb_regress_judge(&now, have_base ? &base : NULL, &ru);
-    if (!rc && confirm && have_base) rc = confirm_changes(st, &o, &now, &base, &ru, &regressions);
+    /* a new baseline is being made: the verdicts against the old one are for information */
+    if (!rc && confirm && have_base && !update) rc = confirm_changes(st, &o, &now, &base, &ru, &regressions);
     sb_study_free(st);
     free(st);
     if (rc) {

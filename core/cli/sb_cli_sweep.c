@@ -52,6 +52,13 @@ int sb_cli_sweep(int argc, char **argv)
 {
     for (int i = 0; i < argc; i++)
         if (!strcmp(argv[i], "--study")) return sb_study_cmd_sweep(argc, argv);   /* docs/study.md */
+    if (sb_mpi_launched()) {   /* N copies of one list would each run every combination */
+        const char *rank = getenv("OMPI_COMM_WORLD_RANK");
+        if (!rank || !strcmp(rank, "0"))
+            fprintf(stderr, "shellbench sweep: under an MPI launcher only a study is distributed: write the lists as a "
+                            "study file and run `sweep --study FILE` (docs/study.md, docs/regression.md)\n");
+        return 2;
+    }
     sb_cli_run c;
     char err[2048];
     memset(&c, 0, sizeof c);

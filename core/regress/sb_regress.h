@@ -77,6 +77,10 @@ int sb_regress_figures_differ(const sb_regress_figures *a, const sb_regress_figu
  * floating-point and memory work written here, independent of the suite's
  * code, so that a regression of the suite is not normalized away. */
 double sb_regress_calibrate(void);
+/* Bumped whenever the kernel's work changes: normalized times of baselines
+ * made with another version are not compared (1: until 83601fa, the data
+ * allocated inside the timed region). */
+#define SB_REGRESS_CALIB_VERSION 2
 
 /* Mann-Whitney U test of x (n) against y (m): U of x, two-sided p-value
  * (exact distribution without ties for n, m <= 50 and no ties; else the
@@ -129,6 +133,7 @@ typedef struct sb_regress_prov {
     double load_max;                     /* largest 1-minute load average seen at the start of a round
                                             (/proc/loadavg; NaN: not known) */
     int cores;                           /* online processors */
+    int calib_version;                   /* SB_REGRESS_CALIB_VERSION of the kernel used */
 } sb_regress_prov;
 
 typedef struct sb_regress_set {

@@ -81,6 +81,7 @@ int sb_regress_baseline_write(const sb_regress_set *s, const char *path, char *e
     json_object_set_new(pv, "calibration_median", json_real(p->calib_median));
     json_object_set_new(pv, "load_average_max", isfinite(p->load_max) ? json_real(p->load_max) : json_null());
     json_object_set_new(pv, "cores", json_integer(p->cores));
+    json_object_set_new(pv, "calibration_version", json_integer(p->calib_version));
     json_object_set_new(root, "provenance", pv);
     for (int k = 0; k < s->n; k++)
         if (s->c[k].ok) json_array_append_new(cases, case_json(&s->c[k]));
@@ -227,6 +228,8 @@ int sb_regress_baseline_read(const char *path, sb_regress_set *s, char *err, siz
         json_t *l = json_object_get(pv, "load_average_max"), *c = json_object_get(pv, "cores");
         p->load_max = json_is_number(l) ? json_number_value(l) : NAN;
         p->cores = json_is_integer(c) ? (int)json_integer_value(c) : 0;
+        json_t *cv = json_object_get(pv, "calibration_version");
+        p->calib_version = json_is_integer(cv) ? (int)json_integer_value(cv) : 1;
     }
     json_t *cases = json_object_get(root, "cases");
     if (!r.bad && !json_is_array(cases)) fail(&r, "/cases", "missing or not an array");

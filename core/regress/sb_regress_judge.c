@@ -13,7 +13,8 @@
  *            at level alpha AND the medians differ by at least min_effect
  *            (the test alone calls a 1 % change significant once samples
  *            are large; the effect alone would call noise a change)
- *   same     otherwise.
+ *   same     otherwise (also when the baseline's calibration kernel is
+ *            another version: its normalized times mean something else).
  * slower, changed and failed are regressions (exit code 1). */
 #include "sb_regress.h"
 #include "sb_gsl.h"
@@ -112,6 +113,10 @@ int sb_regress_judge(sb_regress_set *now, const sb_regress_set *base, const sb_r
             c->verdict = SB_VERDICT_CHANGED;
             snprintf(c->detail, sizeof c->detail, "%s", what);
             c->ratio = median(c->norm, c->n_rep) / median(b->norm, b->n_rep);
+        } else if (base->prov.calib_version != now->prov.calib_version) {
+            c->verdict = SB_VERDICT_SAME;
+            snprintf(c->detail, sizeof c->detail, "figures agree; times not compared: the baseline's calibration kernel "
+                     "is version %d, this one %d (update the baseline)", base->prov.calib_version, now->prov.calib_version);
         } else {
             judge_time(c, b, ru);
         }

@@ -22,6 +22,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -92,8 +93,12 @@ static pid_t start(const sb_study *st, slot *s, FILE *err)
         return -1;
     }
     fflush(NULL);
+    pid_t parent = getpid();
     pid_t pid = fork();
     if (pid != 0) return pid;
+    /* the run dies with the regression that started it (no orphans timing themselves) */
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(SB_EXIT_INTERNAL);
     FILE *log = fopen(lp, "w");
     int devnull = open("/dev/null", O_WRONLY);
     if (devnull >= 0) dup2(devnull, STDOUT_FILENO);
@@ -185,6 +190,7 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
     snprintf(p->suite, sizeof p->suite, "%s", st->path);
     p->repeat = o->repeat;
     p->cores = sb_sysinfo_cores();
+    p->calib_version = SB_REGRESS_CALIB_VERSION;
     p->load_max = NAN;
     int jobs = o->jobs > 0 ? o->jobs : 1, refused = 0;
     slot *sl = calloc((size_t)jobs, sizeof *sl);

@@ -194,5 +194,8 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
 int sb_study_cmd_sweep(int argc, char **argv);
 int sb_study_cmd_report(int argc, char **argv);
 int sb_study_cmd_reference(int argc, char **argv);
+/* 1 when this process was started by an MPI launcher (mpirun, srun):
+ * sb_sweep_order.c; a study sweep is then distributed (docs/regression.md). */
+int sb_mpi_launched(void);
 
 #endif

@@ -62,8 +62,6 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err);
  * without records).  expected (may be NULL) receives the estimates in the
  * new order. */
 void sb_study_order_longest_first(const sb_study *st, const sb_plan *plan, int *queue, int nq, double *expected);
-/* 1 when this process was started by an MPI launcher (mpirun, srun). */
-int  sb_mpi_launched(void);
 /* The sweep over MPI ranks (rank 0 schedules and runs too).  In the
  * ordinary binary (no MPI): exec BUILD/shellbench-mpi with `sweep` and the
  * command's arguments, or a sentence and SB_EXIT_INPUT when there is none. */
