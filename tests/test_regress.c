@@ -175,8 +175,8 @@ SB_TEST(regress_command_end_to_end)
     char suite[400], common[2000];
     snprintf(suite, sizeof suite, "%s/suite.json", tmpdir);
     FILE *f = fopen(suite, "w");
-    fprintf(f, "{\"study\": \"tiny\", \"records\": \"%s/rec\", \"scenes\": [\"plate_clamped\"], \"methods\": [\"bhem\"],\n"
-               " \"solvers\": [\"lsnewton\"], \"res\": [4]}\n", tmpdir);
+    fprintf(f, "{\"study\": \"tiny\", \"records\": \"%s/rec\", \"scenes\": [{\"scene\": \"trampoline\", \"solution\": \"unique\"}], \"methods\": [\"bhem\"],\n"
+               " \"solvers\": [\"lsnewton\"], \"res\": [8]}\n", tmpdir);
     fclose(f);
     snprintf(common, sizeof common, "cd %s && %s regress --suite %s --baseline %s/b/base.json --history %s/h/hist.csv "
              "--out %s/out --repeat 4 --quiet", sb_test_root(), bin, suite, tmpdir, tmpdir, tmpdir);
@@ -185,8 +185,13 @@ SB_TEST(regress_command_end_to_end)
     CHECK_MSG(strstr(err, "--update-baseline"), "%s", err);
     CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --update-baseline", common), 0);
     CHECK_MSG(strstr(out, "baseline written"), "%s%s", out, err);
-    /* unchanged: no regression */
-    int rc = sb_sh(out, sizeof out, err, sizeof err, "%s", common);
+    /* unchanged: no regression.  The case takes about 0.3 s of CPU, where the
+     * kernel's CPU-time accounting (ticks of a few ms) and a machine shared with
+     * other work move single medians by up to about 30 % (docs/regression.md):
+     * a test of the harness must not depend on that, so the no-false-alarm
+     * check asks for a change of 50 %; the injected slowdown below (1.5 x)
+     * is judged at the default 10 % */
+    int rc = sb_sh(out, sizeof out, err, sizeof err, "%s --min-effect 0.5", common);
     CHECK_MSG(rc == 0 && !strstr(out, "**slower**") && !strstr(out, "**changed**"), "rc %d: %s%s", rc, out, err);
     /* injected slowdown: a checkpoint after every iteration (no count changes) */
     rc = sb_sh(out, sizeof out, err, sizeof err, "%s --set run.checkpoint=1e-9", common);
@@ -208,7 +213,7 @@ SB_TEST(regress_command_end_to_end)
         size_t n = fread(out, 1, sizeof out - 1, f);
         out[n] = 0;
         fclose(f);
-        CHECK_MSG(count(out, "\n") == 5 && count(out, "plate_clamped/bhem-lsnewton-r4.h5") == 4, "%s", out);
+        CHECK_MSG(count(out, "\n") == 5 && count(out, "trampoline/bhem-lsnewton-r8.h5") == 4, "%s", out);
         CHECK(strstr(out, ",slower,") && strstr(out, ",changed,") && strstr(out, ",new,"));
     }
     char report[400];
