@@ -7,6 +7,7 @@
 extern const sb_method_type sb_method_subdiv;
 extern const sb_method_type sb_method_bhem;
 extern const sb_method_type sb_method_linear_fem;
+extern const sb_method_type sb_method_adaptive_sqrt3;
 extern const sb_method_type sb_fixture_membrane;
 extern const sb_method_type sb_fixture_rosenbrock;
 extern const sb_method_type sb_fixture_quadratic;
@@ -16,6 +17,7 @@ static const sb_method_type *const methods[] = {
     &sb_method_subdiv,
     &sb_method_bhem,
     &sb_method_linear_fem,
+    &sb_method_adaptive_sqrt3,
     &sb_fixture_membrane,
     &sb_fixture_rosenbrock,
     &sb_fixture_quadratic,
