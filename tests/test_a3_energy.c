@@ -388,6 +388,49 @@ SB_TEST(test_free_fall_run)
     remove(path);
 }
 
+/* The linearized step by CHOLMOD and by preconditioned CG (the paper's
+ * solver) on a hanging sheet: the same states to the CG tolerance, and CG
+ * iterations counted. */
+SB_TEST(test_pcg_matches_cholmod)
+{
+    char js[2048], path[256];
+    scene_json(js, sizeof js, "plane", "stvk", 0.3, "{\"type\": \"gravity\", \"acceleration\": [0, 0, -9.81]}",
+               "{\"type\": \"fixed\", \"on\": [\"top\"]}", 8, "{\"name\": \"p\", \"at\": [0.3, 0]}");
+    snprintf(path, sizeof path, "/tmp/sb_test_a3_pcg_%d.json", (int)getpid());
+    FILE *fp = fopen(path, "w");
+    CHECK(fp != NULL);
+    if (!fp) return;
+    fputs(js, fp);
+    fclose(fp);
+    double z[2][3] = { { 0 } };
+    long cg = -1;
+    for (int k = 0; k < 2; k++) {
+        const char *sets[] = { k ? "solver.linear=pcg" : "solver.linear=cholmod", "method.Ey_ratio=1.5", NULL };
+        sb_run_request rq;
+        memset(&rq, 0, sizeof rq);
+        rq.scene = path;
+        rq.method = "adaptive_sqrt3";
+        rq.solver = "linearized";
+        rq.res = 6;
+        rq.out = "none";
+        rq.quiet = 1;
+        rq.n_sets = 2;
+        rq.sets = sets;
+        int code = -1;
+        json_t *o = sb_test_run_json(&rq, &code);
+        CHECK_EQ_INT(code, 0);
+        if (!o) continue;
+        json_t *d = json_object_get(json_object_get(json_object_get(o, "probes"), "p"), "displacement");
+        for (int c = 0; c < 3; c++) z[k][c] = json_number_value(json_array_get(d, c));
+        if (k) cg = (long)json_integer_value(json_object_get(json_object_get(o, "counts"), "cg_iter"));
+        json_decref(o);
+    }
+    CHECK(fabs(z[0][2]) > 1e-3);
+    for (int c = 0; c < 3; c++) CHECK_NEAR(z[1][c], z[0][c], 1e-8 * fabs(z[0][2]));
+    CHECK(cg > 8);
+    remove(path);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
@@ -399,6 +442,7 @@ int main(int argc, char **argv)
         SB_CASE(test_bending_cylinder),
         SB_CASE(test_refusals),
         SB_CASE(test_free_fall_run),
+        SB_CASE(test_pcg_matches_cholmod),
         SB_END
     };
     return sb_test_main(argc, argv, cases);
