@@ -12,6 +12,7 @@ extern const sb_method_type sb_fixture_membrane;
 extern const sb_method_type sb_fixture_rosenbrock;
 extern const sb_method_type sb_fixture_quadratic;
 extern const sb_method_type sb_fixture_saddle;
+extern const sb_method_type sb_fixture_chain;
 
 static const sb_method_type *const methods[] = {
     &sb_method_subdiv,
@@ -22,6 +23,7 @@ static const sb_method_type *const methods[] = {
     &sb_fixture_rosenbrock,
     &sb_fixture_quadratic,
     &sb_fixture_saddle,
+    &sb_fixture_chain,
 };
 
 extern const sb_solver_type sb_solver_tr;
