@@ -67,6 +67,7 @@
 
 #include "sb_method.h"
 #include "sb_mesh.h"
+#include "a3_sqrt3.h"
 
 typedef struct a3_tri {
     int v[3];                 /* corners a, b, c */
@@ -90,6 +91,14 @@ typedef struct a3_state {
     double C[9];              /* Eq. 9, row-major */
     double Ex, Ey, Es, nu_xy, nu_yx;
     double kb;                /* bending stiffness factor (k_b = D/3) */
+    /* adaptivity (a3_adapt.c, a3_sqrt3.h) */
+    int adaptive, max_gen, adapt_every;
+    double curv_base, curv_max, coarsen_frac;
+    a3_forest forest;
+    int *vmap;                /* mesh vertex -> forest vertex */
+    int *tmap;                /* mesh triangle -> forest triangle */
+    double *x_new, *v_new;    /* the state mapped by the last adaptation */
+    int n_adapt_changes;
     sb_mesh mesh;
     sb_mesh_locator loc;
     int nv, nt, n_edge, n_dofs;
@@ -132,8 +141,19 @@ double a3_bend(const a3_edge *e, const double *q12, double *g, double *H);
 void   a3_voronoi(const double *Xa, const double *Xb, const double *Xc, double A[3]);
 
 /* ---- model data (a3_build.c) ---------------------------------------------- */
+/* base mesh, sqrt3 forest (refined to max_gen unless adaptive), model */
 int  a3_build(a3_state *S);
+/* the model on the forest's current mesh (mesh, x_ref, triangles, edges,
+ * masses, bcs, loads), built from scratch */
+int  a3_build_model(a3_state *S);
+void a3_free_model(a3_state *S);
 void a3_free(a3_state *S);
+
+/* ---- adaptation (a3_adapt.c) ------------------------------------------------ */
+/* mean curvature |c(x_i)| of every mesh vertex (Eq. 22; 0 on the boundary) */
+int  a3_curvature(const a3_state *S, const double *x, double *c);
+int  a3_adapt(void *state, const double *x, const double *v, int *changed);
+int  a3_adapt_state(void *state, double *x, double *v);
 void a3_bc_update(a3_state *S);
 void a3_loads_update(a3_state *S);
 

@@ -39,15 +39,26 @@ static inline void cross3(const double *a, const double *b, double *c)
     c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-void a3_free(a3_state *S)
+void a3_free_model(a3_state *S)
 {
-    sb_mesh_free(&S->mesh);
     sb_mesh_locator_free(&S->loc);
+    memset(&S->loc, 0, sizeof S->loc);
     free(S->x_ref); free(S->tri); free(S->edge); free(S->mass);
     free(S->con); free(S->con_dofs); free(S->con_vals);
     free(S->load_vec); free(S->f_ext);
     S->x_ref = NULL; S->tri = NULL; S->edge = NULL; S->mass = NULL;
     S->con = NULL; S->con_dofs = NULL; S->con_vals = NULL; S->load_vec = NULL; S->f_ext = NULL;
+    S->n_con = S->n_edge = 0;
+}
+
+void a3_free(a3_state *S)
+{
+    a3_free_model(S);
+    sb_mesh_free(&S->mesh);
+    a3_forest_free(&S->forest);
+    free(S->vmap); free(S->tmap); free(S->x_new); free(S->v_new);
+    S->vmap = S->tmap = NULL;
+    S->x_new = S->v_new = NULL;
 }
 
 static int build_triangles(a3_state *S)
@@ -264,12 +275,38 @@ void a3_loads_update(a3_state *S)
 int a3_build(a3_state *S)
 {
     char err[512];
+    sb_mesh base;
+    sb_mesh_init(&base);
     sb_mesh_spec spec = { S->res, S->cells_t, (sb_mesh_pattern)S->pattern, 0.0, 1 };
     const char *rng = NULL;
-    int rc = sb_mesh_from_domain(S->scene, &spec, &S->mesh, &rng, err, sizeof err);
-    if (rc) return a3_fail(S, rc, "%s", err);
+    int rc = sb_mesh_from_domain(S->scene, &spec, &base, &rng, err, sizeof err);
+    if (rc) { sb_mesh_free(&base); return a3_fail(S, rc, "%s", err); }
+    rc = a3_forest_init(&S->forest, &base, S->max_gen);
+    sb_mesh_free(&base);
+    if (rc == SB_ERR_UNSUPPORTED)
+        return a3_fail(S, rc, "scene %s: the domain has identified seams, which sqrt3 refinement does not support",
+                       S->scene->name);
+    if (rc) return rc;
+    /* method.adaptive = 0: the full resolution, every triangle at the finest generation */
+    if (!S->adaptive && (rc = a3_forest_refine_all(&S->forest))) return rc;
+    return a3_build_model(S);
+}
+
+int a3_build_model(a3_state *S)
+{
+    char err[512];
+    int rc;
+    free(S->vmap);
+    S->vmap = NULL;
+    if ((rc = a3_forest_mesh(&S->forest, S->scene, &S->mesh, &S->vmap))) return rc;
     if ((rc = sb_mesh_check(&S->mesh, err, sizeof err))) return a3_fail(S, SB_ERR_INTERNAL, "mesh check: %s", err);
     const sb_mesh *m = &S->mesh;
+    /* mesh triangle -> forest triangle (a3_forest_mesh exports the alive ones in record order) */
+    free(S->tmap);
+    S->tmap = malloc(sizeof(int) * (size_t)(m->nt ? m->nt : 1));
+    if (!S->tmap) return SB_ERR_NOMEM;
+    for (int t = 0, k = 0; t < S->forest.nt; t++)
+        if (S->forest.t[t].alive) S->tmap[k++] = t;
     S->nv = m->nv;
     S->nt = m->nt;
     S->n_dofs = 3 * m->nv;

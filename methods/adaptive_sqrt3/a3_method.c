@@ -25,6 +25,14 @@ const sb_param_def a3_params[] = {
       "shear strain of Eq. 7; the sqrt3 paper's curtain uses 1000)" },
     { "Ey_ratio", SB_PARAM_REAL, 1, 1e-6, 1e6, NULL,
       "E_y / E_x of Eq. 9 (orthotropy; E_x = Y h, nu_yx = nu E_y / E_x so that C is symmetric)" },
+    { "adaptive", SB_PARAM_INT, 1, 0, 1, NULL,
+      "1: sqrt3 refinement / coarsening from the --res mesh by the curvature criterion (§5); 0: the full "
+      "resolution, every triangle refined to method.max_generation for the whole run" },
+    { "max_generation", SB_PARAM_INT, 6, 0, 20, NULL, "g_max: the finest sqrt3 generation (paper: 6; 2 generations triple the triangles)" },
+    { "adapt_every", SB_PARAM_INT, 5, 0, 1000000, NULL, "adapt the mesh before every this many steps (paper: 5; 0 = never)" },
+    { "curv_base", SB_PARAM_REAL, 2, 0, 1e12, NULL, "l_base of Eq. 23: refine generation 0 above this mean curvature |c| (1/m)" },
+    { "curv_max", SB_PARAM_REAL, 20, 0, 1e12, NULL, "l_gmax of Eq. 23: the refinement limit at generation g_max (1/m)" },
+    { "coarsen_fraction", SB_PARAM_REAL, 0.5, 0, 1, NULL, "coarsen below this fraction of the refinement limit of the generation" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
 
@@ -91,6 +99,12 @@ static int a3_create(void *state, const sb_scene *scene, const sb_method_config 
         return a3_fail(S, SB_ERR_UNSUPPORTED, "--levels %d asks for a hierarchy, which adaptive_sqrt3 has not", cfg->levels);
     int rc = refuse(S, scene);
     if (rc) return rc;
+    S->adaptive = (int)pval(ps, "method.adaptive", 1);
+    S->max_gen = (int)pval(ps, "method.max_generation", 6);
+    S->adapt_every = (int)pval(ps, "method.adapt_every", 5);
+    S->curv_base = pval(ps, "method.curv_base", 2);
+    S->curv_max = pval(ps, "method.curv_max", 20);
+    S->coarsen_frac = pval(ps, "method.coarsen_fraction", 0.5);
     /* Eq. 9 from the scene's material (mapping: a3.h) */
     const sb_material_spec *mt = &scene->material;
     const double h = mt->thickness, Y = mt->young, nu = mt->poisson;
@@ -207,16 +221,17 @@ static int a3_surface(void *state, int level, const double *x, sb_surface *out)
 static void a3_describe(const void *state, char *buf, size_t len)
 {
     const a3_state *S = state;
-    snprintf(buf, len, "%dx%d %s mesh, full resolution (no adaptation): %d vertices, %d triangles, %d bending edges; "
+    snprintf(buf, len, "%dx%d %s base mesh, %s (max generation %d): %d vertices, %d triangles, %d bending edges; "
              "corotational orthotropic membrane E_x %g, E_y %g, E_s %g N/m, nu_xy %g; isometric bending k_b %g; "
-             "Voronoi lumped mass", S->res, S->cells_t, mesh_choices[S->pattern], S->nv, S->nt, S->n_edge, S->Ex,
+             "Voronoi lumped mass", S->res, S->cells_t, mesh_choices[S->pattern],
+             S->adaptive ? "sqrt3-adaptive" : "full resolution", S->max_gen, S->nv, S->nt, S->n_edge, S->Ex,
              S->Ey, S->Es, S->nu_xy, S->kb);
 }
 
 const sb_method_type sb_method_adaptive_sqrt3 = {
     .name = "adaptive_sqrt3",
     .description = "Bender & Deul corotational triangle cloth (orthotropic membrane, isometric bending, Voronoi "
-                   "masses); full resolution only, no sqrt3 adaptation yet; lagged rotations: linearized solver only",
+                   "masses) on a sqrt3-adaptive mesh; lagged rotations: linearized solver only",
     .state_size = sizeof(a3_state),
     .params = a3_params,
     .flags = SB_METHOD_RES_ST,
@@ -234,4 +249,6 @@ const sb_method_type sb_method_adaptive_sqrt3 = {
     .eval_points = a3_eval,
     .describe = a3_describe,
     .surface = a3_surface,
+    .adapt = a3_adapt,
+    .adapt_state = a3_adapt_state,
 };

@@ -22,7 +22,7 @@ static int grow(void **p, int *cap, int need, size_t size)
     return SB_OK;
 }
 
-static int new_vertex(a3_forest *F, double s, double t, int gen, int bnd)
+static int new_vertex(a3_forest *F, double s, double t, int gen, int bnd, const int par[3], const double w[3])
 {
     if (F->nv + 1 > F->cap_v) {
         const int c = F->cap_v ? 2 * F->cap_v : 64;
@@ -38,6 +38,12 @@ static int new_vertex(a3_forest *F, double s, double t, int gen, int bnd)
         unsigned char *vb = realloc(F->vbnd, (size_t)c);
         if (!vb) return -1;
         F->vbnd = vb;
+        int *vp = realloc(F->vpar, sizeof(int) * 3 * (size_t)c);
+        if (!vp) return -1;
+        F->vpar = vp;
+        double *vw = realloc(F->vw, sizeof(double) * 3 * (size_t)c);
+        if (!vw) return -1;
+        F->vw = vw;
         F->cap_v = c;
     }
     const int v = F->nv++;
@@ -46,6 +52,10 @@ static int new_vertex(a3_forest *F, double s, double t, int gen, int bnd)
     F->vref[v] = 0;
     F->vgen[v] = gen;
     F->vbnd[v] = (unsigned char)bnd;
+    for (int k = 0; k < 3; k++) {
+        F->vpar[3 * v + k] = par ? par[k] : -1;
+        F->vw[3 * v + k] = par ? w[k] : 0.0;
+    }
     return v;
 }
 
@@ -243,7 +253,8 @@ static int do_split(a3_forest *F, int t, int depth)
         const int *v = F->t[t].v;
         const double s = (F->st[2 * v[0]] + F->st[2 * v[1]] + F->st[2 * v[2]]) / 3.0;
         const double tt = (F->st[2 * v[0] + 1] + F->st[2 * v[1] + 1] + F->st[2 * v[2] + 1]) / 3.0;
-        const int m = new_vertex(F, s, tt, g + 1, 0);
+        const double w3[3] = { 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0 };
+        const int m = new_vertex(F, s, tt, g + 1, 0, v, w3);
         if (m < 0 || (k = new_op(F, A3_OP_SPLIT)) < 0) return SB_ERR_NOMEM;
         v = F->t[t].v;
         const int a = v[0], b = v[1], c = v[2];
@@ -270,8 +281,13 @@ static int do_bsplit(a3_forest *F, int t, int depth)
         const int *v = F->t[t].v;
         const int m = v[km], a = v[(km + 1) % 3], b = v[(km + 2) % 3];
         const double *sa = F->st + 2 * a, *sb = F->st + 2 * b;
-        const int p1 = new_vertex(F, sa[0] + (sb[0] - sa[0]) / 3.0, sa[1] + (sb[1] - sa[1]) / 3.0, g + 2, 1);
-        const int p2 = new_vertex(F, sa[0] + 2.0 * (sb[0] - sa[0]) / 3.0, sa[1] + 2.0 * (sb[1] - sa[1]) / 3.0, g + 2, 1);
+        const int par[3] = { a, b, a };
+        const double w1[3] = { 2.0 / 3.0, 1.0 / 3.0, 0.0 }, w2[3] = { 1.0 / 3.0, 2.0 / 3.0, 0.0 };
+        const int p1 = new_vertex(F, sa[0] + (sb[0] - sa[0]) / 3.0, sa[1] + (sb[1] - sa[1]) / 3.0, g + 2, 1, par, w1);
+        if (p1 < 0) return SB_ERR_NOMEM;
+        sa = F->st + 2 * a;
+        sb = F->st + 2 * b;
+        const int p2 = new_vertex(F, sa[0] + 2.0 * (sb[0] - sa[0]) / 3.0, sa[1] + 2.0 * (sb[1] - sa[1]) / 3.0, g + 2, 1, par, w2);
         if (p1 < 0 || p2 < 0 || (k = new_op(F, A3_OP_BSPLIT)) < 0) return SB_ERR_NOMEM;
         /* Fig. 5: left (a, p1, m) and right (p2, b, m) at g + 2 with mates
          * (m, a) and (b, m); middle (p1, p2, m) at g + 3 */
@@ -409,7 +425,7 @@ int a3_forest_coarsen_all(a3_forest *F)
 
 void a3_forest_free(a3_forest *F)
 {
-    free(F->t); free(F->op); free(F->st); free(F->vref); free(F->vgen); free(F->vbnd);
+    free(F->t); free(F->op); free(F->st); free(F->vref); free(F->vgen); free(F->vbnd); free(F->vpar); free(F->vw);
     free(F->hkey); free(F->hval);
     memset(F, 0, sizeof *F);
 }
@@ -421,7 +437,7 @@ int a3_forest_init(a3_forest *F, const sb_mesh *m, int max_gen)
     for (int v = 0; v < m->nv; v++)
         if (m->vflag[v] & SB_MESH_V_SEAM) return SB_ERR_UNSUPPORTED;
     for (int v = 0; v < m->nv; v++)
-        if (new_vertex(F, m->st[2 * v], m->st[2 * v + 1], 0, (m->vflag[v] & SB_MESH_V_BOUNDARY) != 0) < 0)
+        if (new_vertex(F, m->st[2 * v], m->st[2 * v + 1], 0, (m->vflag[v] & SB_MESH_V_BOUNDARY) != 0, NULL, NULL) < 0)
             return SB_ERR_NOMEM;
     for (int t = 0; t < m->nt; t++) {
         const int *v = m->tri + 3 * t;

@@ -63,6 +63,8 @@ typedef struct a3_forest {
     int *vref;                /* nv: alive triangles using the vertex */
     int *vgen;
     unsigned char *vbnd;      /* nv: on the domain boundary */
+    int *vpar;                /* 3 nv: the vertices it was interpolated from (-1: base vertex) */
+    double *vw;               /* 3 nv: their weights (centroid 1/3 each; boundary split 2/3, 1/3) */
     /* edge hash of the alive triangles: key (min v, max v) -> two triangles */
     long long *hkey;
     int *hval;                /* 2 per slot */
