@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""bench/sqrt3/distance.py — per-step series of the curtain runs of
+bench/sqrt3/run.sh, read from their HDF5 records with h5dump (hdf5-tools;
+the report scripts use the Python standard library only): time, dofs and
+seconds of every step of the adaptive and the full-resolution run, and the
+distance between their surfaces on the records' common sample grid (11 x 11
+material points), RMS and max, divided by the curtain's diagonal (the
+suite's error measure, DESIGN.md "Accuracy"); every 5th step (the
+adaptation interval) and the last, to keep the file small.  CSV on stdout.
+
+    python3 bench/sqrt3/distance.py results/sqrt3 > results/sqrt3/series.csv
+"""
+import math, os, re, subprocess, sys
+
+DIR = sys.argv[1] if len(sys.argv) > 1 else "results/sqrt3"
+DIAG = math.hypot(1.0, 1.5)          # the curtain is 1 m x 1.5 m (bench/scenes/curtain.json)
+
+
+def h5(path, *args):
+    return subprocess.run(["h5dump", "-m", "%.17g", "-w", "0"] + list(args) + [path], check=True,
+                          capture_output=True, text=True).stdout
+
+
+def numbers(text):
+    """the numbers of the first DATA block (the dataset's; attributes follow it)"""
+    out = []
+    m = re.search(r"DATA \{(.*?)\}", text, re.S)
+    for line in (m.group(1).splitlines() if m else []):
+        if ":" in line:
+            out += [float(v) for v in line.split(":", 1)[1].replace(",", " ").split()]
+    return out
+
+
+def series(path, name):
+    return numbers(h5(path, "-d", name))
+
+
+def samples(path):
+    """{step: [x0, y0, z0, x1, ...]} from /steps/sample_pos"""
+    text = h5(path, "-g", "/steps/sample_pos")
+    out = {}
+    for m in re.finditer(r'DATASET "(\d+)" \{(.*?)\n      \}\n   \}', text, re.S):
+        out[int(m.group(1))] = numbers(m.group(2) + "}")
+    return out
+
+
+def main():
+    ra = os.path.join(DIR, "records", "curtain-adaptive-cholmod.h5")
+    rf = os.path.join(DIR, "records", "curtain-full-cholmod.h5")
+    t = series(ra, "/history/steps/t")
+    da, df = series(ra, "/history/steps/dofs"), series(rf, "/history/steps/dofs")
+    sa, sf = series(ra, "/history/steps/seconds"), series(rf, "/history/steps/seconds")
+    pa, pf = samples(ra), samples(rf)
+    print("step,t,dofs_adaptive,dofs_full,seconds_adaptive,seconds_full,rms_distance_rel,max_distance_rel")
+    for k in range(len(t)):
+        step = k + 1
+        if step % 5 and step != len(t) and step != 1:
+            continue
+        a, f = pa.get(step), pf.get(step)
+        rms = mx = float("nan")
+        if a and f and len(a) == len(f):
+            d = [math.dist(a[i:i + 3], f[i:i + 3]) for i in range(0, len(a), 3)]
+            rms = math.sqrt(sum(x * x for x in d) / len(d)) / DIAG
+            mx = max(d) / DIAG
+        print("%d,%.6g,%d,%d,%.6g,%.6g,%.6g,%.6g" % (step, t[k], da[k], df[k], sa[k], sf[k], rms, mx))
+
+
+main()
