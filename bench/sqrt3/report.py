@@ -87,7 +87,7 @@ def main():
                 "paper measures none." % (sum(ok) / len(ok), max(ok), rms[-1], mx[-1]), "",
                 "| t (s) | vertices adaptive | vertices full | RMS distance / diagonal | max distance / diagonal |",
                 "|---|---|---|---|---|"]
-        for r in rows[::80] + [rows[-1]]:
+        for r in rows[::80] + ([rows[-1]] if (len(rows) - 1) % 80 else []):
             out.append("| %s | %.0f | %.0f | %s | %s |" % (r["t"], float(r["dofs_adaptive"]) / 3,
                                                          float(r["dofs_full"]) / 3, fmt(float(r["rms_distance_rel"])),
                                                          fmt(float(r["max_distance_rel"]))))
