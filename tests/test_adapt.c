@@ -84,6 +84,10 @@ SB_TEST(test_adaptive_run)
         CHECK_EQ_INT(read_dset(pb, "/probes/trajectory", H5T_NATIVE_DOUBLE, tb, 42), 42);
         for (int k = 0; k < 3 * 6; k++) CHECK(ta[k] == tb[k]);
         CHECK(fabs(ta[6 * 6] - tb[6 * 6]) > 1e-6);   /* the tip's x: the chain's stretch */
+        /* the final state in the record is the final mesh's: its last node is the tip probe */
+        double xf[64];
+        CHECK_EQ_INT(read_dset(pa, "/final/x", H5T_NATIVE_DOUBLE, xf, 64), 51);
+        for (int c = 0; c < 3; c++) CHECK_NEAR(xf[48 + c], ta[6 * 6 + c], 1e-12);
         /* the tip falls and stays finite */
         CHECK(ta[6 * 6 + 2] < -1e-3 && isfinite(ta[6 * 6 + 2]));
     }

@@ -68,7 +68,10 @@ int sb_run_adapt(run_state *R, int step, int *n_out)
             memset(R->ss, 0, R->stype->state_size);
             rc = R->stype->alloc(R->ss, R->prob, &R->ctx.params);
         }
-        if (!rc) R->rec.n_x = R->rec.n_dofs = n;   /* the record's dofs: the final mesh's (per step: history) */
+        if (!rc) {
+            R->rec.n_x = R->rec.n_dofs = n;   /* the record's dofs: the final mesh's (per step: history) */
+            R->rec.x_final = R->x;            /* re-allocated above */
+        }
     }
     sb_stats_event(stats, F, SB_EV_ADAPT, t0);
     if (rc) {
