@@ -55,7 +55,11 @@
  * direction d/ds rotated by material.warp_angle in the triangle's plane), so
  * C of Eq. 9 acts in its own axes; R absorbs the frame's rotation.
  *
- * Refused with one sentence (exit 2): denim material, non-planar charts,
+ * Denim (RMTR paper Eq. 3.3-3.4): its small-strain tangent,
+ * C = h [[k1, k2, 0], [k2, k3, 0], [0, 0, 2 k4]], and D = h^3 (k1 + k3) / 24
+ * (a3_method.c); the fitted law's nonlinearity is not modelled.
+ *
+ * Refused with one sentence (exit 2): non-planar charts,
  * clamped / symmetry bcs and moving bcs with clamp_tangent (no rotational
  * dofs, no boundary bending), pressure and end-moment loads, point parts that
  * are not mesh vertices.

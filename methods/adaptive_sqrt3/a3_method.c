@@ -50,9 +50,6 @@ static double pval(const sb_paramset *ps, const char *key, double def)
 /* The scenes this model cannot honour (a3.h), refused with one sentence. */
 static int refuse(a3_state *S, const sb_scene *sc)
 {
-    if (sc->material.kind != SB_MAT_STVK)
-        return a3_fail(S, SB_ERR_UNSUPPORTED, "scene %s: material denim is not supported (the sqrt3 paper's membrane is "
-                       "linear orthotropic, Eq. 9; use an stvk material)", sc->name);
     if (sc->chart.kind != SB_CHART_PLANE)
         return a3_fail(S, SB_ERR_UNSUPPORTED, "scene %s: the reference surface is curved, but the isometric bending "
                        "model (Eq. 18-19) needs a flat rest state; use a plane geometry", sc->name);
@@ -71,6 +68,13 @@ static int refuse(a3_state *S, const sb_scene *sc)
                            "loads are)", sc->name, k, ld->kind == SB_LOAD_PRESSURE ? "pressure" : "end_moment");
     }
     const sb_material_spec *mt = &sc->material;
+    if (mt->kind == SB_MAT_DENIM) {
+        if (!(mt->thickness > 0.0) || !(mt->density >= 0.0) || !(mt->denim.k[0] > 0.0) || !(mt->denim.k[2] > 0.0) ||
+            !(mt->denim.k[3] > 0.0) || !(mt->denim.k[1] * mt->denim.k[1] < mt->denim.k[0] * mt->denim.k[2]))
+            return a3_fail(S, SB_ERR_INPUT, "scene %s: the denim law's small-strain tangent (k_1, k_2, k_3, k_4 of "
+                           "Table 1) must be positive definite, with thickness > 0 and density >= 0", sc->name);
+        return SB_OK;
+    }
     if (!(mt->thickness > 0.0) || !(mt->young > 0.0) || !(mt->density >= 0.0) || !(mt->poisson > -1.0 && mt->poisson < 0.5))
         return a3_fail(S, SB_ERR_INPUT, "scene %s: material needs thickness > 0, young > 0, density >= 0 and "
                        "-1 < poisson < 0.5", sc->name);
@@ -107,17 +111,37 @@ static int a3_create(void *state, const sb_scene *scene, const sb_method_config 
     S->coarsen_frac = pval(ps, "method.coarsen_fraction", 0.5);
     /* Eq. 9 from the scene's material (mapping: a3.h) */
     const sb_material_spec *mt = &scene->material;
-    const double h = mt->thickness, Y = mt->young, nu = mt->poisson;
-    S->Ex = Y * h;
-    S->Ey = pval(ps, "method.Ey_ratio", 1.0) * S->Ex;
-    S->nu_xy = nu;
-    S->nu_yx = nu * S->Ey / S->Ex;
-    S->Es = pval(ps, "method.Es", 0.0) > 0.0 ? pval(ps, "method.Es", 0.0) : 2.0 * Y * h / (1.0 + nu);
-    const double d = 1.0 - S->nu_xy * S->nu_yx;
-    const double C[9] = { S->Ex / d, S->Ex * S->nu_yx / d, 0, S->Ey * S->nu_xy / d, S->Ey / d, 0, 0, 0, S->Es };
-    memcpy(S->C, C, sizeof C);
-    /* bending stiffness factor k_b = D / 3 (assumption, a3.h) */
-    S->kb = Y * h * h * h / (12.0 * (1.0 - nu * nu)) / 3.0;
+    const double h = mt->thickness;
+    if (mt->kind == SB_MAT_DENIM) {
+        /* the denim law's tangent at zero strain (RMTR paper Eq. 3.3-3.4 with
+         * phi_j'(0) = 1): psi = k1/2 E11^2 + k2 E11 E22 + k3/2 E22^2 + k4 E12^2,
+         * so C = h [[k1, k2, 0], [k2, k3, 0], [0, 0, 2 k4]] in the warp/weft
+         * frame (assumption: the sqrt3 model is linear, the softening of the
+         * fitted law is not modelled); method.Es overrides E_s, Ey_ratio is
+         * ignored.  Bending: D = h^3 (k1 + k3) / 24, the mean of warp and weft
+         * (the isometric model has one bending stiffness). */
+        const double *k = mt->denim.k;
+        S->Ex = h * k[0];
+        S->Ey = h * k[2];
+        S->nu_xy = k[1] / k[2];
+        S->nu_yx = k[1] / k[0];
+        S->Es = pval(ps, "method.Es", 0.0) > 0.0 ? pval(ps, "method.Es", 0.0) : 2.0 * h * k[3];
+        const double C[9] = { h * k[0], h * k[1], 0, h * k[1], h * k[2], 0, 0, 0, S->Es };
+        memcpy(S->C, C, sizeof C);
+        S->kb = h * h * h * (k[0] + k[2]) / 24.0 / 3.0;
+    } else {
+        const double Y = mt->young, nu = mt->poisson;
+        S->Ex = Y * h;
+        S->Ey = pval(ps, "method.Ey_ratio", 1.0) * S->Ex;
+        S->nu_xy = nu;
+        S->nu_yx = nu * S->Ey / S->Ex;
+        S->Es = pval(ps, "method.Es", 0.0) > 0.0 ? pval(ps, "method.Es", 0.0) : 2.0 * Y * h / (1.0 + nu);
+        const double d = 1.0 - S->nu_xy * S->nu_yx;
+        const double C[9] = { S->Ex / d, S->Ex * S->nu_yx / d, 0, S->Ey * S->nu_xy / d, S->Ey / d, 0, 0, 0, S->Es };
+        memcpy(S->C, C, sizeof C);
+        /* bending stiffness factor k_b = D / 3 (assumption, a3.h) */
+        S->kb = Y * h * h * h / (12.0 * (1.0 - nu * nu)) / 3.0;
+    }
     rc = a3_build(S);
     if (rc) {
         if (rc == SB_ERR_NOMEM) a3_fail(S, rc, "out of memory building the %d x %d mesh", S->res, S->cells_t);
