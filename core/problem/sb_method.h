@@ -146,7 +146,7 @@ typedef struct sb_method_type {
     /* optional, adaptive meshes (issue 22; single-level methods only): the
      * run calls adapt(x, v) before step k when k - 1 is a positive multiple
      * of the parameter method.adapt_every (which the method declares; 0 =
-     * never).  The method may change its discretization; then it sets
+     * never; a declared method.adaptive = 0 also means never).  The method may change its discretization; then it sets
      * *changed = 1 and holds x and v mapped onto its new dofs, which
      * adapt_state writes (n_dofs(0) each).  The core then re-queries dofs,
      * pattern, Dirichlet set and mass, redoes the symbolic analysis and

@@ -4,6 +4,8 @@
  * problem (dofs, pattern, Dirichlet set, mass; the symbolic analysis is
  * redone and counted at the next factorization) and re-allocates the
  * solver.  The time spent is event `adapt`; each step records its dofs.
+ * A method may declare method.adaptive too: its runs with adaptive = 0 keep
+ * their mesh (no adapt calls, resumable).
  * Resuming an adaptive run is not supported yet (the checkpoint does not
  * carry the mesh): --resume and --stop-after-steps are refused and
  * run.checkpoint is ignored, with a sentence. */
@@ -15,10 +17,14 @@
 int sb_run_adapt_every(const run_state *R)
 {
     if (!R->mt || !R->mt->adapt || !R->mt->adapt_state) return 0;
+    /* a method may also declare method.adaptive; 0 there means a fixed mesh */
     const sb_paramset *ps = &R->ctx.params;
-    for (int i = 0; i < ps->n; i++)
-        if (strcmp(ps->v[i].key, "method.adapt_every") == 0) return (int)ps->v[i].value;
-    return 0;
+    int every = 0;
+    for (int i = 0; i < ps->n; i++) {
+        if (strcmp(ps->v[i].key, "method.adaptive") == 0 && ps->v[i].value == 0.0) return 0;
+        if (strcmp(ps->v[i].key, "method.adapt_every") == 0) every = (int)ps->v[i].value;
+    }
+    return every;
 }
 
 int sb_run_adapt_check(run_state *R, const sb_run_request *req)
