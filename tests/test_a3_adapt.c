@@ -222,12 +222,74 @@ SB_TEST(test_adaptive_run)
     remove(path);
 }
 
+/* full resolution keeps its mesh: stopped and resumed equals uninterrupted;
+ * an adaptive run refuses --resume before any work */
+SB_TEST(test_resume_full_resolution)
+{
+    char path[256], out1[256], out2[256];
+    snprintf(path, sizeof path, "/tmp/sb_test_a3_res_%d.json", (int)getpid());
+    snprintf(out1, sizeof out1, "/tmp/sb_test_a3_res1_%d.h5", (int)getpid());
+    snprintf(out2, sizeof out2, "/tmp/sb_test_a3_res2_%d.h5", (int)getpid());
+    FILE *fp = fopen(path, "w");
+    CHECK(fp != NULL);
+    if (!fp) return;
+    fputs(SCENE, fp);
+    fclose(fp);
+    const char *sets[] = { "method.max_generation=2", "method.adaptive=0", "run.single_step_rtol=1e300", NULL };
+    sb_run_request rq;
+    memset(&rq, 0, sizeof rq);
+    rq.scene = path;
+    rq.method = "adaptive_sqrt3";
+    rq.solver = "linearized";
+    rq.res = 4;
+    rq.quiet = 1;
+    rq.n_sets = 3;
+    rq.sets = sets;
+    int code = -1;
+    double z[2][3] = { { 0 } };
+    rq.out = out1;
+    json_t *o = sb_test_run_json(&rq, &code);
+    CHECK_EQ_INT(code, 0);
+    if (o) {
+        json_t *d = json_object_get(json_object_get(json_object_get(o, "probes"), "p"), "position");
+        for (int c = 0; c < 3; c++) z[0][c] = json_number_value(json_array_get(d, c));
+        json_decref(o);
+    }
+    rq.out = out2;
+    rq.stop_after_steps = 13;
+    o = sb_test_run_json(&rq, &code);
+    CHECK_EQ_INT(code, 4);
+    if (o) json_decref(o);
+    rq.stop_after_steps = 0;
+    rq.resume = 1;
+    o = sb_test_run_json(&rq, &code);
+    CHECK_EQ_INT(code, 0);
+    if (o) {
+        json_t *d = json_object_get(json_object_get(json_object_get(o, "probes"), "p"), "position");
+        for (int c = 0; c < 3; c++) z[1][c] = json_number_value(json_array_get(d, c));
+        json_decref(o);
+    }
+    for (int c = 0; c < 3; c++) CHECK(z[0][c] == z[1][c]);
+    CHECK(fabs(z[0][2]) > 1e-4);
+    /* adaptive: refused */
+    const char *seta[] = { "method.max_generation=2", "method.adaptive=1", NULL };
+    rq.sets = seta;
+    rq.n_sets = 2;
+    o = sb_test_run_json(&rq, &code);
+    CHECK_EQ_INT(code, 2);
+    if (o) json_decref(o);
+    remove(path);
+    remove(out1);
+    remove(out2);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(test_refine_coarsen_mass),
         SB_CASE(test_adaptive_reaches_full_pattern),
         SB_CASE(test_adaptive_run),
+        SB_CASE(test_resume_full_resolution),
         SB_END
     };
     return sb_test_main(argc, argv, cases);
