@@ -279,8 +279,15 @@ SB_TEST(test_resume_full_resolution)
     CHECK_EQ_INT(code, 2);
     if (o) json_decref(o);
     remove(path);
-    remove(out1);
-    remove(out2);
+    for (int k = 0; k < 2; k++) {
+        char side[300];
+        const char *o5 = k ? out2 : out1;
+        remove(o5);
+        snprintf(side, sizeof side, "%.*s.xdmf", (int)strlen(o5) - 3, o5);
+        remove(side);
+        snprintf(side, sizeof side, "%.*s.steps.xdmf", (int)strlen(o5) - 3, o5);
+        remove(side);
+    }
 }
 
 int main(int argc, char **argv)
