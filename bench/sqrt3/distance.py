@@ -45,24 +45,32 @@ def samples(path):
 
 
 def main():
-    ra = os.path.join(DIR, "records", "curtain-adaptive-cholmod.h5")
     rf = os.path.join(DIR, "records", "curtain-full-cholmod.h5")
-    t = series(ra, "/history/steps/t")
-    da, df = series(ra, "/history/steps/dofs"), series(rf, "/history/steps/dofs")
-    sa, sf = series(ra, "/history/steps/seconds"), series(rf, "/history/steps/seconds")
-    pa, pf = samples(ra), samples(rf)
-    print("step,t,dofs_adaptive,dofs_full,seconds_adaptive,seconds_full,rms_distance_rel,max_distance_rel")
+    t = series(rf, "/history/steps/t")
+    df, sf, pf = series(rf, "/history/steps/dofs"), series(rf, "/history/steps/seconds"), samples(rf)
+    cols, data = [], []
+    for tag, short in (("curtain-adaptive-cholmod", "adaptive"), ("curtain-adaptive-loose-cholmod", "loose")):
+        ra = os.path.join(DIR, "records", tag + ".h5")
+        if not os.path.exists(ra):
+            continue
+        cols += ["dofs_" + short, "seconds_" + short, "rms_" + short, "max_" + short]
+        data.append((series(ra, "/history/steps/dofs"), series(ra, "/history/steps/seconds"), samples(ra)))
+    print(",".join(["step", "t", "dofs_full", "seconds_full"] + cols))
     for k in range(len(t)):
         step = k + 1
         if step % 5 and step != len(t) and step != 1:
             continue
-        a, f = pa.get(step), pf.get(step)
-        rms = mx = float("nan")
-        if a and f and len(a) == len(f):
-            d = [math.dist(a[i:i + 3], f[i:i + 3]) for i in range(0, len(a), 3)]
-            rms = math.sqrt(sum(x * x for x in d) / len(d)) / DIAG
-            mx = max(d) / DIAG
-        print("%d,%.6g,%d,%d,%.6g,%.6g,%.6g,%.6g" % (step, t[k], da[k], df[k], sa[k], sf[k], rms, mx))
+        row = ["%d" % step, "%.6g" % t[k], "%d" % df[k], "%.6g" % sf[k]]
+        f = pf.get(step)
+        for da, sa, pa in data:
+            a = pa.get(step)
+            rms = mx = float("nan")
+            if a and f and len(a) == len(f):
+                d = [math.dist(a[i:i + 3], f[i:i + 3]) for i in range(0, len(a), 3)]
+                rms = math.sqrt(sum(x * x for x in d) / len(d)) / DIAG
+                mx = max(d) / DIAG
+            row += ["%d" % da[k], "%.6g" % sa[k], "%.6g" % rms, "%.6g" % mx]
+        print(",".join(row))
 
 
 main()

@@ -40,5 +40,7 @@ run() {
 run curtain-adaptive-cholmod --set method.adaptive=1
 run curtain-full-cholmod --set method.adaptive=0
 run curtain-adaptive-pcg --set method.adaptive=1 --set solver.linear=pcg
+# a looser criterion (Eq. 23 limits 5 and 50 /m instead of 2 and 20): the speed / accuracy trade-off
+run curtain-adaptive-loose-cholmod --set method.adaptive=1 --set method.curv_base=5 --set method.curv_max=50
 python3 bench/sqrt3/distance.py "$OUT" > "$OUT/series.csv"
 python3 bench/sqrt3/report.py "$OUT" > results/sqrt3_report.md
