@@ -88,7 +88,7 @@ SB_TEST(a_good_study_plans_every_registered_method)
     sb_study *st = calloc(1, sizeof *st);
     const char *text = HEAD "  \"scenes\": [\"plate_clamped\", {\"scene\": \"drooping\", \"solution\": \"multiple\", "
                        "\"starts\": {\"perturb\": 1e-4, \"seeds\": [1, 2]}}, \"strip_end_moment\"],\n"
-                       "  \"methods\": \"all\",\n  \"solvers\": [\"tr\", {\"solver\": \"rmtr\", \"levels\": 2}],\n"
+                       "  \"methods\": \"all\",\n  \"solvers\": [\"tr\", {\"solver\": \"rmtr\", \"levels\": 2}, \"linearized\"],\n"
                        "  \"dofs\": [300],\n  \"vary\": {\"run.gtol\": [1e-7, 1e-8]},\n"
                        "  \"rules\": [{\"scene\": \"plate_clamped\", \"solver\": \"rmtr\", \"skip\": \"not needed\"}]\n}";
     int rc = sb_study_parse_string(text, "s.json", tmpdir, st, err, sizeof err);

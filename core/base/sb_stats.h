@@ -64,6 +64,7 @@ typedef struct sb_step_record {
     double work_qp;
     double force_scale;  /* run.stop=scaled: the step's force scale (sb_solve.h), NaN otherwise */
     double gstop;        /* the gradient threshold the step's stopping rule used */
+    int dofs;            /* dofs of the finest level in this step (adaptive meshes change it) */
 } sb_step_record;
 
 typedef struct sb_stats {

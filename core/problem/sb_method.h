@@ -142,6 +142,17 @@ typedef struct sb_method_type {
      * sb_surface_free().  NULL: `shellbench render` triangulates eval_points
      * on a grid instead (docs/render.md). */
     int  (*surface)(void *state, int level, const double *x, struct sb_surface *out);
+
+    /* optional, adaptive meshes (issue 22; single-level methods only): the
+     * run calls adapt(x, v) before step k when k - 1 is a positive multiple
+     * of the parameter method.adapt_every (which the method declares; 0 =
+     * never; a declared method.adaptive = 0 also means never).  The method may change its discretization; then it sets
+     * *changed = 1 and holds x and v mapped onto its new dofs, which
+     * adapt_state writes (n_dofs(0) each).  The core then re-queries dofs,
+     * pattern, Dirichlet set and mass, redoes the symbolic analysis and
+     * re-allocates the solver (sb_problem_rebuild); counted as event adapt. */
+    int  (*adapt)(void *state, const double *x, const double *v, int *changed);
+    int  (*adapt_state)(void *state, double *x, double *v);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

@@ -63,6 +63,8 @@ void sb_problem_free(sb_problem *p)
     free(p);
 }
 
+static int level_setup(sb_problem *p, int l);
+
 int sb_problem_create(sb_context *ctx, const sb_method_type *mt, void *ms, const sb_scene *scene,
                       sb_problem **out)
 {
@@ -86,7 +88,41 @@ int sb_problem_create(sb_context *ctx, const sb_method_type *mt, void *ms, const
     p->damping = p->dynamic && (p->ray_a != 0.0 || p->ray_b != 0.0);
     ctx->stats.n_levels = p->nl;
     int rc = SB_OK;
+    for (int l = 0; l < p->nl; l++)
+        if ((rc = level_setup(p, l))) goto fail;
+    *out = p;
+    return SB_OK;
+fail:
+    sb_problem_free(p);
+    return rc;
+}
+
+/* After an adaptation (sb_method.h adapt): every level's data built anew
+ * from the method's current dofs, pattern, Dirichlet set and mass; the
+ * symbolic analysis follows at the next factorization (counted there). */
+int sb_problem_rebuild(sb_problem *p)
+{
     for (int l = 0; l < p->nl; l++) {
+        level_free(p, &p->lv[l]);
+        memset(&p->lv[l], 0, sizeof p->lv[l]);
+    }
+    free(p->scale_x);
+    free(p->scale_g);
+    p->scale_x = p->scale_g = NULL;
+    int rc = SB_OK;
+    for (int l = 0; l < p->nl && rc == SB_OK; l++) rc = level_setup(p, l);
+    return rc;
+}
+
+/* dofs, pattern, work arrays and (dynamic) mass of level l */
+static int level_setup(sb_problem *p, int l)
+{
+    sb_context *ctx = p->ctx;
+    const sb_method_type *mt = p->mt;
+    void *ms = p->ms;
+    const sb_scene *scene = p->scene;
+    int rc = SB_OK;
+    {
         level_data *L = &p->lv[l];
         L->n = mt->n_dofs(ms, l);
         int bs = mt->block_size(ms, l);
@@ -124,12 +160,10 @@ int sb_problem_create(sb_context *ctx, const sb_method_type *mt, void *ms, const
             if (p->damping && (rc = sb_matrix_init(&L->D, L->pat))) goto nomem;
         }
     }
-    *out = p;
     return SB_OK;
 nomem:
     rc = sb_error(ctx, SB_ERR_NOMEM, "out of memory creating the problem");
 fail:
-    sb_problem_free(p);
     return rc;
 }
 

@@ -23,6 +23,9 @@ typedef struct sb_problem sb_problem;
 
 int  sb_problem_create(struct sb_context *ctx, const sb_method_type *mt, void *method_state,
                        const sb_scene *scene, sb_problem **out);
+/* Rebuild every level from the method's current discretization after it
+ * adapted its mesh (sb_method.h adapt); SB_OK or an error status. */
+int  sb_problem_rebuild(sb_problem *p);
 void sb_problem_free(sb_problem *p);
 
 int  sb_problem_levels(const sb_problem *p);

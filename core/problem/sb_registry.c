@@ -7,19 +7,23 @@
 extern const sb_method_type sb_method_subdiv;
 extern const sb_method_type sb_method_bhem;
 extern const sb_method_type sb_method_linear_fem;
+extern const sb_method_type sb_method_adaptive_sqrt3;
 extern const sb_method_type sb_fixture_membrane;
 extern const sb_method_type sb_fixture_rosenbrock;
 extern const sb_method_type sb_fixture_quadratic;
 extern const sb_method_type sb_fixture_saddle;
+extern const sb_method_type sb_fixture_chain;
 
 static const sb_method_type *const methods[] = {
     &sb_method_subdiv,
     &sb_method_bhem,
     &sb_method_linear_fem,
+    &sb_method_adaptive_sqrt3,
     &sb_fixture_membrane,
     &sb_fixture_rosenbrock,
     &sb_fixture_quadratic,
     &sb_fixture_saddle,
+    &sb_fixture_chain,
 };
 
 extern const sb_solver_type sb_solver_tr;

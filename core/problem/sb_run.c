@@ -277,10 +277,13 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
     const sb_paramset *ps = &R->ctx.params;
     sb_stats *stats = &R->ctx.stats;
     sb_run *rec = &R->rec;
-    const int F = sb_problem_finest(R->prob), n = sb_problem_n(R->prob, F);
+    const int F = sb_problem_finest(R->prob);
+    int n = sb_problem_n(R->prob, F);
     for (int step = first_step; step <= sc->time.steps; step++) {
         double t0 = sb_now();
         double wa0 = stats->work_assembly, wq0 = stats->work_qp;
+        int code = sb_run_adapt(R, step, &n);   /* adaptive meshes (sb_method.h adapt) */
+        if (code >= 0) return code;
         sb_step_info si;
         sb_run_step_info(sc, step, &si);
         sb_copy(n, R->x, R->xn);
@@ -307,7 +310,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         /* a converged step must also be a physical state (finite, strains within run.strain_max) */
         reason = sb_run_judge_step(R, reason);
         sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0,
-                              o.force_scale, o.gstop };
+                              o.force_scale, o.gstop, n };
         sr.seconds = tr0 - t0;
         sb_stats_push_step(stats, &sr);
         rec->steps_done = step;
@@ -418,6 +421,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         (code = sb_run_check_memory(R, levels)) == RUN_GO_ON &&
         (code = sb_run_prepare_output(R, req, levels, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
         (code = prepare_run(R, levels)) == RUN_GO_ON &&
+        (code = sb_run_adapt_check(R, req)) == RUN_GO_ON &&
         (code = check_reference(R, out_path)) == RUN_GO_ON &&
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)

@@ -9,6 +9,11 @@
 
 int sb_run_combination_check(const sb_method_type *mt, const sb_solver_type *st, int levels, char *err, size_t errlen)
 {
+    if ((st->flags & SB_SOLVER_NEEDS_HIERARCHY) && mt->adapt) {
+        snprintf(err, errlen, "solver %s needs a fixed level hierarchy, but method %s changes its mesh during a run "
+                 "(adaptive)", st->name, mt->name);
+        return SB_ERR_UNSUPPORTED;
+    }
     if ((st->flags & SB_SOLVER_NEEDS_HIERARCHY) && !(mt->flags & SB_METHOD_HIERARCHY)) {
         snprintf(err, errlen, "solver %s needs a level hierarchy (prolongation, restriction, projection), but method %s "
                  "provides none", st->name, mt->name);

@@ -120,6 +120,17 @@ void   sb_run_fold_resume_setup(run_state *R);
 /* --resume: steps already done (0: no checkpoint), or -1 on an input error. */
 int    sb_run_resume(run_state *R, int quiet);
 
+/* ---- adaptive meshes (sb_run_adapt.c) ------------------------------------ */
+/* method.adapt_every of a method with the adapt op (0: it never adapts) */
+int    sb_run_adapt_every(const run_state *R);
+/* Refuses --resume / --stop-after-steps for an adaptive run and turns its
+ * checkpoints off: -1 to go on, else the exit code. */
+int    sb_run_adapt_check(run_state *R, const sb_run_request *req);
+/* Before step `step`: the method's adaptation when it is due; on a change
+ * the run's vectors, the problem and the solver follow, *n gets the new
+ * dof count.  -1 to go on, else the exit code. */
+int    sb_run_adapt(run_state *R, int step, int *n);
+
 /* ---- the monitor (sb_run_progress.c) ------------------------------------- */
 void   sb_run_progress_init(run_state *R, const sb_run_request *req);
 /* Erase the progress line (before any other message on err). */

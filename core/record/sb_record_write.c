@@ -180,6 +180,7 @@ const sb_record_column sb_record_step_cols[] = {
     { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU" },
     { "force_scale", offsetof(sb_step_record, force_scale), 0, "" },
     { "gstop", offsetof(sb_step_record, gstop), 0, "" },
+    { "dofs", offsetof(sb_step_record, dofs), 1, "" },
 };
 const int sb_record_n_step_cols = (int)(sizeof sb_record_step_cols / sizeof *sb_record_step_cols);
 

@@ -8,6 +8,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,6 +28,24 @@ static const sb_param_def damped_params[] = {
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
+static const char *const linear_choices[] = { "cholmod", "pcg", NULL };
+
+/* The linear solve of the linearized step: CHOLMOD (default) or, as the
+ * sqrt3 paper (Bender & Deul §4.2.5, Baraff & Witkin) does, preconditioned CG
+ * on the eliminated system (constrained rows are identity: the "modified"
+ * PCG's filtering).  CG stops at ||r|| <= cg_rtol ||g||; the step is judged
+ * by the same backward-error test as the direct solve (sb_solve.c), so a
+ * loose cg_rtol is recorded as a linear-solver failure, never hidden. */
+static const sb_param_def linearized_params[] = {
+    { "linear", SB_PARAM_CHOICE, 0, 0, 0, linear_choices,
+      "linear solver of the single step: cholmod (sparse Cholesky) or pcg (preconditioned CG, sqrt3 paper Eq. 21)" },
+    { "cg_rtol", SB_PARAM_REAL, 1e-10, 1e-16, 0.5, NULL, "linear=pcg: stop at ||r|| <= cg_rtol ||g||" },
+    { "cg_max_iter", SB_PARAM_INT, 10000, 1, 1000000000, NULL, "linear=pcg: iteration cap" },
+    { "cg_precond", SB_PARAM_CHOICE, 2, 0, 0, sb_trs_precond_names,
+      "linear=pcg: preconditioner (none, jacobi, block = 3x3 node blocks, sgs, schwarz)" },
+    { NULL, 0, 0, 0, 0, NULL, NULL }
+};
+
 typedef enum { KIND_LS, KIND_DAMPED, KIND_LINEARIZED } newton_kind;
 
 typedef struct newton_state {
@@ -34,6 +53,8 @@ typedef struct newton_state {
     int n, F;
     double c1, backtrack, shift0, shift_factor, alpha;
     int max_backtracks, max_shifts;
+    int pcg, cg_max_iter;              /* linearized with linear=pcg */
+    sb_trs cg;
     double *g, *gt, *d, *xt;
     double f, gnorm;
 } newton_state;
@@ -71,9 +92,22 @@ static int damped_alloc(void *st, sb_problem *p, const sb_paramset *ps)
 
 static int linearized_alloc(void *st, sb_problem *p, const sb_paramset *ps)
 {
-    (void)ps;
     newton_state *s = st;
-    return alloc_common(s, p, KIND_LINEARIZED);
+    int rc = alloc_common(s, p, KIND_LINEARIZED);
+    if (rc) return rc;
+    s->pcg = sb_param_int(ps, "solver.linear") == 1;
+    if (!s->pcg) return SB_OK;
+    s->cg_max_iter = sb_param_int(ps, "solver.cg_max_iter");
+    if ((rc = sb_trs_alloc(&s->cg, &sb_trs_stcg, s->n))) return rc;
+    sb_trs_set_cg_rtol(&s->cg, sb_param(ps, "solver.cg_rtol"));
+    sb_trs_set_cg_precond(&s->cg, sb_param_int(ps, "solver.cg_precond"));
+    return SB_OK;
+}
+
+static void linearized_describe(const void *st, char *buf, size_t len)
+{
+    const newton_state *s = st;
+    snprintf(buf, len, "%s", s->pcg ? "linear solve: preconditioned CG (sqrt3 paper §4.2.5)" : "linear solve: CHOLMOD");
 }
 
 static void newton_free(void *st)
@@ -83,6 +117,7 @@ static void newton_free(void *st)
     free(s->gt);
     free(s->d);
     free(s->xt);
+    if (s->pcg) sb_trs_free(&s->cg);
 }
 
 static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info *info)
@@ -102,7 +137,28 @@ static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info 
 static int direction(newton_state *s, sb_problem *p, sb_iterate_info *info)
 {
     double shift = 0.0;
-    int rc = sb_problem_factor(p, s->F, 0.0);
+    int rc;
+    if (s->pcg) {
+        /* CG from 0 on H d = -g without a radius; negative curvature means
+         * H is not positive definite (recorded as such) */
+        sb_trs_result r;
+        memset(&r, 0, sizeof r);
+        rc = sb_trs_solve(&s->cg, p, s->F, s->g, INFINITY, 1, s->cg_max_iter, s->d, &r);
+        if (rc < 0) return rc;
+        info->shift = 0.0;
+        if (r.boundary) {
+            info->fail = SB_REASON_NOT_POSDEF;
+            return SB_OK;
+        }
+        info->linear_iters = r.iters;
+        if (!sb_all_finite(s->n, s->d)) {
+            info->fail = SB_REASON_NONFINITE;
+            return SB_OK;
+        }
+        rc = SB_OK;
+        goto judge;
+    }
+    rc = sb_problem_factor(p, s->F, 0.0);
     if (rc == SB_NOT_POSDEF && s->kind == KIND_LS) {
         double scale = sb_matrix_norm_max(sb_problem_hessian(p, s->F));
         shift = s->shift0 * (scale > 0 ? scale : 1.0);
@@ -122,6 +178,7 @@ static int direction(newton_state *s, sb_problem *p, sb_iterate_info *info)
     rc = sb_problem_solve(p, s->F, s->xt, s->d);
     if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
     info->linear_iters = 1;
+judge:
     if (rc == SB_OK && shift == 0.0) {
         /* the unshifted Newton correction (limiting-accuracy test, sb_solve.c) */
         info->has_correction = 1;
@@ -237,5 +294,6 @@ const sb_solver_type sb_solver_damped = {
 
 const sb_solver_type sb_solver_linearized = {
     "linearized", "one Newton step per time step from x_n (Baraff–Witkin linearized implicit Euler)",
-    sizeof(newton_state), NULL, SB_SOLVER_SINGLE_STEP, linearized_alloc, newton_set, newton_iterate, newton_free, NULL,
+    sizeof(newton_state), linearized_params, SB_SOLVER_SINGLE_STEP, linearized_alloc, newton_set, newton_iterate, newton_free,
+    linearized_describe,
 };

@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""bench/sqrt3/distance.py — per-step series of the curtain runs of
+bench/sqrt3/run.sh, read from their HDF5 records with h5dump (hdf5-tools;
+the report scripts use the Python standard library only): time, dofs and
+seconds of every step of the adaptive and the full-resolution run, and the
+distance between their surfaces on the records' common sample grid (11 x 11
+material points), RMS and max, divided by the curtain's diagonal (the
+suite's error measure, DESIGN.md "Accuracy"); every 5th step (the
+adaptation interval) and the last, to keep the file small.  CSV on stdout.
+
+    python3 bench/sqrt3/distance.py results/sqrt3 > results/sqrt3/series.csv
+"""
+import math, os, re, subprocess, sys
+
+DIR = sys.argv[1] if len(sys.argv) > 1 else "results/sqrt3"
+DIAG = math.hypot(1.0, 1.5)          # the curtain is 1 m x 1.5 m (bench/scenes/curtain.json)
+
+
+def h5(path, *args):
+    return subprocess.run(["h5dump", "-m", "%.17g", "-w", "0"] + list(args) + [path], check=True,
+                          capture_output=True, text=True).stdout
+
+
+def numbers(text):
+    """the numbers of the first DATA block (the dataset's; attributes follow it)"""
+    out = []
+    m = re.search(r"DATA \{(.*?)\}", text, re.S)
+    for line in (m.group(1).splitlines() if m else []):
+        if ":" in line:
+            out += [float(v) for v in line.split(":", 1)[1].replace(",", " ").split()]
+    return out
+
+
+def series(path, name):
+    return numbers(h5(path, "-d", name))
+
+
+def samples(path):
+    """{step: [x0, y0, z0, x1, ...]} from /steps/sample_pos"""
+    text = h5(path, "-g", "/steps/sample_pos")
+    out = {}
+    for m in re.finditer(r'DATASET "(\d+)" \{(.*?)\n      \}\n   \}', text, re.S):
+        out[int(m.group(1))] = numbers(m.group(2) + "}")
+    return out
+
+
+def main():
+    rf = os.path.join(DIR, "records", "curtain-full-cholmod.h5")
+    t = series(rf, "/history/steps/t")
+    df, sf, pf = series(rf, "/history/steps/dofs"), series(rf, "/history/steps/seconds"), samples(rf)
+    cols, data = [], []
+    for tag, short in (("curtain-adaptive-cholmod", "adaptive"), ("curtain-adaptive-loose-cholmod", "loose")):
+        ra = os.path.join(DIR, "records", tag + ".h5")
+        if not os.path.exists(ra):
+            continue
+        cols += ["dofs_" + short, "seconds_" + short, "rms_" + short, "max_" + short]
+        data.append((series(ra, "/history/steps/dofs"), series(ra, "/history/steps/seconds"), samples(ra)))
+    print(",".join(["step", "t", "dofs_full", "seconds_full"] + cols))
+    for k in range(len(t)):
+        step = k + 1
+        if step % 5 and step != len(t) and step != 1:
+            continue
+        row = ["%d" % step, "%.6g" % t[k], "%d" % df[k], "%.6g" % sf[k]]
+        f = pf.get(step)
+        for da, sa, pa in data:
+            a = pa.get(step)
+            rms = mx = float("nan")
+            if a and f and len(a) == len(f):
+                d = [math.dist(a[i:i + 3], f[i:i + 3]) for i in range(0, len(a), 3)]
+                rms = math.sqrt(sum(x * x for x in d) / len(d)) / DIAG
+                mx = max(d) / DIAG
+            row += ["%d" % da[k], "%.6g" % sa[k], "%.6g" % rms, "%.6g" % mx]
+        print(",".join(row))
+
+
+main()
