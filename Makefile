@@ -24,7 +24,7 @@ PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
 # core/ is the architecture, one folder per part (docs/architecture.md):
 # base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, cli
-CORE_DIRS := base scene mesh problem linalg shell solvers record report render study cli
+CORE_DIRS := base scene mesh problem linalg shell solvers record report render study cli contact
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
            $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) $(OPENMP) -MMD -MP

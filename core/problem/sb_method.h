@@ -21,6 +21,7 @@
 struct sb_context;
 struct sb_csr;
 struct sb_surface;
+struct sb_contact_points;
 
 enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
@@ -142,6 +143,13 @@ typedef struct sb_method_type {
      * sb_surface_free().  NULL: `shellbench render` triangulates eval_points
      * on a grid instead (docs/render.md). */
     int  (*surface)(void *state, int level, const double *x, struct sb_surface *out);
+
+    /* optional: the contact sample points of `level` (sb_contact_points.h,
+     * docs/contact.md) — smooth methods a grid of per_side x per_side points
+     * per element through their basis, triangle methods their vertices;
+     * cp starts zeroed.  NULL: the method cannot run scenes with obstacles
+     * (refused at set-up). */
+    int  (*contact_points)(void *state, int level, int per_side, struct sb_contact_points *cp);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

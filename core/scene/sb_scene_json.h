@@ -89,6 +89,13 @@ int sbj_parse_boundary(sbj_ctx *c, const json_t *root, sb_scene *sc);
 int sbj_parse_time(sbj_ctx *c, const json_t *root, sb_time_spec *t);
 int sbj_parse_probes(sbj_ctx *c, const json_t *root, sb_scene *sc);
 int sbj_parse_reference(sbj_ctx *c, const json_t *root, sb_scene *sc);
+/* "obstacles" and "contact" (sb_scene_contact.c); OBJ files resolved
+ * relative to the directory of c->file */
+int sbj_parse_obstacles(sbj_ctx *c, const json_t *root, sb_scene *sc);
+void sbj_free_obstacles(sb_scene *sc);
+/* Wavefront OBJ (v and f lines; polygons fanned into triangles): SB_OK or
+ * SB_ERR_INPUT with "FILE:LINE: problem" in msg (sb_obj.c) */
+int sb_obj_read(const char *path, double **verts, int *nv, int **tris, int *nt, char *msg, size_t msglen);
 
 /* Parts: member "on" (edge names) and/or "at" (material points) of object
  * obj; edges_ok/points_ok say which are allowed; at least one part needed. */
