@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""bench/contact/report.py — results/contact/report.md from the JSON
+"""bench/contact/report.py — results/contact_report.md from the JSON
 summaries of bench/contact/run.sh: per contact scene, method, solver and
 resolution the step time, the time of the event `collide` (the barrier and
 friction inside every evaluation, the step filter, the per-step friction
 lag; docs/contact.md) and its share, and the contact figures of the record
 (sample points, smallest distance, points inside).  Never re-runs anything.
 
-    python3 bench/contact/report.py [results/contact] > results/contact/report.md
+    python3 bench/contact/report.py [results/contact] > results/contact_report.md
 """
 import glob, json, math, os, sys
 

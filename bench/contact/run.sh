@@ -3,7 +3,7 @@
 # drape_box, needles) with every method and the lsnewton and tr solvers, at
 # the scenes' resolutions and at twice them, one JSON summary per run
 # (`shellbench run --summary json`) under results/contact/runs/; the report
-# (results/contact/report.md: the contact share of the step time) is made
+# (results/contact_report.md: the contact share of the run time) is made
 # from those files by bench/contact/report.py, never by re-running.  A
 # summary that exists is skipped (delete it to redo the run).
 #
@@ -30,5 +30,5 @@ for scene in cloth_sphere drape_box needles; do
     done
   done
 done
-python3 bench/contact/report.py results/contact > results/contact/report.md
-echo "results/contact/report.md"
+python3 bench/contact/report.py results/contact > results/contact_report.md
+echo "results/contact_report.md"

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define OBJ_MAX_VERTS 1000000
 #define OBJ_MAX_TRIS 2000000
@@ -44,8 +45,13 @@ static int grow(void **buf, int *cap, int need, size_t elem)
 int sb_obj_read(const char *path, double **verts_out, int *nv_out, int **tris_out, int *nt_out, char *msg,
                 size_t msglen)
 {
-    FILE *f = fopen(path, "r");
     *verts_out = NULL; *tris_out = NULL; *nv_out = *nt_out = 0;
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {   /* a FIFO or a device would block or never end */
+        snprintf(msg, msglen, "%s: not a regular file (obstacle meshes are read from OBJ files)", path);
+        return SB_ERR_INPUT;
+    }
+    FILE *f = fopen(path, "r");
     if (!f) {
         snprintf(msg, msglen, "%s: cannot open the mesh file (%s)", path, strerror(errno));
         return SB_ERR_INPUT;
