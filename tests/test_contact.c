@@ -394,12 +394,32 @@ SB_TEST(friction_incline_stick_and_slide)
     }
 }
 
+/* a moving obstacle whose new pose swallows the start of a step: infinite
+ * Phi at the start is a recorded outcome (nonfinite, exit 1), never a crash
+ * or a silent penetration */
+SB_TEST(obstacle_overrunning_the_start_is_a_recorded_outcome)
+{
+    char cmd[2400], line[512] = "";
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' run --scene tests/scenes/contact/fast_plane.json --method linear_fem "
+             "--solver lsnewton --out none --quiet --summary json 2>/dev/null; echo \"exit $?\"", sb_test_root(),
+             sb_test_bin());
+    FILE *p = popen(cmd, "r");
+    CHECK(p != NULL);
+    if (!p) return;
+    char out[8192] = "";
+    size_t n = 0;
+    while (fgets(line, sizeof line, p) && n + strlen(line) < sizeof out) { strcat(out, line); n += strlen(line); }
+    pclose(p);
+    CHECK_MSG(strstr(out, "\"reason\": \"nonfinite\"") != NULL, "output: %s", out);
+    CHECK_MSG(strstr(out, "exit 1") != NULL, "output: %s", out);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(contact_energy_derivatives_every_method), SB_CASE(problem_with_contact_fd),
         SB_CASE(no_obstacles_no_contact), SB_CASE(point_dropped_on_each_obstacle_rests_at_barrier_distance),
-        SB_CASE(friction_incline_stick_and_slide), SB_END
+        SB_CASE(friction_incline_stick_and_slide), SB_CASE(obstacle_overrunning_the_start_is_a_recorded_outcome), SB_END
     };
     return sb_test_main(argc, argv, cases);
 }
