@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 #include "sb_contact.h"
 #include "sb_context.h"
@@ -414,12 +415,51 @@ SB_TEST(obstacle_overrunning_the_start_is_a_recorded_outcome)
     CHECK_MSG(strstr(out, "exit 1") != NULL, "output: %s", out);
 }
 
+static int sh_out(const char *cmd, char *out, size_t len)
+{
+    FILE *p = popen(cmd, "r");
+    if (!p) return -1;
+    size_t n = fread(out, 1, len - 1, p);
+    out[n] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* contact keeps no state across steps (the friction lag is rebuilt from
+ * x_n): a run stopped and resumed at a step boundary ends bit for bit where
+ * an uninterrupted one does */
+SB_TEST(resume_with_contact_is_bit_identical)
+{
+    char dir[] = "/tmp/sb_contact_resumeXXXXXX", cmd[3000], a[200000], b[200000];
+    if (!mkdtemp(dir)) { CHECK(0); return; }
+    const char *run = "'%s' run --scene '%s/bench/scenes/cloth_sphere.json' --method bhem --solver lsnewton --res 4 "
+                      "--quiet --out '%s/%s.h5' %s > /dev/null 2>&1";
+    char fmt[600];
+    snprintf(fmt, sizeof fmt, "%s; echo $?", run);
+    char out[64];
+    snprintf(cmd, sizeof cmd, fmt, sb_test_bin(), sb_test_root(), dir, "a", "");
+    CHECK_EQ_INT(atoi((sh_out(cmd, out, sizeof out), out)), 0);
+    snprintf(cmd, sizeof cmd, fmt, sb_test_bin(), sb_test_root(), dir, "b", "--stop-after-steps 12");
+    CHECK_EQ_INT(atoi((sh_out(cmd, out, sizeof out), out)), 4);
+    snprintf(cmd, sizeof cmd, fmt, sb_test_bin(), sb_test_root(), dir, "b", "--resume");
+    CHECK_EQ_INT(atoi((sh_out(cmd, out, sizeof out), out)), 0);
+    snprintf(cmd, sizeof cmd, "h5dump -d /final/x -g /final/contact '%s/a.h5' 2>&1 | tail -n +2", dir);
+    sh_out(cmd, a, sizeof a);
+    snprintf(cmd, sizeof cmd, "h5dump -d /final/x -g /final/contact '%s/b.h5' 2>&1 | tail -n +2", dir);
+    sh_out(cmd, b, sizeof b);
+    CHECK(strlen(a) > 1000 && strstr(a, "DATA") != NULL);
+    CHECK_MSG(strcmp(a, b) == 0, "final states differ after --resume");
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    CHECK_EQ_INT(system(cmd), 0);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(contact_energy_derivatives_every_method), SB_CASE(problem_with_contact_fd),
         SB_CASE(no_obstacles_no_contact), SB_CASE(point_dropped_on_each_obstacle_rests_at_barrier_distance),
-        SB_CASE(friction_incline_stick_and_slide), SB_CASE(obstacle_overrunning_the_start_is_a_recorded_outcome), SB_END
+        SB_CASE(friction_incline_stick_and_slide), SB_CASE(obstacle_overrunning_the_start_is_a_recorded_outcome),
+        SB_CASE(resume_with_contact_is_bit_identical), SB_END
     };
     return sb_test_main(argc, argv, cases);
 }
