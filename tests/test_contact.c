@@ -395,6 +395,36 @@ SB_TEST(friction_incline_stick_and_slide)
     }
 }
 
+/* a moving obstacle carries a point: a plane rising at 1 cm/s and sliding
+ * at 2 cm/s (ramped motion, 100 steps) with mu = 0.5 lifts the point at the
+ * barrier distance and drags it along by friction (the slip is measured
+ * relative to the obstacle's motion): the point's velocity equals the
+ * plane's (to eps_v) */
+SB_TEST(moving_obstacle_lifts_and_drags_a_point)
+{
+    particle P;
+    const double dt = 0.005;
+    if (particle_open(T, &P, "{\"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1], \"friction\": 0.5, "
+                      "\"motion\": {\"translation\": [0.01, 0, 0.005], \"ramp_steps\": 100}}", dt)) {
+        particle_close(&P);
+        return;
+    }
+    const double ds = rest_distance(P.sc.contact.kappa, P.sc.contact.dhat, P.m * 9.81);
+    double x[3] = { 0, 0, ds }, v[3] = { 0, 0, 0 };
+    const int N = 80;
+    for (int s = 1; s <= N; s++)
+        if (particle_step(T, &P, s, x, v)) { CHECK_MSG(0, "step %d failed", s); break; }
+    const double vx = 0.01 / (100 * dt), vz = 0.005 / (100 * dt), f = (double)N / 100;
+    CHECK_MSG(fabs(v[0] - vx) < P.sc.contact.eps_v, "dragged at %g m/s, the plane moves at %g", v[0], vx);
+    CHECK_NEAR(v[2], vz, 1e-6);
+    /* height above the moved plane: the barrier distance (the constant lift
+     * needs no extra force) */
+    CHECK_NEAR(x[2] - f * 0.005, ds, 1e-3 * ds);
+    /* it stuck: displaced with the plane, up to the eps_v creep */
+    CHECK_MSG(fabs(x[0] - f * 0.01) < P.sc.contact.eps_v * N * dt, "x = %g, plane moved %g", x[0], f * 0.01);
+    particle_close(&P);
+}
+
 /* a moving obstacle whose new pose swallows the start of a step: infinite
  * Phi at the start is a recorded outcome (nonfinite, exit 1), never a crash
  * or a silent penetration */
@@ -459,7 +489,7 @@ int main(int argc, char **argv)
         SB_CASE(contact_energy_derivatives_every_method), SB_CASE(problem_with_contact_fd),
         SB_CASE(no_obstacles_no_contact), SB_CASE(point_dropped_on_each_obstacle_rests_at_barrier_distance),
         SB_CASE(friction_incline_stick_and_slide), SB_CASE(obstacle_overrunning_the_start_is_a_recorded_outcome),
-        SB_CASE(resume_with_contact_is_bit_identical), SB_END
+        SB_CASE(resume_with_contact_is_bit_identical), SB_CASE(moving_obstacle_lifts_and_drags_a_point), SB_END
     };
     return sb_test_main(argc, argv, cases);
 }
