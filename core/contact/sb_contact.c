@@ -28,6 +28,11 @@ struct sb_contact {
     double dhat, kappa, eps_u, filter;
     fric_pair *fr;
     int n_fr, cap_fr;
+    /* Hessian scatter: per point, the value-array positions of its
+     * (3k)^2 block entries (upper triangle; -1 below), found once, on the
+     * point's first assembly, for the pattern hpat */
+    const sb_pattern *hpat;
+    long **hpos;
 };
 
 /* IPC barrier, Li et al. 2020 Eq. (6): b = -(d - dhat)^2 ln(d / dhat) on (0, dhat) */
@@ -86,6 +91,9 @@ void sb_contact_free(sb_contact *c)
 {
     if (!c) return;
     for (int o = 0; o < SB_SCENE_MAX_OBSTACLES; o++) free(c->mesh[o].vw);
+    if (c->hpos)
+        for (int p = 0; p < c->pts.n; p++) free(c->hpos[p]);
+    free(c->hpos);
     sb_contact_points_free(&c->pts);
     free(c->fr);
     free(c);
@@ -262,31 +270,66 @@ static void acc_pair(void *data, int o, double d, const double g[3], const doubl
             for (int j = 0; j < 3; j++) A->B[3 * i + j] += k * (ddb * g[i] * g[j] + db * H[3 * i + j]);
 }
 
-/* g += W^T G and H += W^T B W for point p: x_p = sum_a w_a q_a */
-static int scatter(const sb_contact_points *P, int p, const double G[3], const double *B, double *g, sb_matrix *H)
+/* the value-array positions of point p's block (upper entries; -1 for the
+ * lower ones), cached per point for the pattern of H; NULL when out of
+ * memory, *bad = 1 when an entry is outside the pattern (a method bug) */
+static const long *block_positions(sb_contact *c, int p, const sb_matrix *H, int *bad)
 {
+    const sb_contact_points *P = &c->pts;
+    if (c->hpat != H->pat) {   /* another pattern: forget the cache */
+        if (c->hpos)
+            for (int q = 0; q < P->n; q++) { free(c->hpos[q]); c->hpos[q] = NULL; }
+        c->hpat = H->pat;
+    }
+    if (!c->hpos && !(c->hpos = calloc((size_t)P->n, sizeof *c->hpos))) return NULL;
+    if (c->hpos[p]) return c->hpos[p];
+    const int k = P->off[p + 1] - P->off[p], m = 3 * k;
+    long *pos = malloc((size_t)m * m * sizeof *pos);
+    if (!pos) return NULL;
+    for (int a = 0; a < k; a++)
+        for (int i = 0; i < 3; i++)
+            for (int b = 0; b < k; b++)
+                for (int j = 0; j < 3; j++) {
+                    const int gi = P->dof[P->off[p] + a] + i, gj = P->dof[P->off[p] + b] + j;
+                    long q = -1;
+                    if (gi <= gj && (q = sb_pattern_find(H->pat, gi, gj)) < 0) *bad = 1;
+                    pos[(3 * a + i) * m + 3 * b + j] = q;
+                }
+    return c->hpos[p] = pos;
+}
+
+/* g += W^T G and H += W^T B W for point p: x_p = sum_a w_a q_a.  Returns 1
+ * on a coupling outside the method's pattern (a method bug), -1 out of memory. */
+static int scatter(sb_contact *c, int p, const double G[3], const double *B, double *g, sb_matrix *H)
+{
+    const sb_contact_points *P = &c->pts;
+    const int o = P->off[p], k = P->off[p + 1] - o, m = 3 * k;
+    if (g)
+        for (int a = 0; a < k; a++)
+            for (int i = 0; i < 3; i++) g[P->dof[o + a] + i] += P->w[o + a] * G[i];
+    if (!H || !B) return 0;
     int bad = 0;
-    for (int a = P->off[p]; a < P->off[p + 1]; a++) {
-        if (g)
-            for (int i = 0; i < 3; i++) g[P->dof[a] + i] += P->w[a] * G[i];
-        if (!H || !B) continue;
-        for (int b = P->off[p]; b < P->off[p + 1]; b++) {
-            const double ww = P->w[a] * P->w[b];
+    const long *pos = block_positions(c, p, H, &bad);
+    if (!pos) return -1;
+    if (bad) return 1;
+    for (int a = 0; a < k; a++)
+        for (int b = 0; b < k; b++) {
+            const double ww = P->w[o + a] * P->w[o + b];
             if (ww == 0) continue;
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++) {
-                    const int gi = P->dof[a] + i, gj = P->dof[b] + j;
-                    if (gi <= gj) bad |= sb_matrix_add(H, gi, gj, ww * B[3 * i + j]) != SB_OK;   /* upper triangle, once */
+                    const long q = pos[(3 * a + i) * m + 3 * b + j];
+                    if (q >= 0) H->val[q] += ww * B[3 * i + j];   /* upper triangle, once */
                 }
         }
-    }
-    return bad;   /* 1: a coupling outside the method's pattern (a method bug) */
+    return 0;
 }
 
 int sb_contact_energy(sb_contact *c, const double *x, double *f, double *g, sb_matrix *H)
 {
     const sb_contact_points *P = &c->pts;
     double e = 0;
+    int rc;
     acc_data A = { c, 0, 0, { 0 }, { 0 }, H != NULL };
     for (int p = 0; p < P->n; p++) {
         double xp[3];
@@ -301,7 +344,7 @@ int sb_contact_energy(sb_contact *c, const double *x, double *f, double *g, sb_m
         }
         if (A.e == 0 && A.G[0] == 0 && A.G[1] == 0 && A.G[2] == 0) continue;
         e += A.e;
-        if (scatter(P, p, A.G, H ? A.B : NULL, g, H)) return SB_ERR_INTERNAL;
+        if ((rc = scatter(c, p, A.G, H ? A.B : NULL, g, H))) return rc < 0 ? SB_ERR_NOMEM : SB_ERR_INTERNAL;
     }
     /* lagged friction (IPC Eq. 14-16): D = mu lambda f0(|u|), u = T^T (x_p - base) */
     for (int k = 0; k < c->n_fr; k++) {
@@ -328,7 +371,7 @@ int sb_contact_energy(sb_contact *c, const double *x, double *f, double *g, sb_m
                     for (int q = 0; q < 2; q++) s += F->T[2 * i + r] * M[2 * r + q] * F->T[2 * j + q];
                 B[3 * i + j] = s;
             }
-        if (scatter(P, F->p, G, H ? B : NULL, g, H)) return SB_ERR_INTERNAL;
+        if ((rc = scatter(c, F->p, G, H ? B : NULL, g, H))) return rc < 0 ? SB_ERR_NOMEM : SB_ERR_INTERNAL;
     }
     *f += e;
     return isfinite(e) ? SB_OK : SB_NONFINITE;

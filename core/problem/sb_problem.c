@@ -414,6 +414,7 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
         double tc = sb_now();
         rc = sb_contact_energy(L->contact, x, &e, g, H);
         sb_stats_event(&p->ctx->stats, level, SB_EV_COLLIDE, tc);
+        if (rc == SB_ERR_NOMEM) return sb_error(p->ctx, rc, "out of memory (contact Hessian, level %d)", level);
         if (rc < 0)
             return sb_error(p->ctx, rc, "method %s: a contact sample point of level %d couples dofs outside the "
                             "method's sparsity pattern", p->mt->name, level);
