@@ -62,10 +62,10 @@ for sc, v in sorted(shares.items()):
         sc, 100 * v[len(v) // 2], len(v), 100 * v[0], 100 * v[-1]))
 P()
 P("Where the contact share is high: `rmtr` (the subdivision method) couples 16 control points "
-  "per sample point, and the barrier's Hessian is scattered entry by entry into the sparse "
-  "matrix (a binary search per entry, `sb_matrix_add`), 48 x 48 per active point; `needles` has "
-  "16 obstacles against every point (no spatial culling beyond bounding boxes).  Both are "
-  "measured here, not optimized.")
+  "per sample point, so every active point adds a 48 x 48 block to the Hessian (its positions in "
+  "the sparse pattern are found once and cached); `needles` has 16 obstacles against every point "
+  "(no spatial culling beyond bounding boxes), which shows most beside the cheap linear_fem energy.  "
+  "Both are measured here, not optimized further.")
 P()
 P("Beside the BHEM paper's Table 2 (needles, Fig. 4: t_int = 5.05 s per integration step and "
   "t_obj = 26.66 s per CCD step at 1.15e4 dofs with 3.6k sample points and self-collision, so CCD "
