@@ -23,8 +23,8 @@ PKGCF    = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
 # core/ is the architecture, one folder per part (docs/architecture.md):
-# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, regress, cli
-CORE_DIRS := base scene mesh problem linalg shell solvers record report render study regress cli
+# base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, regress, cli; contact
+CORE_DIRS := base scene mesh problem linalg shell solvers record report render study regress cli contact
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
            $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) $(OPENMP) -MMD -MP

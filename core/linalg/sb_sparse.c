@@ -92,6 +92,13 @@ static long find_pos(const sb_pattern *p, int r, int c)
     return -1;
 }
 
+long sb_pattern_find(const sb_pattern *p, int i, int j)
+{
+    if (i > j) { int t = i; i = j; j = t; }
+    if (i < 0 || j >= p->n) return -1;
+    return find_pos(p, i, j);
+}
+
 int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out)
 {
     *out = NULL;

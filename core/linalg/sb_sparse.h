@@ -42,6 +42,8 @@ int sb_pattern_builder_add(sb_pattern_builder *pb, int k, const int *nodes);
 /* Finish: builds the pattern and the scatter maps; frees the builder (also on error). */
 int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out);
 void sb_pattern_free(sb_pattern *p);
+/* position of entry (i, j) (any order) in the value array, -1 if not in the pattern */
+long sb_pattern_find(const sb_pattern *p, int i, int j);
 /* nodes of element e: *k and pointer */
 const int *sb_pattern_elem_nodes(const sb_pattern *p, int e, int *k);
 

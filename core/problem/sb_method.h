@@ -21,6 +21,7 @@
 struct sb_context;
 struct sb_csr;
 struct sb_surface;
+struct sb_contact_points;
 
 enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
@@ -153,6 +154,12 @@ typedef struct sb_method_type {
      * re-allocates the solver (sb_problem_rebuild); counted as event adapt. */
     int  (*adapt)(void *state, const double *x, const double *v, int *changed);
     int  (*adapt_state)(void *state, double *x, double *v);
+    /* optional: the contact sample points of `level` (sb_contact_points.h,
+     * docs/contact.md) — smooth methods a grid of per_side x per_side points
+     * per element through their basis, triangle methods their vertices;
+     * cp starts zeroed.  NULL: the method cannot run scenes with obstacles
+     * (refused at set-up). */
+    int  (*contact_points)(void *state, int level, int per_side, struct sb_contact_points *cp);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

@@ -3,6 +3,7 @@
 #include "sb_problem.h"
 #include "sb_context.h"
 #include "sb_galerkin.h"
+#include "sb_contact.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -22,6 +23,7 @@ typedef struct level_data {
     double *xhat, *xn;        /* inertia data */
     double *tmp;              /* n */
     sb_galerkin *gal;         /* H = I^T H_{l+1} I (built on first use) */
+    sb_contact *contact;      /* barrier + friction of the level (NULL: the scene has no obstacles) */
 } level_data;
 
 struct sb_problem {
@@ -40,6 +42,7 @@ struct sb_problem {
 static void level_free(sb_problem *p, level_data *L)
 {
     (void)p;
+    sb_contact_free(L->contact);
     sb_galerkin_free(L->gal);
     sb_linsolve_free(L->lin);
     sb_matrix_free(&L->H);
@@ -64,6 +67,29 @@ void sb_problem_free(sb_problem *p)
 }
 
 static int level_setup(sb_problem *p, int l);
+/* Contact (docs/contact.md): a scene with obstacles adds the barrier and
+ * friction of sb_contact to Phi on every level, at the method's sample
+ * points; a scene without obstacles builds nothing here (no cost, the same
+ * arithmetic as before). */
+static int contact_create(sb_problem *p)
+{
+    const sb_scene *sc = p->scene;
+    if (sc->n_obstacles == 0) return SB_OK;
+    if (!p->mt->contact_points)
+        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s has obstacles but method %s provides no contact "
+                        "sample points", sc->name, p->mt->name);
+    for (int l = 0; l < p->nl; l++) {
+        sb_contact_points cp;
+        memset(&cp, 0, sizeof cp);
+        int rc = p->mt->contact_points(p->ms, l, sc->contact.samples, &cp);
+        if (!rc) rc = sb_contact_create(sc, &cp, &p->lv[l].contact);
+        sb_contact_points_free(&cp);
+        if (rc) return rc < 0 ? sb_error(p->ctx, rc, "method %s: contact sample points of level %d failed",
+                                         p->mt->name, l)
+                              : sb_error(p->ctx, SB_ERR_INTERNAL, "contact set-up of level %d failed", l);
+    }
+    return SB_OK;
+}
 
 int sb_problem_create(sb_context *ctx, const sb_method_type *mt, void *ms, const sb_scene *scene,
                       sb_problem **out)
@@ -90,6 +116,7 @@ int sb_problem_create(sb_context *ctx, const sb_method_type *mt, void *ms, const
     int rc = SB_OK;
     for (int l = 0; l < p->nl; l++)
         if ((rc = level_setup(p, l))) goto fail;
+    if ((rc = contact_create(p))) goto fail;
     *out = p;
     return SB_OK;
 fail:
@@ -111,6 +138,7 @@ int sb_problem_rebuild(sb_problem *p)
     p->scale_x = p->scale_g = NULL;
     int rc = SB_OK;
     for (int l = 0; l < p->nl && rc == SB_OK; l++) rc = level_setup(p, l);
+    if (rc == SB_OK) rc = contact_create(p);   /* the sample points follow the new mesh */
     return rc;
 }
 
@@ -240,6 +268,33 @@ double sb_problem_norm(const sb_problem *p, int level, const double *v)
     return sqrt(s);
 }
 
+/* obstacle poses of the step and the friction lagged at x_n on every level
+ * (coarse levels: x_n projected, as the inertia data are) */
+static int contact_begin_step(sb_problem *p, const sb_step_info *si, const double *x_n)
+{
+    const int F = p->nl - 1;
+    if (!p->lv[F].contact) return SB_OK;
+    double t0 = sb_now();
+    int rc = sb_contact_begin_step(p->lv[F].contact, si->step, p->dt, x_n);
+    const double *xf = x_n;
+    double *buf[2] = { NULL, NULL };
+    for (int l = F - 1; l >= 0 && !rc; l--) {
+        if (!(p->mt->flags & SB_METHOD_HIERARCHY)) break;
+        double *xc = malloc((size_t)p->lv[l].n * sizeof *xc);
+        if (!xc) { rc = SB_ERR_NOMEM; break; }
+        if ((rc = p->mt->project(p->ms, l, xf, xc))) { free(xc); break; }
+        rc = sb_contact_begin_step(p->lv[l].contact, si->step, p->dt, xc);
+        free(buf[l % 2]);
+        buf[l % 2] = xc;
+        xf = xc;
+    }
+    free(buf[0]);
+    free(buf[1]);
+    sb_stats_event(&p->ctx->stats, F, SB_EV_COLLIDE, t0);
+    if (rc) return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "contact: starting step %d failed", si->step);
+    return SB_OK;
+}
+
 int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x_n, const double *v_n, double *x0)
 {
     p->step = si->step;
@@ -258,6 +313,7 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
     const int F = p->nl - 1;
     sb_copy(p->lv[F].n, x_n, x0);
     sb_problem_impose(p, F, x0);
+    if ((rc = contact_begin_step(p, si, x_n))) return rc;
     if (!p->dynamic) return SB_OK;
 
     /* xhat = x_n + dt v_n on the finest level; coarse levels get projections
@@ -386,6 +442,17 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
     double e = 0.0;
     int rc = p->mt->energy(p->ms, level, x, &e, g, H);
     if (rc < 0) return rc;
+    if (L->contact && rc == SB_OK) {
+        /* contact barrier and lagged friction (docs/contact.md), timed as
+         * the event "collide" (also inside this evaluation's own time) */
+        double tc = sb_now();
+        rc = sb_contact_energy(L->contact, x, &e, g, H);
+        sb_stats_event(&p->ctx->stats, level, SB_EV_COLLIDE, tc);
+        if (rc == SB_ERR_NOMEM) return sb_error(p->ctx, rc, "out of memory (contact Hessian, level %d)", level);
+        if (rc < 0)
+            return sb_error(p->ctx, rc, "method %s: a contact sample point of level %d couples dofs outside the "
+                            "method's sparsity pattern", p->mt->name, level);
+    }
     if (p->dynamic) {
         /* inertia: 1/(2 dt^2) (x - xhat)^T M (x - xhat)  (DESIGN.md) */
         const double idt2 = 1.0 / (p->dt * p->dt);
@@ -451,6 +518,30 @@ int sb_problem_method_energy(sb_problem *p, const double *x, double *e)
 }
 
 sb_matrix *sb_problem_hessian(sb_problem *p, int level) { return &p->lv[level].H; }
+
+int sb_problem_has_contact(const sb_problem *p) { return p->lv[p->nl - 1].contact != NULL; }
+
+double sb_problem_step_bound(sb_problem *p, int level, const double *x, const double *d)
+{
+    level_data *L = &p->lv[level];
+    if (!L->contact) return 1.0;
+    double t0 = sb_now();
+    double a = sb_contact_step_bound(L->contact, x, d);
+    sb_stats_event(&p->ctx->stats, level, SB_EV_COLLIDE, t0);
+    return a;
+}
+
+int sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside)
+{
+    level_data *L = &p->lv[p->nl - 1];
+    if (!L->contact) return 0;
+    sb_contact_report r;
+    sb_contact_measure(L->contact, x, &r);
+    *min_distance = r.min_distance;
+    *active = r.active;
+    *inside = r.inside;
+    return r.points;
+}
 
 int sb_problem_factor(sb_problem *p, int level, double shift)
 {

@@ -104,6 +104,17 @@ int  sb_problem_galerkin_hessian(sb_problem *p, int lc);
  * the coarse level's sparsity pattern. */
 int  sb_problem_galerkin_prepare(sb_problem *p, int lc);
 
+/* Contact (docs/contact.md).  The step filter: the largest alpha in [0, 1]
+ * such that x + alpha d keeps every contact sample point of the level
+ * outside every obstacle (1 when the scene has no obstacles); solvers scale
+ * their trial steps by it.  Counted as the event "collide". */
+int    sb_problem_has_contact(const sb_problem *p);
+double sb_problem_step_bound(sb_problem *p, int level, const double *x, const double *d);
+/* Sample points of the finest level at x: returns their number (0: no
+ * contact) and the smallest distance to an obstacle, the points within
+ * dhat and the points inside an obstacle. */
+int    sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside);
+
 /* Account one trust-region subproblem (QP) solve on a level: QP work units. */
 void sb_problem_count_qp(sb_problem *p, int level, double seconds);
 /* Account CG iterations on a level. */

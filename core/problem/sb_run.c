@@ -315,6 +315,17 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         sb_stats_push_step(stats, &sr);
         rec->steps_done = step;
         if (R->mt->eval_points) sb_run_record_probes(R, step);
+        if (sb_problem_has_contact(R->prob)) {
+            /* contact: distances of the step's end state (docs/contact.md) */
+            double dmin;
+            int act, ins;
+            rec->contact_points = sb_problem_contact_measure(R->prob, R->x, &dmin, &act, &ins);
+            if (!rec->has_contact || dmin < rec->contact_min_distance) rec->contact_min_distance = dmin;
+            rec->has_contact = 1;
+            rec->contact_active = act;
+            rec->contact_inside = ins;
+            rec->contact_steps_inside += ins > 0;
+        }
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
         if (!req->quiet)
             fprintf(err, "step %d/%d: %s after %d iterations, f = %.10g, |g| = %.3g (%.3f s)\n", step, sc->time.steps,

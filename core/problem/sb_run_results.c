@@ -225,6 +225,16 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     } else {
         json_object_set_new(o, "penalty", json_null());
     }
+    if (R->rec.has_contact) {
+        /* contact sample points and distances (docs/contact.md); absent without obstacles */
+        json_t *co = json_object();
+        json_object_set_new(co, "points", json_integer(R->rec.contact_points));
+        json_object_set_new(co, "active", json_integer(R->rec.contact_active));
+        json_object_set_new(co, "inside", json_integer(R->rec.contact_inside));
+        json_object_set_new(co, "steps_inside", json_integer(R->rec.contact_steps_inside));
+        json_set_num(co, "min_distance", R->rec.contact_min_distance);
+        json_object_set_new(o, "contact", co);
+    }
     json_set_num(o, "energy_final", R->rec.has_energy ? R->rec.energy_final : NAN);
     if (R->rec.has_error) {
         json_t *er = json_object();

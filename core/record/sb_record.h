@@ -111,6 +111,14 @@ typedef struct sb_run {
     int has_penalty;
     double penalty_beta, penalty_position, penalty_rotation;
     double penalty_scale, penalty_relative, penalty_tol;
+    /* contact (scenes with obstacles, docs/contact.md): sample points of
+     * the finest level; the smallest distance of a sample point to an
+     * obstacle over every step's end state, the points within dhat and the
+     * points inside an obstacle at the end, and the steps that ended with a
+     * point inside (the step filter keeps this 0) */
+    int has_contact;
+    int contact_points, contact_active, contact_inside, contact_steps_inside;
+    double contact_min_distance;
     /* validation (docs/trust.md): every expected value of every probe */
     int validation;            /* SB_VALIDATION_* */
     int n_checks;

@@ -324,6 +324,21 @@ static int write_penalty(sb_h5w *w, hid_t final, const sb_run *r)
     return bad ? -1 : 0;
 }
 
+/* /final/contact: contact sample points and distances (docs/contact.md) */
+static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
+{
+    hid_t g = sb_h5w_group(w, final, "contact");
+    if (g < 0) return -1;
+    int bad = 0;
+    bad |= sb_h5w_attr_long(w, g, "points", (long)r->contact_points);
+    bad |= sb_h5w_attr_long(w, g, "active", (long)r->contact_active);
+    bad |= sb_h5w_attr_long(w, g, "inside", (long)r->contact_inside);
+    bad |= sb_h5w_attr_long(w, g, "steps_inside", (long)r->contact_steps_inside);
+    bad |= sb_h5w_attr_dbl(w, g, "min_distance", r->contact_min_distance);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
 static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
 {
     hid_t g = sb_h5w_group(w, f, "/final");
@@ -346,6 +361,7 @@ static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
     free(disp);
     if (!bad && r->has_material) bad |= write_material(w, g, &r->material);
     if (!bad && r->has_penalty) bad |= write_penalty(w, g, r);
+    if (!bad && r->has_contact) bad |= write_contact(w, g, r);
     H5Gclose(g);
     return bad ? -1 : 0;
 }

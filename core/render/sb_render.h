@@ -16,9 +16,9 @@
 typedef enum { SB_COLOR_NONE = 0, SB_COLOR_CURVATURE, SB_COLOR_STRAIN, SB_COLOR_SOFTENING, SB_COLOR_COUNT } sb_color_kind;
 extern const char *const sb_color_names[];   /* "none", "curvature", "strain", "softening", NULL */
 
-/* An obstacle drawn with the surface (and shadowing it).  Scenes have no
- * obstacles yet (contact is future work): when they do, the record path
- * (sb_render_record.c) maps each scene obstacle to one of these. */
+/* An obstacle drawn with the surface (and shadowing it): the record path
+ * (sb_render_record.c) maps a scene's spheres and unrotated boxes to these
+ * (docs/contact.md). */
 typedef enum { SB_OBSTACLE_SPHERE = 0, SB_OBSTACLE_BOX } sb_obstacle_kind;
 typedef struct sb_obstacle {
     sb_obstacle_kind kind;

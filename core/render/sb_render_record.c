@@ -15,6 +15,7 @@
  * --step K draws the recorded sample grid of step K (a triangulation of
  * /steps/sample_pos, 21 x 21 points by default). */
 #include "sb_render.h"
+#include "sb_obstacle.h"
 #include "sb_context.h"
 #include "sb_geometry.h"
 #include "sb_method.h"
@@ -42,6 +43,31 @@ static void rebuilt_free(rebuilt *b)
     if (b->have_ctx) sb_context_free(&b->ctx);
     if (b->have_scene) sb_scene_free(&b->scene);
     memset(b, 0, sizeof *b);
+}
+
+/* The scene's spheres and boxes (docs/contact.md) at their pose of `step`,
+ * drawn with the surface; a rotated box, capsules, planes and meshes are not
+ * drawn (the renderer has spheres and axis-aligned boxes only). */
+static void add_scene_obstacles(const sb_scene *sc, int step, sb_render_options *o)
+{
+    for (int i = 0; i < sc->n_obstacles && o->n_obstacles < SB_RENDER_MAX_OBSTACLES; i++) {
+        const sb_obstacle_spec *ob = &sc->obstacles[i];
+        sb_pose P;
+        sb_pose_at(ob, sb_obstacle_motion_factor(sc, ob, step), &P);
+        sb_obstacle *r = &o->obstacles[o->n_obstacles];
+        if (ob->kind == SB_OBST_SPHERE) {
+            r->kind = SB_OBSTACLE_SPHERE;
+            sb_pose_apply(&P, ob->center, r->c);
+            r->r = ob->radius;
+            o->n_obstacles++;
+        } else if (ob->kind == SB_OBST_BOX && ob->rot_angle == 0.0) {
+            double c[3];
+            sb_pose_apply(&P, ob->center, c);
+            r->kind = SB_OBSTACLE_BOX;
+            for (int k = 0; k < 3; k++) { r->lo[k] = c[k] - ob->half[k]; r->hi[k] = c[k] + ob->half[k]; }
+            o->n_obstacles++;
+        }
+    }
 }
 
 /* scene and (when with_method) the method of the record su */
@@ -253,6 +279,7 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
                      rq->step >= 0 ? "step" : sum.status == SB_STATUS_UNFINISHED ? "saved, step" : "final, step", step,
                      sum.steps_planned, state, sum.dofs);
         }
+        add_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o);
         rc = sb_render_surface(&surf, have_mat ? &mat : NULL, &o, &img, st, err, errlen);
         if (rc && !strstr(err, path)) {
             char tmp[1024];

@@ -69,7 +69,7 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
 {
     static const char *const keys[] = { "name", "description", "domain", "geometry", "material",
                                         "loads", "boundary", "time", "probes", "reference",
-                                        "resolution", "methods", NULL };
+                                        "resolution", "methods", "obstacles", "contact", NULL };
     long res = DEFAULT_RESOLUTION;
     int r, constrained = 0;
 
@@ -95,6 +95,7 @@ static int parse_root(sbj_ctx *c, const json_t *root, sb_scene *sc)
     if ((r = sbj_parse_reference(c, root, sc))) return r;
     if ((r = sbj_parse_methods(c, root, sc))) return r;
     if ((r = check_symmetry(c, sc))) return r;
+    if ((r = sbj_parse_obstacles(c, root, sc))) return r;
     for (int b = 0; b < sc->n_bcs; b++) constrained += sc->bcs[b].kind != SB_BC_FREE;
     if (sc->time.mode == SB_TIME_QUASI_STATIC && constrained == 0)
         return sbj_fail(c, json_object_get(root, "boundary") ? "boundary" : NULL, 0,
@@ -154,6 +155,7 @@ static int parse_buffer(const char *text, size_t len, const char *file, sb_scene
     } else {
         char path[sizeof sc->path];
         memcpy(path, sc->path, sizeof path);
+        sbj_free_obstacles(sc);
         memset(sc, 0, sizeof *sc);   /* nothing half-filled survives an error */
         memcpy(sc->path, path, sizeof path);
     }
@@ -289,6 +291,8 @@ void sb_scene_free(sb_scene *scene)
     if (!scene) return;
     free(scene->json_text);
     scene->json_text = NULL;
+    sbj_free_obstacles(scene);
+    scene->n_obstacles = 0;
 }
 
 static int is_file(const char *p)
@@ -371,6 +375,15 @@ double sb_bc_motion_factor(const sb_scene *s, const sb_bc *bc, int step)
      * dynamic scenes step/ramp_steps = t / (ramp_steps dt)) */
     int ramp = bc->ramp_steps > 0 ? bc->ramp_steps : (s->time.steps > 0 ? s->time.steps : 1);
     if (step <= 0) return 0;
+    double f = (double)step / ramp;
+    return f < 1 ? f : 1;
+}
+
+double sb_obstacle_motion_factor(const sb_scene *s, const sb_obstacle_spec *o, int step)
+{
+    /* as sb_bc_motion_factor: min(1, step / ramp_steps), 0 = over all steps */
+    int ramp = o->ramp_steps > 0 ? o->ramp_steps : (s->time.steps > 0 ? s->time.steps : 1);
+    if (step <= 0 || !o->moving) return 0;
     double f = (double)step / ramp;
     return f < 1 ? f : 1;
 }

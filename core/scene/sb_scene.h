@@ -203,6 +203,41 @@ typedef struct sb_scene_method {
     int n_sets;
     char sets[SB_SCENE_MAX_METHOD_SETS][96];   /* "method.KEY=VALUE", applied before --set */
 } sb_scene_method;
+/* ---- obstacles and contact (docs/contact.md) ------------------------- */
+#define SB_SCENE_MAX_OBSTACLES 64
+typedef enum { SB_OBST_SPHERE, SB_OBST_PLANE, SB_OBST_BOX, SB_OBST_CAPSULE, SB_OBST_MESH } sb_obstacle_shape;
+
+typedef struct sb_obstacle_spec {
+    sb_obstacle_shape kind;
+    char name[SB_NAME_LEN];
+    double center[3];        /* sphere, box: centre */
+    double radius;           /* sphere, capsule */
+    double point[3];         /* plane: a point on it */
+    double normal[3];        /* plane: unit normal pointing to the free side */
+    double half[3];          /* box: half extents along x, y, z (axis-aligned at rest) */
+    double a[3], b[3];       /* capsule: the two ends of its axis segment */
+    char file[512];          /* mesh: OBJ path as given (relative to the scene file) */
+    int nv, nt;              /* mesh: vertices and triangles (owned, freed by sb_scene_free) */
+    double *verts;           /* 3 nv */
+    int *tris;               /* 3 nt */
+    double friction;         /* Coulomb coefficient mu >= 0 */
+    /* rigid motion like a moving boundary: pose(f) x = c + R(f angle)(x - c) + f translation,
+       f = sb_obstacle_motion_factor (0 at step 0) */
+    double translation[3];
+    double rot_axis[3];      /* unit (zero: no rotation) */
+    double rot_center[3];
+    double rot_angle;        /* rad, total */
+    int ramp_steps;          /* 0 = all steps */
+    int moving;
+} sb_obstacle_spec;
+
+typedef struct sb_contact_spec {
+    double dhat;             /* barrier activation distance (m), IPC's d-hat */
+    double kappa;            /* barrier stiffness per unit reference area (Pa/m) */
+    double eps_v;            /* friction smoothing velocity (m/s), IPC's epsilon_v */
+    int samples;             /* sample points per element side (smooth methods) */
+    double filter;           /* fraction of the time of impact a step may take, (0, 1) */
+} sb_contact_spec;
 
 typedef struct sb_scene {
     char name[SB_NAME_LEN];
@@ -221,6 +256,8 @@ typedef struct sb_scene {
     int default_res_t;       /* "resolution": [N, M]: M elements along t (0: as default_res) */
     int n_methods;
     sb_scene_method methods[SB_SCENE_MAX_METHODS];
+    int n_obstacles; sb_obstacle_spec obstacles[SB_SCENE_MAX_OBSTACLES];
+    sb_contact_spec contact; /* meaningful when n_obstacles > 0 */
 } sb_scene;
 
 /* Parse and validate.  On error returns SB_ERR_INPUT and writes
@@ -249,5 +286,6 @@ void sb_scene_bundled_res(const sb_scene *sc, const char *method, int *res, int 
 /* Ramp factors at step n (1-based) of the scene's time spec. */
 double sb_load_factor(const sb_scene *s, const sb_load *ld, int step);
 double sb_bc_motion_factor(const sb_scene *s, const sb_bc *bc, int step);
+double sb_obstacle_motion_factor(const sb_scene *s, const sb_obstacle_spec *o, int step);
 
 #endif

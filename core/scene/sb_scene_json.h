@@ -92,6 +92,13 @@ int sbj_parse_reference(sbj_ctx *c, const json_t *root, sb_scene *sc);
 /* "resolution" (N or [N, M]) of obj; untouched when absent */
 int sbj_parse_resolution(sbj_ctx *c, const json_t *obj, const char *key, int *res, int *res_t);
 int sbj_parse_methods(sbj_ctx *c, const json_t *root, sb_scene *sc);
+/* "obstacles" and "contact" (sb_scene_contact.c); OBJ files resolved
+ * relative to the directory of c->file */
+int sbj_parse_obstacles(sbj_ctx *c, const json_t *root, sb_scene *sc);
+void sbj_free_obstacles(sb_scene *sc);
+/* Wavefront OBJ (v and f lines; polygons fanned into triangles): SB_OK or
+ * SB_ERR_INPUT with "FILE:LINE: problem" in msg (sb_obj.c) */
+int sb_obj_read(const char *path, double **verts, int *nv, int **tris, int *nt, char *msg, size_t msglen);
 
 /* Parts: member "on" (edge names) and/or "at" (material points) of object
  * obj; edges_ok/points_ok say which are allowed; at least one part needed. */

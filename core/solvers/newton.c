@@ -214,6 +214,9 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
         return rc;
     }
     double alpha = s->kind == KIND_DAMPED ? s->alpha : 1.0;
+    /* contact step filter (docs/contact.md): no sample point may reach an
+     * obstacle along the step; 1 without obstacles */
+    alpha = fmin(alpha, sb_problem_step_bound(p, s->F, x, s->d));
     double fold = s->f;
     /* the linearized solver evaluates the gradient only, to report the
      * residual its single step leaves */

@@ -455,6 +455,16 @@ static int local_tr(rmtr_state *R, sb_problem *p, int l, int mu, double bound, i
                 tr.pred = -(tau * gs + 0.5 * tau * tau * sHs);
             }
         }
+        {
+            /* contact step filter (docs/contact.md): shorten a step that would
+             * carry a sample point of this level into an obstacle, m(tau s) as above */
+            double tau = sb_problem_step_bound(p, l, V->x, V->s);
+            if (tau < 1.0) {
+                double gs = sb_dot(V->n, V->g, V->s), sHs = -2.0 * (tr.pred + gs);
+                sb_scal(V->n, tau, V->s);
+                tr.pred = -(tau * gs + 0.5 * tau * tau * sHs);
+            }
+        }
         for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] + V->s[i];
         double ft, rho;
         int have_gt = 0;
@@ -558,9 +568,14 @@ static int rmtr_level(rmtr_state *R, sb_problem *p, int l, const double *gc, dou
         if ((rc = sb_problem_prolong(p, l - 1, C->tmp, V->s))) return rc;
         for (int i = 0; i < V->n; i++) V->xt[i] = V->x[i] + V->s[i];
         /* line 6: multilevel ratio (Eq. 4.11) */
-        double ft, rho;
+        double ft, rho = -INFINITY;
         int have_gt = 0;
-        if ((rc = ratio_of_trial(R, p, l, cred, &ft, &rho, &have_gt))) return rc;
+        /* contact step filter (docs/contact.md): a prolongated correction that
+         * would carry a fine sample point into an obstacle is rejected like a
+         * failed ratio test (its coarse reduction is not that of a shortened step) */
+        if (sb_problem_step_bound(p, l, V->x, V->s) >= 1.0 &&
+            (rc = ratio_of_trial(R, p, l, cred, &ft, &rho, &have_gt)))
+            return rc;
         if (rho > R->eta1) {                    /* lines 7-8 */
             V->ared_sum += rho * cred;
             if ((rc = accept_trial(R, p, l, ft, have_gt))) return rc;

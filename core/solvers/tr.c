@@ -99,6 +99,19 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     int rc = sb_trs_solve(&t->trs, p, t->F, t->g, t->delta, t->fresh, t->cg_max, t->s, &r);
     if (rc < 0) return rc;
     t->fresh = 0;
+    /* contact step filter (docs/contact.md): a step that would carry a
+     * sample point into an obstacle is shortened to tau s, and the model's
+     * predicted reduction re-evaluated for it:
+     * pred(tau s) = -(tau g^T s + tau^2/2 s^T H s) */
+    double tau = sb_problem_step_bound(p, t->F, x, t->s);
+    if (tau < 1.0) {
+        sb_problem_hess_mult(p, t->F, t->s, t->gt);
+        double gs = sb_dot(n, t->g, t->s), sHs = sb_dot(n, t->s, t->gt);
+        sb_scal(n, tau, t->s);
+        r.pred = -(tau * gs + 0.5 * tau * tau * sHs);
+        r.snorm *= tau;
+        r.newton = 0;
+    }
     for (int i = 0; i < n; i++) t->xt[i] = x[i] + t->s[i];
     double ft;
     rc = sb_problem_eval(p, t->F, t->xt, &ft, NULL, NULL);

@@ -192,4 +192,8 @@ int  bhem_surface(void *state, int level, const double *x, struct sb_surface *ou
 extern const sb_param_def bhem_params[];
 extern const sb_method_type sb_method_bhem;
 
+/* contact sample points (bhem_contact.c, docs/contact.md) */
+struct sb_contact_points;
+int bhem_contact_points(void *state, int level, int per_side, struct sb_contact_points *cp);
+
 #endif

@@ -296,4 +296,5 @@ const sb_method_type sb_method_bhem = {
     .estimate = bhem_estimate,
     .describe = bhem_describe,
     .surface = bhem_surface,
+    .contact_points = bhem_contact_points,
 };

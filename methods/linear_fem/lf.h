@@ -255,4 +255,8 @@ int  lf_prolong_matrix(const lf_state *S, int lc, struct sb_csr *I);
 extern const sb_param_def lf_params[];
 extern const sb_method_type sb_method_linear_fem;
 
+/* contact sample points (lf_contact.c, docs/contact.md) */
+struct sb_contact_points;
+int lf_contact_points(void *state, int level, int per_side, struct sb_contact_points *cp);
+
 #endif

@@ -302,4 +302,5 @@ const sb_method_type sb_method_linear_fem = {
     .material_state = lf_material_state_op,
     .describe = lf_describe,
     .surface = lf_surface,
+    .contact_points = lf_contact_points,
 };

@@ -419,4 +419,5 @@ const sb_method_type sb_method_subdiv = {
     .penalty_violation = cc_penalty_violation_op,
     .describe = cc_describe,
     .surface = cc_surface,
+    .contact_points = cc_contact_points,
 };

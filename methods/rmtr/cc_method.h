@@ -123,4 +123,8 @@ int  cc_material_state(cc_state *S, int l, const double *x, sb_material_state *m
 struct sb_surface;
 int  cc_surface(void *state, int level, const double *x, struct sb_surface *out);
 
+/* contact sample points (cc_contact.c, docs/contact.md) */
+struct sb_contact_points;
+int cc_contact_points(void *state, int level, int per_side, struct sb_contact_points *cp);
+
 #endif

@@ -1,0 +1,55 @@
+/* sb_contact.h — contact against a scene's obstacles as a term of the
+ * incremental potential (docs/contact.md):
+ *
+ *   Phi_c(x) = sum_p sum_o kappa a_p b(d_o(x_p))                 (IPC barrier, Li et al. 2020 Eq. 6)
+ *            + sum_(p,o) mu_o lambda_po f0(|T_po^T (x_p - x_p^n - delta_po)|)  (lagged friction, IPC §5 Eq. 14-16)
+ *
+ * over the method's sample points x_p = sum_a w_a q_a (sb_contact_points.h),
+ * with b(d) = -(d - dhat)^2 ln(d / dhat) for 0 < d < dhat (0 beyond).  One
+ * object per level of a run; no global state.  The step filter
+ * sb_contact_step_bound limits a trial step so that no sample point reaches
+ * an obstacle along it. */
+#ifndef SB_CONTACT_H
+#define SB_CONTACT_H
+
+#include "sb_scene.h"
+#include "sb_sparse.h"
+#include "sb_contact_points.h"
+
+typedef struct sb_contact sb_contact;
+
+/* Takes ownership of *pts (left zeroed). */
+int  sb_contact_create(const sb_scene *sc, sb_contact_points *pts, sb_contact **out);
+void sb_contact_free(sb_contact *c);
+int  sb_contact_n_points(const sb_contact *c);
+
+/* Obstacle poses of step `step` (the energy's) and of step - 1, and the
+ * friction data lagged at x_n (normal forces, tangent bases, obstacle
+ * slip); dt = 0 (quasi-static) switches friction off. */
+int  sb_contact_begin_step(sb_contact *c, int step, double dt, const double *x_n);
+
+/* f += Phi_c(x); g += its gradient and H += its Hessian when non-NULL
+ * (H on the method's pattern).  SB_NONFINITE (f = inf) when a sample point
+ * is inside an analytic obstacle or on a mesh triangle. */
+int  sb_contact_energy(sb_contact *c, const double *x, double *f, double *g, sb_matrix *H);
+
+/* The largest alpha in [0, 1] for which x + alpha d keeps every sample
+ * point outside every obstacle: filter * (first time of impact) when a
+ * point would reach one, else 1 (closed form for analytic obstacles,
+ * point–triangle CCD for meshes). */
+double sb_contact_step_bound(sb_contact *c, const double *x, const double *d);
+
+typedef struct sb_contact_report {
+    int points;              /* sample points */
+    int active;              /* points within dhat of an obstacle (barrier active) */
+    int inside;              /* points inside an analytic obstacle or on a mesh triangle */
+    double min_distance;     /* smallest distance of a sample point to an obstacle (m) */
+} sb_contact_report;
+void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r);
+
+/* IPC barrier b(d) and its first two derivatives (Li et al. 2020 Eq. 6). */
+double sb_barrier(double d, double dhat, double *db, double *ddb);
+/* IPC friction mollifier f0(y) with eps (Li et al. 2020 Eq. 16) and f1 = f0', f1' */
+double sb_friction_f0(double y, double eps, double *f1, double *df1);
+
+#endif

@@ -1,0 +1,268 @@
+/* sb_obstacle.c — poses, signed distances (with exact derivatives) and
+ * closed-form times of impact of the analytic obstacles, and the
+ * point–triangle distance of mesh obstacles (sb_obstacle.h). */
+#include "sb_obstacle.h"
+
+#include <math.h>
+#include <string.h>
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+void sb_pose_at(const sb_obstacle_spec *o, double f, sb_pose *P)
+{
+    /* Rodrigues: R = cos th I + sin th [k]x + (1 - cos th) k k^T, th = f angle
+     * (the moving-boundary convention of sb_scene.h: x = c + R(X - c) + f t) */
+    const double th = f * o->rot_angle, C = cos(th), S = sin(th), *k = o->rot_axis;
+    double *R = P->R;
+    R[0] = C + (1 - C) * k[0] * k[0];        R[1] = (1 - C) * k[0] * k[1] - S * k[2]; R[2] = (1 - C) * k[0] * k[2] + S * k[1];
+    R[3] = (1 - C) * k[1] * k[0] + S * k[2]; R[4] = C + (1 - C) * k[1] * k[1];        R[5] = (1 - C) * k[1] * k[2] - S * k[0];
+    R[6] = (1 - C) * k[2] * k[0] - S * k[1]; R[7] = (1 - C) * k[2] * k[1] + S * k[0]; R[8] = C + (1 - C) * k[2] * k[2];
+    for (int i = 0; i < 3; i++) {
+        P->c[i] = o->rot_center[i];
+        P->t[i] = f * o->translation[i];
+    }
+}
+
+void sb_pose_rotate(const sb_pose *P, const double u[3], double v[3])
+{
+    for (int i = 0; i < 3; i++) v[i] = P->R[3 * i] * u[0] + P->R[3 * i + 1] * u[1] + P->R[3 * i + 2] * u[2];
+}
+
+void sb_pose_apply(const sb_pose *P, const double y[3], double x[3])
+{
+    double u[3] = { y[0] - P->c[0], y[1] - P->c[1], y[2] - P->c[2] }, v[3];
+    sb_pose_rotate(P, u, v);
+    for (int i = 0; i < 3; i++) x[i] = P->c[i] + v[i] + P->t[i];
+}
+
+void sb_pose_inverse(const sb_pose *P, const double x[3], double y[3])
+{
+    double u[3] = { x[0] - P->c[0] - P->t[0], x[1] - P->c[1] - P->t[1], x[2] - P->c[2] - P->t[2] };
+    for (int i = 0; i < 3; i++) y[i] = P->c[i] + P->R[i] * u[0] + P->R[3 + i] * u[1] + P->R[6 + i] * u[2];
+}
+
+/* g = w/r, H = (Pm - g g^T)/r with Pm the projector of the free directions
+ * (identity for a point, I - e e^T for a line): the derivatives of r = |Pm y|. */
+static double radial(const double w[3], const double *Pm, double *g, double *H)
+{
+    double r = sqrt(dot3(w, w));
+    if (g)
+        for (int i = 0; i < 3; i++) g[i] = r > 0 ? w[i] / r : 0.0;
+    if (H)
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                H[3 * i + j] = r > 0 ? ((Pm ? Pm[3 * i + j] : (double)(i == j)) - g[i] * g[j]) / r : 0.0;
+    return r;
+}
+
+/* the rest-frame derivatives g, H mapped to the world: R g, R H R^T */
+static void to_world(const sb_pose *P, double *g, double *H)
+{
+    if (g) {
+        double u[3] = { g[0], g[1], g[2] };
+        sb_pose_rotate(P, u, g);
+    }
+    if (H) {
+        double T[9];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                double s = 0;
+                for (int k = 0; k < 3; k++) s += P->R[3 * i + k] * H[3 * k + j];
+                T[3 * i + j] = s;
+            }
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) {
+                double s = 0;
+                for (int k = 0; k < 3; k++) s += T[3 * i + k] * P->R[3 * j + k];
+                H[3 * i + j] = s;
+            }
+    }
+}
+
+double sb_obstacle_phi(const sb_obstacle_spec *o, const sb_pose *P, const double x[3], double *g, double *H)
+{
+    double y[3], w[3], phi = 0;
+    sb_pose_inverse(P, x, y);
+    if (H) memset(H, 0, 9 * sizeof *H);
+    switch (o->kind) {
+    case SB_OBST_SPHERE:   /* phi = |y - c| - r */
+        for (int i = 0; i < 3; i++) w[i] = y[i] - o->center[i];
+        phi = radial(w, NULL, g, H) - o->radius;
+        break;
+    case SB_OBST_PLANE:    /* phi = n . (y - p) */
+        for (int i = 0; i < 3; i++) w[i] = y[i] - o->point[i];
+        phi = dot3(o->normal, w);
+        if (g) memcpy(g, o->normal, 3 * sizeof *g);
+        break;
+    case SB_OBST_CAPSULE: {   /* phi = |y - q(y)| - r, q the closest point of the axis segment */
+        double e[3], L2 = 0, Pm[9];
+        for (int i = 0; i < 3; i++) { e[i] = o->b[i] - o->a[i]; L2 += e[i] * e[i]; w[i] = y[i] - o->a[i]; }
+        double s = dot3(w, e) / L2;
+        const double *Pp = NULL;
+        if (s <= 0) s = 0;
+        else if (s >= 1) s = 1;
+        else {
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) Pm[3 * i + j] = (double)(i == j) - e[i] * e[j] / L2;
+            Pp = Pm;
+        }
+        for (int i = 0; i < 3; i++) w[i] -= s * e[i];
+        phi = radial(w, Pp, g, H) - o->radius;
+        break;
+    }
+    case SB_OBST_BOX: {       /* q_k = |y_k - c_k| - h_k; outside: phi = |max(q, 0)|, inside: max q_k */
+        double q[3], sg[3], Pm[9] = { 0 };
+        int out = 0, kmax = 0;
+        for (int i = 0; i < 3; i++) {
+            double u = y[i] - o->center[i];
+            sg[i] = u >= 0 ? 1.0 : -1.0;
+            q[i] = fabs(u) - o->half[i];
+            if (q[i] > q[kmax]) kmax = i;
+            out |= q[i] > 0;
+        }
+        if (out) {
+            for (int i = 0; i < 3; i++) {
+                w[i] = q[i] > 0 ? sg[i] * q[i] : 0.0;
+                Pm[4 * i] = q[i] > 0 ? 1.0 : 0.0;
+            }
+            phi = radial(w, Pm, g, H);
+        } else {
+            phi = q[kmax];
+            if (g) { g[0] = g[1] = g[2] = 0; g[kmax] = sg[kmax]; }
+        }
+        break;
+    }
+    case SB_OBST_MESH:
+        phi = INFINITY;   /* meshes are handled per triangle (sb_point_triangle_distance) */
+        if (g) g[0] = g[1] = g[2] = 0;
+        break;
+    }
+    to_world(P, g, H);
+    return phi;
+}
+
+/* closest point of triangle abc to x (Ericson, Real-Time Collision
+ * Detection, §5.1.5), as the feature: 0 face, 1..3 edge ab/bc/ca, 4..6
+ * vertex a/b/c */
+double sb_point_triangle_distance(const double x[3], const double a[3], const double b[3], const double c[3],
+                                  double *g, double *H)
+{
+    double ab[3], ac[3], ap[3], bp[3], cp[3], w[3];
+    for (int i = 0; i < 3; i++) {
+        ab[i] = b[i] - a[i]; ac[i] = c[i] - a[i];
+        ap[i] = x[i] - a[i]; bp[i] = x[i] - b[i]; cp[i] = x[i] - c[i];
+    }
+    const double d1 = dot3(ab, ap), d2 = dot3(ac, ap), d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    const double *p0 = NULL, *e = NULL;
+    double Pm[9];
+    if (d1 <= 0 && d2 <= 0) p0 = a;
+    else if (d3 >= 0 && d4 <= d3) p0 = b;
+    else if (d6 >= 0 && d5 <= d6) p0 = c;
+    else if (vc <= 0 && d1 >= 0 && d3 <= 0) { p0 = a; e = ab; }
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0) { p0 = a; e = ac; }
+    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+        double bc[3] = { c[0] - b[0], c[1] - b[1], c[2] - b[2] }, L2 = dot3(bc, bc);
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) Pm[3 * i + j] = (double)(i == j) - bc[i] * bc[j] / L2;
+        for (int i = 0; i < 3; i++) w[i] = bp[i] - dot3(bp, bc) / L2 * bc[i];
+        return radial(w, Pm, g, H);
+    } else {
+        /* face: |n . (x - a)| */
+        double n[3] = { ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0] };
+        double nn = sqrt(dot3(n, n));
+        for (int i = 0; i < 3; i++) n[i] /= nn;
+        double s = dot3(n, ap), sg = s >= 0 ? 1.0 : -1.0;
+        if (g)
+            for (int i = 0; i < 3; i++) g[i] = sg * n[i];
+        if (H) memset(H, 0, 9 * sizeof *H);
+        return fabs(s);
+    }
+    if (e) {
+        double L2 = dot3(e, e);
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++) Pm[3 * i + j] = (double)(i == j) - e[i] * e[j] / L2;
+        double u[3] = { x[0] - p0[0], x[1] - p0[1], x[2] - p0[2] }, s = dot3(u, e) / L2;
+        for (int i = 0; i < 3; i++) w[i] = u[i] - s * e[i];
+        return radial(w, Pm, g, H);
+    }
+    for (int i = 0; i < 3; i++) w[i] = x[i] - p0[i];
+    return radial(w, NULL, g, H);
+}
+
+/* smallest root in [0, 1] of A t^2 + B t + C (C > 0: starts outside) */
+static double first_root(double A, double B, double C)
+{
+    if (C <= 0) return 0.0;
+    if (A == 0) return B < 0 ? -C / B : 2.0;
+    double disc = B * B - 4 * A * C;
+    if (disc < 0) return 2.0;
+    double sq = sqrt(disc);
+    /* the numerically stable pair (Press et al., Numerical Recipes §5.6) */
+    double q = -0.5 * (B + (B >= 0 ? sq : -sq));
+    double r1 = q / A, r2 = q != 0 ? C / q : r1;
+    double lo = fmin(r1, r2), hi = fmax(r1, r2), t = lo >= 0 ? lo : hi;
+    return t >= 0 && t <= 1 ? t : 2.0;
+}
+
+static double toi_sphere(const double y[3], const double d[3], const double c[3], double r)
+{
+    double w[3] = { y[0] - c[0], y[1] - c[1], y[2] - c[2] };
+    return first_root(dot3(d, d), 2 * dot3(w, d), dot3(w, w) - r * r);
+}
+
+double sb_obstacle_toi(const sb_obstacle_spec *o, const sb_pose *P, const double x[3], const double d[3])
+{
+    double y[3], dr[3], x1[3], y1[3];
+    sb_pose_inverse(P, x, y);
+    for (int i = 0; i < 3; i++) x1[i] = x[i] + d[i];
+    sb_pose_inverse(P, x1, y1);
+    for (int i = 0; i < 3; i++) dr[i] = y1[i] - y[i];   /* the motion in the rest frame */
+    switch (o->kind) {
+    case SB_OBST_SPHERE:
+        return toi_sphere(y, dr, o->center, o->radius);
+    case SB_OBST_PLANE: {
+        double w[3] = { y[0] - o->point[0], y[1] - o->point[1], y[2] - o->point[2] };
+        double f0 = dot3(o->normal, w), v = dot3(o->normal, dr);
+        if (v >= 0) return 2.0;
+        double t = f0 / -v;
+        return t <= 1 ? fmax(t, 0.0) : 2.0;
+    }
+    case SB_OBST_BOX: {   /* slabs (Kay & Kajiya) */
+        double t0 = 0, t1 = 1;
+        for (int i = 0; i < 3; i++) {
+            double lo = o->center[i] - o->half[i], hi = o->center[i] + o->half[i];
+            if (dr[i] == 0) {
+                if (y[i] < lo || y[i] > hi) return 2.0;
+                continue;
+            }
+            double ta = (lo - y[i]) / dr[i], tb = (hi - y[i]) / dr[i];
+            if (ta > tb) { double s = ta; ta = tb; tb = s; }
+            t0 = fmax(t0, ta);
+            t1 = fmin(t1, tb);
+            if (t0 > t1) return 2.0;
+        }
+        return t0;
+    }
+    case SB_OBST_CAPSULE: {
+        /* the end spheres, and the cylinder part: |w_perp(t)|^2 = r^2 with
+         * the axial coordinate in [0, L] at that time */
+        double t = fmin(toi_sphere(y, dr, o->a, o->radius), toi_sphere(y, dr, o->b, o->radius));
+        double e[3], w[3], L2 = 0;
+        for (int i = 0; i < 3; i++) { e[i] = o->b[i] - o->a[i]; L2 += e[i] * e[i]; w[i] = y[i] - o->a[i]; }
+        double we = dot3(w, e) / L2, de = dot3(dr, e) / L2, wp[3], dp[3];
+        for (int i = 0; i < 3; i++) { wp[i] = w[i] - we * e[i]; dp[i] = dr[i] - de * e[i]; }
+        double C = dot3(wp, wp) - o->radius * o->radius;   /* C <= 0: within the axis' reach, the caps decide */
+        double tc = C > 0 ? first_root(dot3(dp, dp), 2 * dot3(wp, dp), C) : 2.0;
+        if (tc <= 1) {
+            double s = we + tc * de;
+            if (s >= 0 && s <= 1) t = fmin(t, tc);
+        }
+        return t;
+    }
+    case SB_OBST_MESH:
+        break;
+    }
+    return 2.0;
+}
