@@ -19,6 +19,7 @@
  * failing].  Probes are named by
  * their dt (6 significant digits, the value actually run), so a second sweep
  * replays the same sequence from the records and continues where it stopped. */
+#include "sb_output.h"
 #include "sb_study_fig.h"
 #include "sb_record.h"
 
@@ -81,6 +82,14 @@ int sb_study_dt_scene(const sb_study *st, const sb_plan_run *r, char *buf, size_
     mkdir(st->records, 0777);
     mkdir(dir, 0777);
     snprintf(tmp, sizeof tmp, "%s.tmp.%ld", buf, (long)getpid());
+    sb_output_kind kind;
+    char msg[1400];
+    if (sb_output_check(buf, "derived scene", &kind, msg, sizeof msg) || kind == SB_OUTPUT_DISCARD) {
+        json_decref(o);
+        fprintf(err, "shellbench: dt study: %s\n", kind == SB_OUTPUT_DISCARD ? "a derived scene path is the null device" : msg);
+        return -1;
+    }
+    unlink(tmp);   /* json_dump_file would follow a link left there */
     int rc = json_dump_file(o, tmp, JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(17));
     json_decref(o);
     if (rc || rename(tmp, buf)) {

@@ -17,6 +17,7 @@
  * Writes OUT (results/references/SCENE.h5), OUT-check.h5 and OUT.json (the
  * provenance: command, configuration, self-check), and says how a scene
  * points at it. */
+#include "sb_output.h"
 #include "sb_study_int.h"
 #include "sb_geometry.h"
 #include "sb_record.h"
@@ -181,7 +182,12 @@ int sb_study_cmd_reference(int argc, char **argv)
         if (code == 1) {
             char keep[1100];
             snprintf(keep, sizeof keep, "%s.not-converged.h5", out);
-            rename(out, keep);
+            sb_output_kind kind;
+            char msg[1400] = "the path is the null device";
+            if (sb_output_check(keep, "record", &kind, msg, sizeof msg) || kind == SB_OUTPUT_DISCARD)
+                fprintf(stderr, "shellbench reference: %s kept where it is: %s\n", out, msg);
+            else
+                rename(out, keep);
         }
         rc = code == 2 ? 2 : 1;
         goto out;

@@ -7,6 +7,7 @@
  * checkpoint (sb_run_request.resume).  A run the method or solver refuses
  * (exit 2) leaves OUT.refused with its sentence: the report lists it, and
  * no later sweep tries it again (delete the marker to retry). */
+#include "sb_output.h"
 #include "sb_study_int.h"
 #include "sb_run.h"
 
@@ -122,7 +123,12 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err)
     log_path(r, lp, sizeof lp);
     if (code == SB_EXIT_INPUT) {
         sb_plan_refused_path(r->out, rp, sizeof rp);
-        if (rename(lp, rp)) fprintf(err, "shellbench sweep: cannot write %s: %s\n", rp, strerror(errno));
+        sb_output_kind kind;
+        char msg[1400];
+        if (sb_output_check(rp, "refusal note", &kind, msg, sizeof msg) || kind == SB_OUTPUT_DISCARD)
+            fprintf(err, "shellbench sweep: %s\n", kind == SB_OUTPUT_DISCARD ? "a refusal note path is the null device" : msg);
+        else if (rename(lp, rp))
+            fprintf(err, "shellbench sweep: cannot write %s: %s\n", rp, strerror(errno));
         return "refused";
     }
     FILE *f = fopen(lp, "r");
