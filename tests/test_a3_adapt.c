@@ -223,7 +223,7 @@ SB_TEST(test_adaptive_run)
 }
 
 /* full resolution keeps its mesh: stopped and resumed equals uninterrupted;
- * an adaptive run refuses --resume before any work */
+ * an adaptive run refuses --stop-after-steps before any work */
 SB_TEST(test_resume_full_resolution)
 {
     char path[256], out1[256], out2[256];
@@ -271,10 +271,12 @@ SB_TEST(test_resume_full_resolution)
     }
     for (int c = 0; c < 3; c++) CHECK(z[0][c] == z[1][c]);
     CHECK(fabs(z[0][2]) > 1e-4);
-    /* adaptive: refused */
+    /* adaptive: stopping for a later resume is refused (no mesh in checkpoints) */
     const char *seta[] = { "method.max_generation=2", "method.adaptive=1", NULL };
     rq.sets = seta;
     rq.n_sets = 2;
+    rq.resume = 0;
+    rq.stop_after_steps = 5;
     o = sb_test_run_json(&rq, &code);
     CHECK_EQ_INT(code, 2);
     if (o) json_decref(o);

@@ -103,10 +103,29 @@ SB_TEST(test_adaptive_run)
             json_decref(o);
         }
     }
-    /* resuming an adaptive run is refused before any work */
-    json_t *o = run_chain("lsnewton", "method.adapt_every=2", pa, 1, &code);
+    /* --resume with nothing to resume runs from step 1 (study sweeps ask every
+     * run to resume), and gives the uninterrupted run's answer */
+    char pc[300], part[320];
+    snprintf(pc, sizeof pc, "/tmp/sb_test_adapt_c_%d.h5", (int)getpid());
+    json_t *o = run_chain("lsnewton", "method.adapt_every=2", pc, 1, &code);
+    CHECK_EQ_INT(code, 0);
+    if (o) {
+        CHECK_EQ_INT(count(o, "adapt"), 2);
+        CHECK_EQ_INT(json_integer_value(json_object_get(o, "dofs")), 51);
+        json_decref(o);
+    }
+    remove(pc);
+    /* a checkpoint to continue from is refused before any work (an adaptive
+     * run's mesh is not in checkpoints yet) and left as it was */
+    snprintf(part, sizeof part, "%s.partial", pc);
+    FILE *f = fopen(part, "w");
+    CHECK(f && fputs("a checkpoint", f) >= 0);
+    if (f) fclose(f);
+    o = run_chain("lsnewton", "method.adapt_every=2", pc, 1, &code);
     CHECK_EQ_INT(code, 2);
     if (o) json_decref(o);
+    CHECK(access(part, F_OK) == 0 && access(pc, F_OK) != 0);
+    remove(part);
     remove(pa);
     remove(pb);
 }

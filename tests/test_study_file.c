@@ -139,6 +139,35 @@ SB_TEST(a_bad_study_runs_nothing)
     CHECK_EQ_INT(system(cmd), 0);
 }
 
+/* every committed study (bench/studies, bench/nightly) loads and plans with
+ * the methods this build registers: a method that joins the registry must
+ * not break `make run` (adaptive_sqrt3 has only linearized, which the
+ * default study did not list) */
+SB_TEST(every_committed_study_plans)
+{
+    const char *files[] = { "bench/studies/default.json", "bench/studies/accuracy.json",
+                            "bench/studies/dt_stability.json", "bench/studies/dt_stability_large.json",
+                            "bench/nightly/nightly.json" };
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        char err[2048];
+        sb_study *st = calloc(1, sizeof *st);
+        if (!st) return;
+        int rc = sb_study_load(files[i], tmpdir, st, err, sizeof err);
+        CHECK_MSG(rc == 0, "%s: %s", files[i], err);
+        if (rc == 0) {
+            sb_plan p;
+            rc = sb_study_plan(st, &p, err, sizeof err);
+            CHECK_MSG(rc == 0, "%s: %s", files[i], err);
+            int runs = 0;
+            for (int k = 0; rc == 0 && k < p.n; k++) runs += p.runs[k].state == SB_PLAN_RUN;
+            CHECK_MSG(rc != 0 || runs > 0, "%s plans no run", files[i]);
+            if (rc == 0) sb_plan_free(&p);
+            sb_study_free(st);
+        }
+        free(st);
+    }
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_study_file_XXXXXX");
@@ -147,7 +176,7 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = {
         SB_CASE(study_file_errors_name_file_line_and_column),
         SB_CASE(a_good_study_plans_every_registered_method),
-        SB_CASE(a_bad_study_runs_nothing), SB_END,
+        SB_CASE(a_bad_study_runs_nothing), SB_CASE(every_committed_study_plans), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];

@@ -145,6 +145,11 @@ int  sb_mesh_part_vertices(const sb_mesh *m, const sb_part *p, int *out);
 int  sb_mesh_part_edges(const sb_mesh *m, const sb_part *p, int *out);
 /* The vertex at a point part, or -1 when no vertex lies there. */
 int  sb_mesh_point_vertex(const sb_mesh *m, const sb_part *p);
+/* A line load of force per reference length vec[3] on boundary edges
+ * (indices from sb_mesh_part_edges), lumped: each edge gives half of
+ * |X_b - X_a| vec to each of its two vertices' entries of b (3 per vertex);
+ * exact for the linear elements' consistent load of a constant density. */
+void sb_mesh_lump_line_load(const sb_mesh *m, const int *edges, int ne, const double vec[3], double *b);
 
 /* ---- point location (sb_mesh_locate.c) ----------------------------------- */
 typedef struct sb_mesh_locator {

@@ -5,6 +5,7 @@
 #include "sb_mesh.h"
 #include "sb_geometry.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #define PART_TOL 1e-9
@@ -58,4 +59,18 @@ int sb_mesh_part_edges(const sb_mesh *m, const sb_part *p, int *out)
         n++;
     }
     return n;
+}
+
+void sb_mesh_lump_line_load(const sb_mesh *m, const int *edges, int ne, const double vec[3], double *b)
+{
+    for (int j = 0; j < ne; j++) {
+        const int a = m->edge_v[2 * edges[j]], bb = m->edge_v[2 * edges[j] + 1];
+        double ed[3];
+        for (int c = 0; c < 3; c++) ed[c] = m->X[3 * bb + c] - m->X[3 * a + c];
+        const double l = sqrt(ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2]);
+        for (int c = 0; c < 3; c++) {
+            b[3 * a + c] += 0.5 * l * vec[c];
+            b[3 * bb + c] += 0.5 * l * vec[c];
+        }
+    }
 }

@@ -7,11 +7,13 @@
  * A method may declare method.adaptive too: its runs with adaptive = 0 keep
  * their mesh (no adapt calls, resumable).
  * Resuming an adaptive run is not supported yet (the checkpoint does not
- * carry the mesh): --resume and --stop-after-steps are refused and
- * run.checkpoint is ignored, with a sentence. */
+ * carry the mesh): --stop-after-steps and --resume from a checkpoint are
+ * refused (--resume with no checkpoint starts at step 1, as study sweeps
+ * ask), and run.checkpoint is ignored, with a sentence. */
 #include "sb_run_state.h"
 
 #include <stdlib.h>
+#include <unistd.h>
 #include <string.h>
 
 int sb_run_adapt_every(const run_state *R)
@@ -30,10 +32,14 @@ int sb_run_adapt_every(const run_state *R)
 int sb_run_adapt_check(run_state *R, const sb_run_request *req)
 {
     if (sb_run_adapt_every(R) <= 0) return -1;
-    if (req->resume || req->stop_after_steps > 0) {
+    /* --resume with nothing to resume starts at step 1 (a study sweep asks
+     * every run to resume), and a finished record is "nothing to do" as for
+     * every method; only a checkpoint to continue from is refused */
+    const int has_checkpoint = req->resume && R->partial_path[0] && access(R->partial_path, F_OK) == 0;
+    if (has_checkpoint || req->stop_after_steps > 0) {
         fprintf(R->err, "shellbench: method %s adapts its mesh during the run (method.adapt_every = %d), and resuming "
-                "an adaptive run is not supported yet: run it without %s\n", R->mt->name, sb_run_adapt_every(R),
-                req->resume ? "--resume" : "--stop-after-steps");
+                "an adaptive run is not supported yet: %s\n", R->mt->name, sb_run_adapt_every(R),
+                has_checkpoint ? "remove its checkpoint or run it without --resume" : "run it without --stop-after-steps");
         return SB_EXIT_INPUT;
     }
     if (R->checkpoints_on && !req->quiet)

@@ -142,7 +142,7 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err)
 int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue, int nq, const sb_sweep_options *o,
                        FILE *out, FILE *err, int *failed)
 {
-    int jobs = o->jobs > 0 ? o->jobs : 1, next = 0, running = 0, done = 0, n_conv = 0, n_not = 0;
+    int jobs = o->jobs > 0 ? o->jobs : 1, next = 0, running = 0, done = 0, n_conv = 0, n_not = 0, n_refused = 0;
     child *ch = calloc((size_t)jobs, sizeof *ch);
     if (!ch) return SB_EXIT_INTERNAL;
     *failed = 0;
@@ -176,6 +176,7 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
                 if (code == SB_EXIT_INTERNAL) *failed += 1;
                 n_conv += code == SB_EXIT_CONVERGED;
                 n_not += code == SB_EXIT_NOT_CONVERGED;
+                n_refused += code == SB_EXIT_INPUT;
                 done++;
                 if (!o->quiet)
                     fprintf(out, "[%d/%d] %-64s %s%s (%.1f s)\n", done, nq, r->out, what,
@@ -188,9 +189,10 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
     free(ch);
     /* what this invocation ran, so that the main job ends by saying how many failed */
     if (nq > 0)
-        fprintf(out, "runs made now: %d of %d: %d converged, %d NOT converged (reason recorded), %d stopped, %d failed "
-                     "(could not be carried out: log kept)\n", done, nq, n_conv, n_not, done - n_conv - n_not - *failed,
-                *failed);
+        fprintf(out, "runs made now: %d of %d: %d converged, %d NOT converged (reason recorded), %d refused (the "
+                     "method cannot honour the scene: OUT.refused says why), %d stopped, %d failed (could not be "
+                     "carried out: log kept)\n", done, nq, n_conv, n_not, n_refused,
+                done - n_conv - n_not - n_refused - *failed, *failed);
     return SB_EXIT_CONVERGED;
 }
 
