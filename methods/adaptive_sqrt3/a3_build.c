@@ -242,16 +242,7 @@ static int build_loads(a3_state *S)
             for (int p = 0; p < ld->n_parts && rc == SB_OK; p++) {
                 const int ne = ld->parts[p].kind == SB_PART_EDGE ? sb_mesh_part_edges(m, &ld->parts[p], tmp) : 0;
                 if (ne <= 0) { rc = a3_fail(S, SB_ERR_INPUT, "loads[%d]: \"%s\" is not an edge with boundary edges in the mesh", k, ld->parts[p].name); break; }
-                for (int j = 0; j < ne; j++) {
-                    const int a = m->edge_v[2 * tmp[j]], bb = m->edge_v[2 * tmp[j] + 1];
-                    double ed[3];
-                    for (int c = 0; c < 3; c++) ed[c] = m->X[3 * bb + c] - m->X[3 * a + c];
-                    const double l = sqrt(dot3(ed, ed));
-                    for (int c = 0; c < 3; c++) {
-                        b[3 * a + c] += 0.5 * l * ld->vec[c];
-                        b[3 * bb + c] += 0.5 * l * ld->vec[c];
-                    }
-                }
+                sb_mesh_lump_line_load(m, tmp, ne, ld->vec, b);
             }
         } else if (ld->kind == SB_LOAD_POINT) {
             for (int p = 0; p < ld->n_parts && rc == SB_OK; p++) {
