@@ -73,15 +73,15 @@ int sb_study_emit_slurm(const sb_study *st, const char *study_file, const char *
         fprintf(err, "shellbench sweep: %s: %s\n", st->path, msg);
         return SB_EXIT_INPUT;
     }
-    int *task = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *task), *todo = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *todo);
-    if (!task || !todo) {
-        free(task), free(todo);
+    int *task = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *task), *pending = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *pending);
+    if (!task || !pending) {
+        free(task), free(pending);
         sb_plan_free(&plan);
         return SB_EXIT_INTERNAL;
     }
     int nt = sb_study_tasks(&plan, task), nd = 0;
     for (int k = 0; k < nt; k++)
-        if (!sb_study_run_done(&plan.runs[task[k]])) todo[nd++] = k;
+        if (!sb_study_run_done(&plan.runs[task[k]])) pending[nd++] = k;
     char def[1100], bin[PATH_MAX], cwd[PATH_MAX], sfile[PATH_MAX], rec[PATH_MAX], id[64], date[32];
     if (!path) {
         snprintf(def, sizeof def, "%s/%s.sbatch", st->records, st->name);
@@ -115,7 +115,7 @@ int sb_study_emit_slurm(const sb_study *st, const char *study_file, const char *
                     st->name, nd, nt, comment_safe(study_file, c1, sizeof c1), id, date, comment_safe(path, c2, sizeof c2));
             fprintf(f, "#SBATCH --job-name=sb-%s\n#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n#SBATCH --array=", st->name);
             int *tn = malloc((size_t)nd * sizeof *tn);
-            for (int k = 0; tn && k < nd; k++) tn[k] = todo[k];
+            for (int k = 0; tn && k < nd; k++) tn[k] = pending[k];
             if (tn) ranges(f, tn, nd);
             free(tn);
             fprintf(f, "\n#SBATCH --output=%s/slurm-%%A_%%a.out\n", comment_safe(rec, c1, sizeof c1));
@@ -141,7 +141,7 @@ int sb_study_emit_slurm(const sb_study *st, const char *study_file, const char *
                     nd, nt, nt - nd, path);
         }
     }
-    free(task), free(todo);
+    free(task), free(pending);
     sb_plan_free(&plan);
     return rc;
 }

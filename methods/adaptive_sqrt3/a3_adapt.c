@@ -21,13 +21,13 @@
  *    the vertex it removes) is below method.coarsen_fraction x l_g of the
  *    parent's generation; coarsening runs before refinement, on the same
  *    curvature values. */
+#include "sb_vec3.h"
 #include "a3.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 int a3_curvature(const a3_state *S, const double *x, double *c)
 {
@@ -50,8 +50,8 @@ int a3_curvature(const a3_state *S, const double *x, double *c)
             cr[0] = u[1] * w[2] - u[2] * w[1];
             cr[1] = u[2] * w[0] - u[0] * w[2];
             cr[2] = u[0] * w[1] - u[1] * w[0];
-            const double s = sqrt(dot3(cr, cr));
-            const double ct = s > 0 ? dot3(u, w) / s : 0.0;
+            const double s = sqrt(sb_dot3(cr, cr));
+            const double ct = s > 0 ? sb_dot3(u, w) / s : 0.0;
             for (int d = 0; d < 3; d++) {   /* Eq. 22: (cot alpha + cot beta)(x_i - x_j), one angle per triangle */
                 K[4 * v[i] + d] += ct * (P[i][d] - P[j][d]);
                 K[4 * v[j] + d] += ct * (P[j][d] - P[i][d]);
@@ -61,7 +61,7 @@ int a3_curvature(const a3_state *S, const double *x, double *c)
     }
     for (int i = 0; i < m->nv; i++) {
         const double *k = K + 4 * i;
-        c[i] = (m->vflag[i] & SB_MESH_V_BOUNDARY) || !(k[3] > 0) ? 0.0 : sqrt(dot3(k, k)) / (2.0 * k[3]);
+        c[i] = (m->vflag[i] & SB_MESH_V_BOUNDARY) || !(k[3] > 0) ? 0.0 : sqrt(sb_dot3(k, k)) / (2.0 * k[3]);
     }
     free(K);
     return SB_OK;
@@ -99,16 +99,16 @@ int a3_adapt(void *state, const double *x, const double *v, int *changed)
     if (!S->adaptive) return SB_OK;
     const sb_mesh *m = &S->mesh;
     double *c = malloc(sizeof(double) * (size_t)m->nv), *fc = calloc((size_t)F->nv, sizeof(double));
-    int *todo = malloc(sizeof(int) * (size_t)(m->nt ? m->nt : 1));
-    if (!c || !fc || !todo) { free(c); free(fc); free(todo); return SB_ERR_NOMEM; }
-    int rc = a3_curvature(S, x, c), n_todo = 0, ops = 0;
+    int *pending = malloc(sizeof(int) * (size_t)(m->nt ? m->nt : 1));
+    if (!c || !fc || !pending) { free(c); free(fc); free(pending); return SB_ERR_NOMEM; }
+    int rc = a3_curvature(S, x, c), n_pending = 0, ops = 0;
     for (int i = 0; i < m->nv; i++) fc[S->vmap[i]] = c[i];
     /* the triangles to refine, decided on the current mesh */
     for (int t = 0; t < m->nt && !rc; t++) {
         const int f = S->tmap[t], g = F->t[f].gen;
         const int *tv = m->tri + 3 * t;
         const double cm = fmax(c[tv[0]], fmax(c[tv[1]], c[tv[2]]));
-        if (g < S->max_gen && cm > limit(S, g)) todo[n_todo++] = f;
+        if (g < S->max_gen && cm > limit(S, g)) pending[n_pending++] = f;
     }
     /* coarsening (§5.2), newest operations first */
     for (int k = F->nop - 1; k >= 0 && !rc; k--) {
@@ -120,14 +120,14 @@ int a3_adapt(void *state, const double *x, const double *v, int *changed)
         else ops += r;
     }
     /* refinement (§5.1) */
-    for (int i = 0; i < n_todo && !rc; i++) {
-        if (!F->t[todo[i]].alive) continue;
-        int r = a3_forest_refine(F, todo[i]);
+    for (int i = 0; i < n_pending && !rc; i++) {
+        if (!F->t[pending[i]].alive) continue;
+        int r = a3_forest_refine(F, pending[i]);
         if (r < 0) rc = r;
         else ops += r;
     }
     free(c);
-    free(todo);
+    free(pending);
     if (rc || !ops) { free(fc); return rc; }
     /* the state on every forest vertex: kept where it was, interpolated where inserted */
     double *fx = malloc(sizeof(double) * 6 * (size_t)F->nv);

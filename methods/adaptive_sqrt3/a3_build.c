@@ -10,6 +10,7 @@
  * particle masses (f_i = m_i g: the paper's particle model, assumption),
  * line loads half an edge's reference length to each end, point loads at
  * the vertex of the point. */
+#include "sb_vec3.h"
 #include "a3.h"
 #include "sb_geometry.h"
 #include "sb_context.h"
@@ -31,13 +32,6 @@ int a3_fail(const a3_state *S, int status, const char *fmt, ...)
     return status;
 }
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 void a3_free_model(a3_state *S)
 {
@@ -80,19 +74,19 @@ static int build_triangles(a3_state *S)
             d1[c] = Xb[c] - Xa[c];
             d2[c] = Xc[c] - Xa[c];
         }
-        cross3(d1, d2, N);
-        const double an = sqrt(dot3(N, N));
+        sb_cross3(d1, d2, N);
+        const double an = sqrt(sb_dot3(N, N));
         double l = 0.0;
         if (an > 0.0) {
             for (int c = 0; c < 3; c++) N[c] /= an;
-            const double dn = dot3(J.d1, N);
+            const double dn = sb_dot3(J.d1, N);
             for (int c = 0; c < 3; c++) e1[c] = J.d1[c] - dn * N[c];
-            l = sqrt(dot3(e1, e1));
+            l = sqrt(sb_dot3(e1, e1));
         }
         if (!(l > 0.0))
             return a3_fail(S, SB_ERR_INPUT, "the reference triangle with corner (s,t) = (%g,%g) is degenerate", cs[0], cs[1]);
         for (int c = 0; c < 3; c++) e1[c] /= l;
-        cross3(N, e1, d2);
+        sb_cross3(N, e1, d2);
         for (int c = 0; c < 3; c++) w[c] = cos(wa) * e1[c] + sin(wa) * d2[c];
         if (a3_tri_init(T, Xa, Xb, Xc, w, S->C))
             return a3_fail(S, SB_ERR_INPUT, "the reference triangle with corner (s,t) = (%g,%g) is degenerate", cs[0], cs[1]);
@@ -209,7 +203,7 @@ void a3_bc_update(a3_state *S)
         if (b < 0) { S->con_vals[k] = S->x_ref[dof]; continue; }
         const sb_bc *bc = &sc->bcs[b];
         double R[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-        const double an = sqrt(dot3(bc->rot_axis, bc->rot_axis)), f = S->motion_factor[b];
+        const double an = sqrt(sb_dot3(bc->rot_axis, bc->rot_axis)), f = S->motion_factor[b];
         if (an > 0.0) {
             const double ax[3] = { bc->rot_axis[0] / an, bc->rot_axis[1] / an, bc->rot_axis[2] / an };
             sb_rotation(ax, f * bc->rot_angle, R);

@@ -2,18 +2,12 @@
  * assumptions in a3.h): the corotational orthotropic membrane triangle
  * (sqrt3 paper Eq. 5-17), the isometric bending edge (Eq. 18-19) and the
  * hybrid Voronoi corner areas of the lumped mass (Alg. 1, Eq. 1). */
+#include "sb_vec3.h"
 #include "a3.h"
 
 #include <math.h>
 #include <string.h>
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 static inline void sub3(const double *a, const double *b, double *c)
 {
     c[0] = a[0] - b[0];
@@ -27,24 +21,24 @@ int a3_tri_init(a3_tri *T, const double *Xa, const double *Xb, const double *Xc,
     double d1[3], d2[3], N[3], e1[3], e2[3];
     sub3(Xb, Xa, d1);
     sub3(Xc, Xa, d2);
-    cross3(d1, d2, N);
-    const double an = sqrt(dot3(N, N));
-    if (!(an > 1e-14 * dot3(d1, d1)) || !isfinite(an)) return SB_ERR_INPUT;
+    sb_cross3(d1, d2, N);
+    const double an = sqrt(sb_dot3(N, N));
+    if (!(an > 1e-14 * sb_dot3(d1, d1)) || !isfinite(an)) return SB_ERR_INPUT;
     for (int c = 0; c < 3; c++) N[c] /= an;
     /* 2D rest frame (Eq. 13, assumption a3.h): the warp direction w in the
      * triangle's plane, e2 = N x e1 */
-    const double wn = dot3(w, N);
+    const double wn = sb_dot3(w, N);
     for (int c = 0; c < 3; c++) e1[c] = w[c] - wn * N[c];
-    const double l1 = sqrt(dot3(e1, e1));
+    const double l1 = sqrt(sb_dot3(e1, e1));
     if (!(l1 > 1e-12)) return SB_ERR_INPUT;
     for (int c = 0; c < 3; c++) e1[c] /= l1;
-    cross3(N, e1, e2);
+    sb_cross3(N, e1, e2);
     T->area = 0.5 * an;
     memset(T->x0, 0, sizeof T->x0);
-    T->x0[2] = dot3(e1, d1);
-    T->x0[3] = dot3(e2, d1);
-    T->x0[4] = dot3(e1, d2);
-    T->x0[5] = dot3(e2, d2);
+    T->x0[2] = sb_dot3(e1, d1);
+    T->x0[3] = sb_dot3(e2, d1);
+    T->x0[4] = sb_dot3(e1, d2);
+    T->x0[5] = sb_dot3(e2, d2);
     /* shape function derivatives (Eq. 5, Appendix A): [N_b; N_c] = S^-1 (m - m_a),
      * S of Eq. 13 */
     const double s00 = T->x0[2], s01 = T->x0[4], s10 = T->x0[3], s11 = T->x0[5];
@@ -80,16 +74,16 @@ static int corot_frame(const a3_tri *T, const double *q, double Rp[6])
     double d1[3], d2[3], n[3], px[3], py[3];
     sub3(q + 3, q, d1);
     sub3(q + 6, q, d2);
-    const double l1 = sqrt(dot3(d1, d1));
+    const double l1 = sqrt(sb_dot3(d1, d1));
     if (!(l1 > 0.0) || !isfinite(l1)) return -1;
     for (int c = 0; c < 3; c++) px[c] = d1[c] / l1;        /* Eq. 11 */
-    cross3(d1, d2, n);
-    cross3(n, px, py);
-    const double ly = sqrt(dot3(py, py));
+    sb_cross3(d1, d2, n);
+    sb_cross3(n, px, py);
+    const double ly = sqrt(sb_dot3(py, py));
     if (!(ly > 0.0) || !isfinite(ly)) return -1;
     for (int c = 0; c < 3; c++) py[c] /= ly;
     /* T (Eq. 14) in the plane (P x, Eq. 12): columns (l1, 0) and (px.d2, py.d2) */
-    const double t00 = l1, t01 = dot3(px, d2), t11 = dot3(py, d2);
+    const double t00 = l1, t01 = sb_dot3(px, d2), t11 = sb_dot3(py, d2);
     /* F = T S^-1 */
     const double s00 = T->x0[2], s01 = T->x0[4], s10 = T->x0[3], s11 = T->x0[5];
     const double det = s00 * s11 - s01 * s10;
@@ -157,8 +151,8 @@ static double cot_at(const double *P, const double *A, const double *B)
     double u[3], v[3], w[3];
     sub3(A, P, u);
     sub3(B, P, v);
-    cross3(u, v, w);
-    return dot3(u, v) / sqrt(dot3(w, w));
+    sb_cross3(u, v, w);
+    return sb_dot3(u, v) / sqrt(sb_dot3(w, w));
 }
 
 void a3_bend_weights(const double *X0, const double *X1, const double *X2, const double *X3, double k[4])
@@ -186,7 +180,7 @@ double a3_bend(const a3_edge *e, const double *q12, double *g, double *H)
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++)
                 for (int c = 0; c < 3; c++) H[(3 * i + c) * 12 + 3 * j + c] += e->q * e->k[i] * e->k[j];
-    return 0.5 * e->q * dot3(s, s);
+    return 0.5 * e->q * sb_dot3(s, s);
 }
 
 void a3_voronoi(const double *Xa, const double *Xb, const double *Xc, double A[3])
@@ -198,14 +192,14 @@ void a3_voronoi(const double *Xa, const double *Xb, const double *Xc, double A[3
         const double *Pi = P[i], *Pj = P[(i + 1) % 3], *Pk = P[(i + 2) % 3];
         sub3(Pj, Pi, d1);
         sub3(Pk, Pi, d2);
-        if (dot3(d1, d2) < 0.0) obtuse = i;
+        if (sb_dot3(d1, d2) < 0.0) obtuse = i;
         cot[i] = cot_at(Pi, Pj, Pk);
-        l2[i] = dot3(d1, d1);            /* |P_{i+1} - P_i|^2 */
+        l2[i] = sb_dot3(d1, d1);            /* |P_{i+1} - P_i|^2 */
     }
     sub3(Xb, Xa, d1);
     sub3(Xc, Xa, d2);
-    cross3(d1, d2, n);
-    const double At = 0.5 * sqrt(dot3(n, n));
+    sb_cross3(d1, d2, n);
+    const double At = 0.5 * sqrt(sb_dot3(n, n));
     if (obtuse < 0) {
         /* Eq. 1: A(t, x_i) = 1/8 (|x_k - x_i|^2 cot phi_j + |x_j - x_i|^2 cot phi_k) */
         for (int i = 0; i < 3; i++) {

@@ -24,6 +24,7 @@
  * A point part must be a vertex of the mesh (corners always are; jitter never
  * moves vertices at the scene's points).  Later bcs override earlier ones on
  * shared dofs and edges. */
+#include "sb_vec3.h"
 #include "lf.h"
 #include "sb_geometry.h"
 
@@ -34,13 +35,6 @@
 #define LF_FREE_DOF (-2)
 #define LF_HELD (-1)
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 static const char *bc_name(sb_bc_kind k)
 {
@@ -83,14 +77,14 @@ static int edges_of_part(lf_state *S, lf_level *L, int b, const sb_part *pt, int
                 ed[c] = Xb[c] - Xa[c];
                 ac[c] = Xc[c] - Xa[c];
             }
-            cross3(ed, ac, N);
+            sb_cross3(ed, ac, N);
             ax[bc->axis] = 1.0;
-            cross3(ed, ax, tr);
-            const double ltr = sqrt(dot3(tr, tr)), led = sqrt(dot3(ed, ed));
+            sb_cross3(ed, ax, tr);
+            const double ltr = sqrt(sb_dot3(tr, tr)), led = sqrt(sb_dot3(ed, ed));
             if (!(ltr > 0.5 * led))
                 return lf_fail(S, SB_ERR_INPUT, "boundary[%d] (symmetry on \"%s\"): the edge is not perpendicular "
                                "to the symmetry plane's normal e_%c", b, pt->name, "xyz"[bc->axis]);
-            const double sg = dot3(tr, N) >= 0 ? 1.0 : -1.0;
+            const double sg = sb_dot3(tr, N) >= 0 ? 1.0 : -1.0;
             for (int c = 0; c < 3; c++) T->gv[i][c] = T->gv0[i][c] = sg * ax[c];
         }
         if (S->edge_dofs) owner[3 * L->nv + e] = LF_HELD;
@@ -176,7 +170,7 @@ int lf_bc_build(lf_state *S, lf_level *L)
 static void bc_rotation(const lf_state *S, int b, double R[9])
 {
     const sb_bc *bc = &S->scene->bcs[b];
-    const double an = sqrt(dot3(bc->rot_axis, bc->rot_axis));
+    const double an = sqrt(sb_dot3(bc->rot_axis, bc->rot_axis));
     if (an > 0.0) {
         const double ax[3] = { bc->rot_axis[0] / an, bc->rot_axis[1] / an, bc->rot_axis[2] / an };
         sb_rotation(ax, S->motion_factor[b] * bc->rot_angle, R);
@@ -208,7 +202,7 @@ void lf_bc_update(lf_state *S, lf_level *L)
             if (T->kind[i] != LF_EDGE_CLAMP || T->bc[i] < 0 || sc->bcs[T->bc[i]].kind != SB_BC_MOVING) continue;
             double R[9];
             bc_rotation(S, T->bc[i], R);
-            for (int c = 0; c < 3; c++) T->gv[i][c] = dot3(R + 3 * c, T->gv0[i]);
+            for (int c = 0; c < 3; c++) T->gv[i][c] = sb_dot3(R + 3 * c, T->gv0[i]);
         }
     }
     for (int h = 0; h < L->n_hinge; h++) {
@@ -216,6 +210,6 @@ void lf_bc_update(lf_state *S, lf_level *L)
         if (hg->kind != LF_EDGE_CLAMP || hg->bc < 0 || sc->bcs[hg->bc].kind != SB_BC_MOVING) continue;
         double R[9];
         bc_rotation(S, hg->bc, R);
-        for (int c = 0; c < 3; c++) hg->gv[c] = dot3(R + 3 * c, hg->gv0);
+        for (int c = 0; c < 3; c++) hg->gv[c] = sb_dot3(R + 3 * c, hg->gv0);
     }
 }

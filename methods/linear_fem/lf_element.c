@@ -28,18 +28,12 @@
  *   d2w = -2 (alpha d2h + dh dalpha^T + dalpha dh^T + h c d2psi).
  * The pseudo Hessian drops sum_i mu_i d2w_i (the second derivatives of the
  * bending strains, as for bhem). */
+#include "sb_vec3.h"
 #include "lf.h"
 
 #include <math.h>
 #include <string.h>
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* w_i of edge i with its gradient (13: Pa, Pb, Pc, Pd, phi) and Hessian
  * (13 x 13) when non-NULL.  Returns 0 when w is identically zero. */
@@ -60,7 +54,7 @@ static int edge_w(const lf_state *S, const lf_tri *T, int i, const double *qe, d
         e[c] = P[3 + c] - P[c];
         ac[c] = P[6 + c] - P[c];
     }
-    cross3(e, ac, u);   /* (Pb - Pa) x (Pc - Pa) = face normal of T */
+    sb_cross3(e, ac, u);   /* (Pb - Pa) x (Pc - Pa) = face normal of T */
     const int need = g13 || H13;
     lf_dep dep[3];
     lf_dep_normal(&dep[0], P, 0, 1, 2);
@@ -89,13 +83,13 @@ static int edge_w(const lf_state *S, const lf_tri *T, int i, const double *qe, d
                 ab[c] = P[c] - P[3 + c];
                 ad[c] = P[9 + c] - P[3 + c];
             }
-            cross3(ab, ad, v);                   /* (Pa - Pb) x (Pd - Pb): normal of (Pb, Pa, Pd) */
+            sb_cross3(ab, ad, v);                   /* (Pa - Pb) x (Pd - Pb): normal of (Pb, Pa, Pd) */
             lf_dep_normal(&dep[1], P, 1, 0, 3);
         } else if (kind == LF_EDGE_CLAMP) {
             memcpy(v, T->gv[i], sizeof v);
             dep[1].kind = LF_DEP_CONST;
         } else {                                 /* symmetry: v = e x (sign axis) */
-            cross3(e, T->gv[i], v);
+            sb_cross3(e, T->gv[i], v);
             lf_dep_cross_edge(&dep[1], 0, 1, T->gv[i]);
         }
         psi = lf_angle(u, v, e, need ? g9 : NULL, H13 ? H81 : NULL);
@@ -151,9 +145,9 @@ static void membrane_cov(const lf_tri *T, const double *qe, double a1[3], double
         a1[c] = qe[3 + c] - qe[c];
         a2[c] = qe[6 + c] - qe[c];
     }
-    A[0] = 0.5 * (dot3(a1, a1) - T->ref.abar[0]);
-    A[1] = 0.5 * (dot3(a2, a2) - T->ref.abar[1]);
-    A[2] = 0.5 * (dot3(a1, a2) - T->ref.abar[2]);
+    A[0] = 0.5 * (sb_dot3(a1, a1) - T->ref.abar[0]);
+    A[1] = 0.5 * (sb_dot3(a2, a2) - T->ref.abar[1]);
+    A[2] = 0.5 * (sb_dot3(a1, a2) - T->ref.abar[2]);
 }
 
 static inline void mulT(const double *T, const double *x, double *y)   /* y = T x */
@@ -183,13 +177,13 @@ static double follower(double p, const double *qe, double *ge, double *Ke, int l
 {
     const double *P[3] = { qe, qe + 3, qe + 6 };
     double c12[3];
-    cross3(P[1], P[2], c12);
+    sb_cross3(P[1], P[2], c12);
     const double s = -p / 6.0;
-    const double E = s * dot3(P[0], c12);
+    const double E = s * sb_dot3(P[0], c12);
     if (ge)
         for (int a = 0; a < 3; a++) {
             double c[3];
-            cross3(P[(a + 1) % 3], P[(a + 2) % 3], c);
+            sb_cross3(P[(a + 1) % 3], P[(a + 2) % 3], c);
             for (int k = 0; k < 3; k++) ge[3 * a + k] += s * c[k];
         }
     if (Ke)
@@ -370,7 +364,7 @@ static double hinge_angle(const lf_hinge *hg, const double *q, double *g12, doub
         e[c] = Pb[c] - Pa[c];
         ac[c] = Pc[c] - Pa[c];
     }
-    cross3(e, ac, u);
+    sb_cross3(e, ac, u);
     lf_dep dep[3];
     lf_dep_normal(&dep[0], q, 0, 1, 2);
     lf_dep_edge(&dep[2], 0, 1);
@@ -380,13 +374,13 @@ static double hinge_angle(const lf_hinge *hg, const double *q, double *g12, doub
             ab[c] = Pa[c] - Pb[c];
             ad[c] = Pd[c] - Pb[c];
         }
-        cross3(ab, ad, v);
+        sb_cross3(ab, ad, v);
         lf_dep_normal(&dep[1], q, 1, 0, 3);
     } else if (hg->kind == LF_EDGE_CLAMP) {
         memcpy(v, hg->gv, sizeof v);
         dep[1].kind = LF_DEP_CONST;
     } else {
-        cross3(e, hg->gv, v);
+        sb_cross3(e, hg->gv, v);
         lf_dep_cross_edge(&dep[1], 0, 1, hg->gv);
     }
     const int need = g12 || K12;

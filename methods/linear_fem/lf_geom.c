@@ -15,18 +15,12 @@
  * Triangle normal n = x × y + y × z + z × x: dn/dx = [z - y]x (cyclic), and
  * lambda . d2n[dx, dy] = -dx . [lambda]x dy for the cyclic pairs (x,y), (y,z),
  * (z,x) (the transposed blocks get +[lambda]x). */
+#include "sb_vec3.h"
 #include "lf.h"
 
 #include <math.h>
 #include <string.h>
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 /* S = [v]x (S w = v x w) */
 static inline void skew(const double *v, double *S)
 {
@@ -135,16 +129,16 @@ void lf_chain(const lf_dep dep[3], const double g[9], const double *H, int ld, d
 double lf_angle(const double u[3], const double v[3], const double e[3], double *g, double *H)
 {
     double uv[3];
-    cross3(u, v, uv);
-    const double le = sqrt(dot3(e, e)), udv = dot3(u, v);
-    const double Y = dot3(uv, e), X = le * udv;
+    sb_cross3(u, v, uv);
+    const double le = sqrt(sb_dot3(e, e)), udv = sb_dot3(u, v);
+    const double Y = sb_dot3(uv, e), X = le * udv;
     const double psi = atan2(Y, X);
     if (!g && !H) return psi;
     const double r2 = X * X + Y * Y, ir2 = 1.0 / r2;
     const double eh[3] = { e[0] / le, e[1] / le, e[2] / le };
     double Yg[9], Xg[9], gg[9];
-    cross3(v, e, Yg);
-    cross3(e, u, Yg + 3);
+    sb_cross3(v, e, Yg);
+    sb_cross3(e, u, Yg + 3);
     memcpy(Yg + 6, uv, sizeof uv);
     for (int c = 0; c < 3; c++) {
         Xg[c] = le * v[c];
@@ -188,7 +182,7 @@ double lf_angle(const double u[3], const double v[3], const double e[3], double 
 
 double lf_ratio(const double u[3], const double e[3], double *g, double *H)
 {
-    const double lu = sqrt(dot3(u, u)), le = sqrt(dot3(e, e));
+    const double lu = sqrt(sb_dot3(u, u)), le = sqrt(sb_dot3(e, e));
     const double h = lu / le;
     if (!g && !H) return h;
     const double uh[3] = { u[0] / lu, u[1] / lu, u[2] / lu }, eh[3] = { e[0] / le, e[1] / le, e[2] / le };

@@ -2,6 +2,7 @@
  * refined 1-to-4 above), the dof layout, the reference state, the per
  * triangle reference quantities (metric, warp/weft frame, reference shape
  * operator) and the hinges, then boundary conditions and loads. */
+#include "sb_vec3.h"
 #include "lf.h"
 #include "sb_context.h"
 #include "sb_geometry.h"
@@ -21,13 +22,6 @@ int lf_fail(const lf_state *S, int status, const char *fmt, ...)
     return status;
 }
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 void lf_level_free(lf_level *L)
 {
@@ -109,9 +103,9 @@ static int tri_reference(lf_state *S, lf_level *L)
             X1[c] = P1[c] - P0[c];
             X2[c] = P2[c] - P0[c];
         }
-        cross3(X1, X2, N);
-        const double an = sqrt(dot3(N, N)), l1 = sqrt(dot3(X1, X1));
-        if (!(an > 1e-12 * l1 * sqrt(dot3(X2, X2))) || !isfinite(an)) {
+        sb_cross3(X1, X2, N);
+        const double an = sqrt(sb_dot3(N, N)), l1 = sqrt(sb_dot3(X1, X1));
+        if (!(an > 1e-12 * l1 * sqrt(sb_dot3(X2, X2))) || !isfinite(an)) {
             const double *c = m->tri_st + 6 * t;
             return lf_fail(S, SB_ERR_INPUT,
                            "the reference surface is singular at the triangle with corner (s,t) = (%g,%g) "
@@ -127,8 +121,8 @@ static int tri_reference(lf_state *S, lf_level *L)
             t1[c] = X1[c] / l1;
             N[c] /= an;
         }
-        cross3(t1, J.d1, tc);
-        const double off = atan2(dot3(tc, N), dot3(t1, J.d1));
+        sb_cross3(t1, J.d1, tc);
+        const double off = atan2(sb_dot3(tc, N), sb_dot3(t1, J.d1));
         if (sb_shell_ref_init(&T->ref, X1, X2, zero, zero, zero, S->mat.warp_angle + off, 0.5))
             return lf_fail(S, SB_ERR_INPUT, "degenerate reference triangle %d", t);
         for (int i = 0; i < 3; i++)
@@ -169,14 +163,14 @@ static int hinges_build(lf_level *L)
         const double *Xa = m->X + 3 * h->v[0], *Xb = m->X + 3 * h->v[1];
         double ed[3];
         for (int c = 0; c < 3; c++) ed[c] = Xb[c] - Xa[c];
-        const double le = sqrt(dot3(ed, ed));
+        const double le = sqrt(sb_dot3(ed, ed));
         h->R = T->ref.dA + (t1 >= 0 ? L->tri[t1].ref.dA : 0.0);
         h->coef = le / h->R;
         /* reference in-plane normal of the edge in t0, in t0's warp/weft frame */
         double mvec[3];
         for (int c = 0; c < 3; c++) ed[c] /= le;
-        cross3(ed, T->ref.normal, mvec);
-        const double m1 = dot3(mvec, T->ref.e1), m2 = dot3(mvec, T->ref.e2);
+        sb_cross3(ed, T->ref.normal, mvec);
+        const double m1 = sb_dot3(mvec, T->ref.e1), m2 = sb_dot3(mvec, T->ref.e2);
         h->Bdir[0] = 0.5 * m1 * m1;
         h->Bdir[1] = 0.5 * m2 * m2;
         h->Bdir[2] = 0.5 * m1 * m2;

@@ -32,19 +32,13 @@
  *   omega.d2N: (u,e) sin(alpha) s_ue, (e,e) sin(alpha) s_ee,
  *   (alpha,alpha) -omega.(cos(alpha) u + sin(alpha) g),
  *   (alpha,u) cos(alpha) s_u - sin(alpha) omega, (alpha,e) cos(alpha) s_e. */
+#include "sb_vec3.h"
 #include "lf.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 static int is_dead(const sb_load *ld)
 {
@@ -62,7 +56,7 @@ static int moment_points(lf_state *S, lf_level *L, int k, lf_mq *out, int *tmp)
 {
     const sb_load *ld = &S->scene->loads[k];
     const sb_mesh *m = &L->mesh;
-    const double an = sqrt(dot3(ld->vec, ld->vec));
+    const double an = sqrt(sb_dot3(ld->vec, ld->vec));
     if (!(an > 0.0)) return lf_fail(S, SB_ERR_INPUT, "loads[%d]: end-moment axis is the zero vector", k);
     const double ax[3] = { ld->vec[0] / an, ld->vec[1] / an, ld->vec[2] / an };
     int n = 0;
@@ -83,20 +77,20 @@ static int moment_points(lf_state *S, lf_level *L, int k, lf_mq *out, int *tmp)
             const double *Xa = m->X + 3 * m->edge_v[2 * e], *Xb = m->X + 3 * m->edge_v[2 * e + 1];
             double ed[3];
             for (int c = 0; c < 3; c++) ed[c] = Xb[c] - Xa[c];
-            q->weight = sqrt(dot3(ed, ed));
+            q->weight = sqrt(sb_dot3(ed, ed));
             memcpy(q->axis, ax, sizeof ax);
             /* reference section tangent: the outward in-plane normal of the edge, t x N */
             double N[3];
             for (int c = 0; c < 3; c++) ed[c] /= q->weight;
-            cross3(ed, L->tri[q->tri].ref.normal, N);
-            const double aN = dot3(N, ax);
+            sb_cross3(ed, L->tri[q->tri].ref.normal, N);
+            const double aN = sb_dot3(N, ax);
             double ub[3] = { N[0] - aN * ax[0], N[1] - aN * ax[1], N[2] - aN * ax[2] };
-            const double l = sqrt(dot3(ub, ub));
+            const double l = sqrt(sb_dot3(ub, ub));
             if (!(l > 1e-9))
                 return lf_fail(S, SB_ERR_INPUT, "loads[%d]: end-moment axis is parallel to the cross-edge tangent on \"%s\"",
                                k, pt->name);
             for (int c = 0; c < 3; c++) q->ub[c] = ub[c] / l;
-            cross3(q->axis, q->ub, q->e2);
+            sb_cross3(q->axis, q->ub, q->e2);
         }
     }
     return n;
@@ -205,15 +199,15 @@ int lf_mass(lf_state *S, lf_level *L, sb_matrix *M)
 static double edge_normal_angle(const lf_mq *q, const double u[3], const double e[3], double alpha, double *g9,
                                 double *ga, double *H9, double *Ha9, double *Haa)
 {
-    const double l = sqrt(dot3(e, e)), ca = cos(alpha), sa = sin(alpha);
+    const double l = sqrt(sb_dot3(e, e)), ca = cos(alpha), sa = sin(alpha);
     double gv[3], N[3];
-    cross3(e, u, gv);
+    sb_cross3(e, u, gv);
     for (int c = 0; c < 3; c++) {
         gv[c] /= l;
         N[c] = ca * u[c] + sa * gv[c];
     }
     const double *p = q->ub, *qq = q->e2;
-    const double X = dot3(p, N), Y = dot3(qq, N), r2 = X * X + Y * Y;
+    const double X = sb_dot3(p, N), Y = sb_dot3(qq, N), r2 = X * X + Y * Y;
     const double th = atan2(Y, X);
     if (!g9) return th;
     double om[3];
@@ -236,7 +230,7 @@ static double edge_normal_angle(const lf_mq *q, const double u[3], const double 
             g9[j] += om[i] * Ju[3 * i + j];
             g9[6 + j] += om[i] * Je[3 * i + j];
         }
-    *ga = dot3(om, Ja);
+    *ga = sb_dot3(om, Ja);
     if (!H9) return th;
     double Th[9];
     const double r4 = r2 * r2;
@@ -259,9 +253,9 @@ static double edge_normal_angle(const lf_mq *q, const double u[3], const double 
         for (int b = 0; b < 7; b++) K[a][b] = J[0][a] * TJ[0][b] + J[1][a] * TJ[1][b] + J[2][a] * TJ[2][b];
     /* omega . d2N through s = e.(u x omega)/l */
     double uxo[3], oxe[3];
-    cross3(u, om, uxo);
-    cross3(om, e, oxe);
-    const double E = dot3(e, uxo), s = E / l;
+    sb_cross3(u, om, uxo);
+    sb_cross3(om, e, oxe);
+    const double E = sb_dot3(e, uxo), s = E / l;
     double s_u[3], s_e[3], s_ue[9], s_ee[9];
     for (int c = 0; c < 3; c++) {
         s_u[c] = oxe[c] / l;
@@ -280,7 +274,7 @@ static double edge_normal_angle(const lf_mq *q, const double u[3], const double 
             K[3 + j][i] += sa * s_ue[3 * i + j];
             K[3 + i][3 + j] += sa * s_ee[3 * i + j];
         }
-    K[6][6] += -(ca * dot3(om, u) + sa * s);
+    K[6][6] += -(ca * sb_dot3(om, u) + sa * s);
     for (int c = 0; c < 3; c++) {
         const double au = ca * s_u[c] - sa * om[c], ae = ca * s_e[c];
         K[6][c] += au; K[c][6] += au;
@@ -315,7 +309,7 @@ double lf_moment_energy(lf_state *S, lf_level *L, int t, const double *qe, doubl
                 a1[c] = qe[3 + c] - qe[c];
                 a2[c] = qe[6 + c] - qe[c];
             }
-            cross3(a1, a2, u);
+            sb_cross3(a1, a2, u);
         }
         /* the triangle runs the edge in the edge's own orientation (it is edge_t[0]): sigma = +1 */
         const int dphi = S->edge_dofs ? 18 + q->slot : -1;
@@ -363,20 +357,20 @@ void lf_moment_rebranch(lf_state *S, lf_level *L, const double *x)
             a1[c] = qe[3 + c] - qe[c];
             a2[c] = qe[6 + c] - qe[c];
         }
-        cross3(a1, a2, u);
+        sb_cross3(a1, a2, u);
         /* the edge normal N (see lf_moment_energy) */
         const int sa = (q->slot + 1) % 3, sb = (q->slot + 2) % 3;
         const double alpha = (S->edge_dofs ? qe[18 + q->slot] : 0.0) + 0.5 * M_PI;
         double e[3], g[3];
         for (int c = 0; c < 3; c++) e[c] = qe[3 * sb + c] - qe[3 * sa + c];
-        cross3(e, u, g);
-        const double l = sqrt(dot3(e, e));
+        sb_cross3(e, u, g);
+        const double l = sqrt(sb_dot3(e, e));
         for (int c = 0; c < 3; c++) u[c] = cos(alpha) * u[c] + sin(alpha) * g[c] / l;
-        const double X = dot3(q->ub, u), Y = dot3(q->e2, u), r = sqrt(X * X + Y * Y);
+        const double X = sb_dot3(q->ub, u), Y = sb_dot3(q->e2, u), r = sqrt(X * X + Y * Y);
         if (!(r > 0.0) || !isfinite(r)) continue;
         const double th = q->theta_b + atan2(Y, X);
         for (int c = 0; c < 3; c++) q->ub[c] = (X * q->ub[c] + Y * q->e2[c]) / r;
-        cross3(q->axis, q->ub, q->e2);
+        sb_cross3(q->axis, q->ub, q->e2);
         q->theta_b = th;
     }
 }

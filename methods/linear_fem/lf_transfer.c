@@ -15,6 +15,7 @@
  * Restriction R = I^T.  Projection P = injection: coarse vertices are fine
  * vertices with the same index, a coarse director is read from the first half
  * of its edge; so P I = id. */
+#include "sb_vec3.h"
 #include "lf.h"
 #include "sb_galerkin.h"
 
@@ -22,22 +23,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static inline void cross3(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* outward in-plane unit normal of the side running Xa -> Xb of a triangle with unit normal N */
 static void side_normal(const double *Xa, const double *Xb, const double *N, double m[3])
 {
     double t[3];
     for (int c = 0; c < 3; c++) t[c] = Xb[c] - Xa[c];
-    const double l = sqrt(dot3(t, t));
+    const double l = sqrt(sb_dot3(t, t));
     for (int c = 0; c < 3; c++) t[c] /= l;
-    cross3(t, N, m);
+    sb_cross3(t, N, m);
 }
 
 int lf_transfer_build(lf_state *S, int l)
@@ -85,7 +79,7 @@ int lf_transfer_build(lf_state *S, int l)
                     double mj[3];
                     side_normal(mc->X + 3 * T->v[(j + 1) % 3], mc->X + 3 * T->v[(j + 2) % 3], T->ref.normal, mj);
                     F->p_col[nz] = 3 * C->nv + T->e[j];
-                    F->p_w[nz++] = 0.5 * T->sigma[j] * dot3(mj, mfv);
+                    F->p_w[nz++] = 0.5 * T->sigma[j] * sb_dot3(mj, mfv);
                 }
             }
             F->p_ptr[row + 1] = nz;
