@@ -11,35 +11,21 @@
  * are the case's; a later repeat that differs makes the case "changed"
  * (not reproducible). */
 #include "sb_regress_int.h"
+#include "sb_study_int.h"
 #include "sb_run.h"
 #include "sb_sysinfo.h"
 #include "sb_gsl.h"
 #include "sb_record.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-static int mkdirs_for(const char *file)
-{
-    char tmp[1200];
-    snprintf(tmp, sizeof tmp, "%s", file);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    return 0;
-}
 
 /* the case id: the record path under the records directory */
 static const char *case_id(const sb_study *st, const sb_plan_run *r)
@@ -83,28 +69,13 @@ typedef struct slot {
     sb_plan_run r;
 } slot;
 
+/* one timed run in its own process: the sweep's child (its log in OUT.log,
+ * stdout discarded, killed with its parent), after the case's earlier
+ * outputs are removed so that the run is made, not skipped */
 static pid_t start(const sb_study *st, slot *s, FILE *err)
 {
-    char lp[1200];
-    snprintf(lp, sizeof lp, "%s.log", s->r.out);
     remove_outputs(s->r.out);
-    if (mkdirs_for(lp)) {
-        fprintf(err, "shellbench regress: cannot create the directory of %s: %s\n", lp, strerror(errno));
-        return -1;
-    }
-    fflush(NULL);
-    pid_t parent = getpid();
-    pid_t pid = fork();
-    if (pid != 0) return pid;
-    /* the run dies with the regression that started it (no orphans timing themselves) */
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(SB_EXIT_INTERNAL);
-    FILE *log = fopen(lp, "w");
-    int devnull = open("/dev/null", O_WRONLY);
-    if (devnull >= 0) dup2(devnull, STDOUT_FILENO);
-    int code = sb_study_run_one(st, &s->r, log ? log : stderr);
-    if (log) fclose(log);
-    _exit(code);
+    return sb_study_start_child(st, &s->r, err);
 }
 
 static void first_log_line(const char *out, char *buf, size_t len)
