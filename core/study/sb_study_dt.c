@@ -419,30 +419,7 @@ int sb_study_dt_report(const sb_study *st, const sb_study_report_options *o, FIL
         refused += rc == SB_FIG_REFUSED;
         refused += dt_thumbnail(st, &plan, i, dir, md, err);
     }
-    int bad = ferror(md);
-    if (fclose(md) || bad) {
-        fprintf(err, "shellbench report: cannot write %s\n", path);
-        unlink(tmp);
-        sb_plan_free(&plan);
-        return SB_EXIT_INTERNAL;
-    }
-    if (sb_study_output_ok(path, "report", msg, sizeof msg)) {   /* again: it may have changed meanwhile */
-        fprintf(err, "shellbench report: %s\n", msg);
-        unlink(tmp);
-        sb_plan_free(&plan);
-        return SB_EXIT_INPUT;
-    }
-    if (rename(tmp, path)) {
-        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
-        unlink(tmp);
-        sb_plan_free(&plan);
-        return SB_EXIT_INTERNAL;
-    }
-    fprintf(err, "shellbench report: %s\n", path);
+    int code = sb_study_commit_report(md, tmp, path, refused, err);
     sb_plan_free(&plan);
-    if (refused) {
-        fprintf(err, "shellbench report: %d output path%s refused (above): exit 2\n", refused, refused > 1 ? "s" : "");
-        return SB_EXIT_INPUT;
-    }
-    return 0;
+    return code;
 }

@@ -37,6 +37,12 @@ int sb_study_output_ok(const char *path, const char *what, char *err, size_t err
 /* the temporary file a report is written to before its rename: created
  * anew (O_EXCL | O_NOFOLLOW, after removing whatever was at the path) */
 FILE *sb_study_open_tmp(const char *tmp);
+/* Close a report written to tmp (opened by sb_study_open_tmp) and rename it
+ * onto path after checking path again (it may have changed meanwhile);
+ * `refused` counts the report's refused figure and picture paths.  Says what
+ * happened on err and returns the exit code: 0, SB_EXIT_INPUT (a refused
+ * path) or SB_EXIT_INTERNAL (a failed write; tmp removed). */
+int sb_study_commit_report(FILE *md, const char *tmp, const char *path, int refused, FILE *err);
 
 /* A picture of a record's final state (`shellbench render` at
  * SB_THUMB_W x SB_THUMB_H, SB_THUMB_SPP samples per pixel): 0, -1 (the

@@ -458,30 +458,7 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
     related(&R);
     fprintf(R.md, "## How to read this report\n\nSee docs/study.md: the study file, the reference policy per scene, how the "
                   "cost to reach a target is interpolated, and how to read the diagrams, profiles and the selection table.\n");
-    int bad = ferror(R.md);
-    if (fclose(R.md) || bad) {
-        fprintf(err, "shellbench report: cannot write %s\n", path);
-        unlink(tmp);
-        sb_study_data_free(&d);
-        return SB_EXIT_INTERNAL;
-    }
-    if (sb_study_output_ok(path, "report", why, sizeof why)) {   /* again: it may have changed meanwhile */
-        fprintf(err, "shellbench report: %s\n", why);
-        unlink(tmp);
-        sb_study_data_free(&d);
-        return SB_EXIT_INPUT;
-    }
-    if (rename(tmp, path)) {
-        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
-        unlink(tmp);
-        sb_study_data_free(&d);
-        return SB_EXIT_INTERNAL;
-    }
-    fprintf(err, "shellbench report: %s\n", path);
+    int code = sb_study_commit_report(R.md, tmp, path, R.refused, err);
     sb_study_data_free(&d);
-    if (R.refused) {
-        fprintf(err, "shellbench report: %d output path%s refused (above): exit 2\n", R.refused, R.refused > 1 ? "s" : "");
-        return SB_EXIT_INPUT;
-    }
-    return 0;
+    return code;
 }

@@ -6,8 +6,11 @@
 #include "sb_study_fig.h"
 #include "sb_output.h"
 #include "sb_render.h"
+#include "sb_run.h"
 
+#include <errno.h>
 #include <fcntl.h>
+#include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -35,6 +38,33 @@ FILE *sb_study_open_tmp(const char *tmp)
     FILE *f = fdopen(fd, "w");
     if (!f) close(fd);
     return f;
+}
+
+int sb_study_commit_report(FILE *md, const char *tmp, const char *path, int refused, FILE *err)
+{
+    char msg[1400];
+    int bad = ferror(md);
+    if (fclose(md) || bad) {
+        fprintf(err, "shellbench report: cannot write %s\n", path);
+        unlink(tmp);
+        return SB_EXIT_INTERNAL;
+    }
+    if (sb_study_output_ok(path, "report", msg, sizeof msg)) {
+        fprintf(err, "shellbench report: %s\n", msg);
+        unlink(tmp);
+        return SB_EXIT_INPUT;
+    }
+    if (rename(tmp, path)) {
+        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
+        unlink(tmp);
+        return SB_EXIT_INTERNAL;
+    }
+    fprintf(err, "shellbench report: %s\n", path);
+    if (refused) {
+        fprintf(err, "shellbench report: %d output path%s refused (above): exit 2\n", refused, refused > 1 ? "s" : "");
+        return SB_EXIT_INPUT;
+    }
+    return 0;
 }
 
 int sb_study_thumbnail(const char *record, const char *png, char *err, size_t errlen)
