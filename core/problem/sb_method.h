@@ -22,6 +22,7 @@ struct sb_context;
 struct sb_csr;
 struct sb_surface;
 struct sb_contact_points;
+struct sb_impulse_stats;
 
 enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
@@ -160,6 +161,16 @@ typedef struct sb_method_type {
      * cp starts zeroed.  NULL: the method cannot run scenes with obstacles
      * (refused at set-up). */
     int  (*contact_points)(void *state, int level, int per_side, struct sb_contact_points *cp);
+    /* optional (contact.model = "impulse", issue 25): the paper's own
+     * collision response after an accepted step of a dynamic scene.  x0 is
+     * the state at t_n, x1 the step's result at t_{n+1} (finest level, n_dofs
+     * of the last level); the method corrects x1 in place so that its surface
+     * moves from x0 to x1 without passing through an obstacle (or itself,
+     * with contact.self); the run's velocity (x1 - x0)/dt follows.  Counts
+     * into *st (core/contact/sb_impulse.h).  NULL: the method cannot run
+     * contact.model = "impulse" (refused at set-up with a sentence). */
+    int  (*impulse_response)(void *state, const struct sb_scene *scene, double dt, double t1, const double *x0,
+                             double *x1, struct sb_impulse_stats *st);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

@@ -237,7 +237,15 @@ typedef struct sb_contact_spec {
     double eps_v;            /* friction smoothing velocity (m/s), IPC's epsilon_v */
     int samples;             /* sample points per element side (smooth methods) */
     double filter;           /* fraction of the time of impact a step may take, (0, 1) */
+    int model;               /* SB_CONTACT_BARRIER (default) or SB_CONTACT_IMPULSE */
+    int self;                /* 1: self-contact too ("self": true) */
 } sb_contact_spec;
+
+/* contact.model (docs/contact.md): "barrier" = the IPC barrier in Phi for every
+ * method; "impulse" = the papers' own post-step collision response (Bridson et
+ * al. 2002 / Bender & Deul §6 for triangle methods, BHEM §5.2/§6.2 for bhem),
+ * through the method op impulse_response */
+enum { SB_CONTACT_BARRIER = 0, SB_CONTACT_IMPULSE = 1 };
 
 typedef struct sb_scene {
     char name[SB_NAME_LEN];

@@ -146,9 +146,30 @@ static int parse_obstacle(sbj_ctx *c, const json_t *o, sb_scene *sc, size_t i)
     return parse_motion(c, o, ob);
 }
 
+/* contact.model ("barrier" | "impulse") and contact.self (boolean) */
+static int parse_model(sbj_ctx *c, const json_t *o, sb_contact_spec *cs)
+{
+    const json_t *m = json_object_get(o, "model");
+    if (m) {
+        const char *s = json_is_string(m) ? json_string_value(m) : NULL;
+        if (s && !strcmp(s, "barrier"))
+            cs->model = SB_CONTACT_BARRIER;
+        else if (s && !strcmp(s, "impulse"))
+            cs->model = SB_CONTACT_IMPULSE;
+        else
+            return sbj_fail(c, "model", 0, "must be \"barrier\" or \"impulse\"");
+    }
+    const json_t *se = json_object_get(o, "self");
+    if (se) {
+        if (!json_is_boolean(se)) return sbj_fail(c, "self", 0, "must be true or false");
+        cs->self = json_is_true(se);
+    }
+    return SB_OK;
+}
+
 static int parse_contact(sbj_ctx *c, const json_t *root, sb_scene *sc)
 {
-    static const char *const keys[] = { "dhat", "kappa", "eps_v", "samples", "filter", NULL };
+    static const char *const keys[] = { "dhat", "kappa", "eps_v", "samples", "filter", "model", "self", NULL };
     json_t *o;
     int r = sbj_get_object(c, root, "contact", 0, &o);
     if (r) return r;
@@ -162,6 +183,8 @@ static int parse_contact(sbj_ctx *c, const json_t *root, sb_scene *sc)
     cs->eps_v = 1e-3;
     cs->samples = 3;
     cs->filter = 0.9;
+    cs->model = SB_CONTACT_BARRIER;
+    cs->self = 0;
     if (o && sc->n_obstacles == 0)
         return sbj_fail(c, "contact", 1, "a \"contact\" section needs \"obstacles\"");
     if (o) {
@@ -177,6 +200,7 @@ static int parse_contact(sbj_ctx *c, const json_t *root, sb_scene *sc)
             if (!(cs->filter > 0 && cs->filter < 1))
                 r = sbj_fail(c, "filter", 0, "must be a fraction in (0, 1), got %g", cs->filter);
         }
+        if (!r) r = parse_model(c, o, cs);
         sbj_pop(c, mark);
         if (r) return r;
     }
