@@ -78,6 +78,15 @@ static int contact_create(sb_problem *p)
     if (!p->mt->contact_points)
         return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s has obstacles but method %s provides no contact "
                         "sample points", sc->name, p->mt->name);
+    if (sc->contact.model == SB_CONTACT_IMPULSE && !p->mt->impulse_response)
+        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for contact.model \"impulse\" but method %s "
+                        "has no impulse-based collision response", sc->name, p->mt->name);
+    if (sc->contact.model == SB_CONTACT_IMPULSE)
+        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s: contact.model \"impulse\" is not wired into the "
+                        "run loop in this build", sc->name);
+    if (sc->contact.self)
+        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for self-contact (contact.self), which this "
+                        "build does not implement", sc->name);
     for (int l = 0; l < p->nl; l++) {
         sb_contact_points cp;
         memset(&cp, 0, sizeof cp);
