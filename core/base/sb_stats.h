@@ -65,6 +65,8 @@ typedef struct sb_step_record {
     double force_scale;  /* run.stop=scaled: the step's force scale (sb_solve.h), NaN otherwise */
     double gstop;        /* the gradient threshold the step's stopping rule used */
     int dofs;            /* dofs of the finest level in this step (adaptive meshes change it) */
+    int triangles;       /* triangles of the method's own surface in this step (triangle methods:
+                            linear_fem, adaptive_sqrt3); 0 for methods whose surface is not triangles */
 } sb_step_record;
 
 typedef struct sb_stats {

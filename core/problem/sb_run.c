@@ -18,6 +18,7 @@
  * statistics come from the core wrappers (sb_problem.c). */
 #include "sb_run_state.h"
 #include "sb_sysinfo.h"
+#include "sb_surface.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -39,6 +40,7 @@ static void run_cleanup(run_state *R)
     free(R->rec.sample_st); free(R->rec.sample_ref); free(R->rec.sample_pos); free(R->rec.tris);
     free(R->rec.checks);
     free(R->rec.sample_traj);
+    sb_mesh_series_free(&R->mesh_series);
     free(R->probe_names);
     if (R->scene_loaded) sb_scene_free(&R->scene);
     sb_context_free(&R->ctx);
@@ -216,6 +218,20 @@ static int prepare_run(run_state *R, int levels)
         rec->n_samples = 0;
         rec->n_tris = 0;
     }
+    /* the method's own triangles (linear_fem, adaptive_sqrt3): counted every
+     * step, and kept per step when the run writes a record (rec.mesh) */
+    if (R->mt->surface) {
+        sb_surface s0;
+        memset(&s0, 0, sizeof s0);
+        R->tri_surface = R->mt->surface(R->ms, F, R->x, &s0) == SB_OK && s0.n_patches == 0 && s0.n_tris > 0 && s0.vert;
+        sb_surface_free(&s0);
+        if (R->tri_surface && R->partial_path[0]) rec->mesh = &R->mesh_series;
+        int nt0;
+        if (sb_run_record_mesh(R, 0, &nt0)) {
+            fprintf(err, "shellbench: method %s cannot give its triangle surface on scene %s\n", R->mt->name, sc->name);
+            return SB_EXIT_INTERNAL;
+        }
+    }
     /* run.perturb: the start, perturbed (the reference state, probes and
      * sample grid above are the unperturbed ones) */
     perturb_start(n, R->x, sb_param(ps, "run.perturb"), (unsigned long long)sb_param_int(ps, "run.seed"));
@@ -309,8 +325,13 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         double tr0 = sb_now();
         /* a converged step must also be a physical state (finite, strains within run.strain_max) */
         reason = sb_run_judge_step(R, reason);
+        int n_tris = 0;
+        if (sb_run_record_mesh(R, step, &n_tris)) {
+            fprintf(err, "shellbench: step %d: method %s cannot give its triangle surface\n", step, R->mt->name);
+            return SB_EXIT_INTERNAL;
+        }
         sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0,
-                              o.force_scale, o.gstop, n };
+                              o.force_scale, o.gstop, n, n_tris };
         sr.seconds = tr0 - t0;
         sb_stats_push_step(stats, &sr);
         rec->steps_done = step;

@@ -24,6 +24,7 @@ void sb_run_remove_partial(run_state *R)
     unlink(R->partial_path);
     if (sb_record_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
     if (sb_record_steps_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
+    if (sb_record_mesh_xdmf_path(R->partial_path, x, sizeof x) == SB_OK) unlink(x);
 }
 
 /* Write the record so far (steps done, the iteration history including the

@@ -30,15 +30,18 @@ static int mkdir_p(const char *path)
 /* Every file the run may write beside the record must be new or regular. */
 static int check_paths(run_state *R, const char *out_path)
 {
-    char xdmf[1200], pxdmf[1300], sxdmf[1200], psxdmf[1300], msg[1400];
-    const char *paths[6] = { out_path, NULL, NULL, R->partial_path, NULL, NULL };
-    const char *what[6] = { "record", "XDMF sidecar", "XDMF time-series sidecar",
-                            "checkpoint", "XDMF sidecar", "XDMF time-series sidecar" };
+    char xdmf[1200], pxdmf[1300], sxdmf[1200], psxdmf[1300], mxdmf[1200], pmxdmf[1300], msg[1400];
+    const char *paths[8] = { out_path, NULL, NULL, R->partial_path, NULL, NULL, NULL, NULL };
+    const char *what[8] = { "record", "XDMF sidecar", "XDMF time-series sidecar",
+                            "checkpoint", "XDMF sidecar", "XDMF time-series sidecar",
+                            "XDMF mesh time-series sidecar", "XDMF mesh time-series sidecar" };
     if (sb_record_xdmf_path(out_path, xdmf, sizeof xdmf) == SB_OK) paths[1] = xdmf;
     if (sb_record_steps_xdmf_path(out_path, sxdmf, sizeof sxdmf) == SB_OK) paths[2] = sxdmf;
     if (sb_record_xdmf_path(R->partial_path, pxdmf, sizeof pxdmf) == SB_OK) paths[4] = pxdmf;
     if (sb_record_steps_xdmf_path(R->partial_path, psxdmf, sizeof psxdmf) == SB_OK) paths[5] = psxdmf;
-    for (int i = 0; i < 6; i++) {
+    if (sb_record_mesh_xdmf_path(out_path, mxdmf, sizeof mxdmf) == SB_OK) paths[6] = mxdmf;
+    if (sb_record_mesh_xdmf_path(R->partial_path, pmxdmf, sizeof pmxdmf) == SB_OK) paths[7] = pmxdmf;
+    for (int i = 0; i < 8; i++) {
         sb_output_kind kind;
         if (!paths[i]) continue;
         if (sb_output_check(paths[i], what[i], &kind, msg, sizeof msg)) {

@@ -4,6 +4,7 @@
 #include "sb_run_state.h"
 #include "sb_geometry.h"
 #include "sb_reference.h"
+#include "sb_surface.h"
 
 #include <jansson.h>
 #include <math.h>
@@ -92,6 +93,34 @@ int sb_run_record_probes(run_state *R, int step_slot)
     return R->mt->eval_points(R->ms, F, R->x, sc->n_probes, st, R->rec.probe_traj + (size_t)step_slot * sc->n_probes * 3);
 }
 
+int sb_run_record_mesh(run_state *R, int step_slot, int *n_tris)
+{
+    *n_tris = 0;
+    if (!R->tri_surface) return SB_OK;
+    sb_surface s;
+    memset(&s, 0, sizeof s);
+    const int F = sb_problem_finest(R->prob);
+    int rc = R->mt->surface(R->ms, F, R->x, &s);
+    if (!rc && (s.n_patches > 0 || !s.vert || !s.tri)) rc = SB_ERR_INTERNAL;
+    if (!rc) *n_tris = s.n_tris;
+    sb_mesh_series *ms = &R->mesh_series;
+    if (!rc && R->rec.mesh && ms->points + s.n_verts > ((long)1 << 22)) {
+        /* a bound like the sample grid's: the series stops being kept */
+        fprintf(R->err, "shellbench: note: the per-step mesh of %s passed 2^22 stored vertices at step %d: "
+                            "not recorded (the sample-grid time series is)\n", R->mt->name, step_slot);
+        sb_mesh_series_free(ms);
+        R->rec.mesh = NULL;
+    }
+    if (!rc && R->rec.mesh) {
+        double *ref = s.vert_ref;
+        if (!ref && !(ref = calloc((size_t)(s.n_verts ? s.n_verts : 1) * 3, sizeof *ref))) rc = SB_ERR_NOMEM;
+        if (!rc) rc = sb_mesh_series_put(ms, step_slot, s.n_verts, s.n_tris, s.tri, ref, s.vert_st, s.vert);
+        if (ref != s.vert_ref) free(ref);
+    }
+    sb_surface_free(&s);
+    return rc;
+}
+
 static void json_set_num(json_t *o, const char *k, double v)
 {
     json_object_set_new(o, k, isfinite(v) ? json_real(v) : json_null());
@@ -107,6 +136,8 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     json_object_set_new(o, "method_info", json_string(R->rec.method_info));
     if (R->rec.solver_info[0]) json_object_set_new(o, "solver_info", json_string(R->rec.solver_info));
     json_object_set_new(o, "dofs", json_integer(R->rec.n_dofs));
+    /* triangle methods: the triangles of the last step's mesh (per step: /history/steps/triangles) */
+    if (R->tri_surface && st->n_steps) json_object_set_new(o, "triangles", json_integer(st->steps[st->n_steps - 1].triangles));
     json_object_set_new(o, "levels", json_integer(R->rec.levels));
     json_object_set_new(o, "res", json_integer(R->rec.res));
     json_object_set_new(o, "res_t", json_integer(R->rec.res_t > 0 ? R->rec.res_t : R->rec.res));

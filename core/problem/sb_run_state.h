@@ -52,7 +52,12 @@ typedef struct run_state {
      * process's repeat of a symbolic factorization done before is set-up
      * (sb_run_fold_resume_setup) */
     int resumed;
+    int resume_folded;                 /* the resumed process's repeated analysis moved to set-up (once) */
     sb_event_stat analyze_at_resume[SB_MAX_LEVELS];
+    /* the method's own triangles per step (methods whose surface op gives
+     * triangles; sb_run_record_mesh): rec.mesh points here while kept */
+    int tri_surface;
+    sb_mesh_series mesh_series;
 } run_state;
 
 
@@ -79,6 +84,12 @@ void   sb_run_step_info(const sb_scene *sc, int step, sb_step_info *si);
 double sb_run_probe_rel_error(const sb_probe *p, const double u[3]);
 /* Probe positions of the current state into trajectory slot `step_slot`. */
 int    sb_run_record_probes(run_state *R, int step_slot);
+/* The method's triangle surface of the current state into row `step_slot`
+ * of the mesh series (rec.mesh), and its triangle count into *n_tris (0
+ * for a method without a triangle surface).  The series is dropped, with a
+ * note, once it would exceed 2^22 stored positions (about 100 MB).
+ * SB_OK, or an error status (the surface op failed, out of memory). */
+int    sb_run_record_mesh(run_state *R, int step_slot, int *n_tris);
 /* The JSON summary (caller frees). */
 char  *sb_run_summary_json(run_state *R, const char *out_path);
 /* Error against the scene's reference (DESIGN.md "Accuracy"). */

@@ -52,6 +52,45 @@ typedef struct sb_check_row {
     int passed;                /* rel_error <= tol */
 } sb_check_row;
 
+/* The method's own triangle surface at every step (sb_record_mesh.c), for
+ * methods whose `surface` op gives triangles (linear_fem, adaptive_sqrt3):
+ * each topology version (triangles, reference positions, grid parameters)
+ * is stored once; every step row holds the vertex positions on its
+ * version.  Written as /steps/mesh and played by RUN.mesh.xdmf, a
+ * temporal collection whose grids change their point and cell counts with
+ * the mesh (docs/recorded_figures.md). */
+typedef struct sb_mesh_topo {
+    int nv, nt;
+    int *tri;                  /* 3 nt, into the version's vertices */
+    double *ref;               /* 3 nv: reference positions (m) */
+    double *st;                /* 2 nv: grid parameters (s,t) */
+} sb_mesh_topo;
+typedef struct sb_mesh_series {
+    int n_topo, cap_topo;
+    sb_mesh_topo *topo;
+    int rows, cap_rows;        /* rows 0 .. rows-1 filled: row k = after step k (0 = the start) */
+    int *row_topo;             /* the topology version of each row */
+    double **row_pos;          /* 3 nv of its version per row (m) */
+    long points;               /* positions stored so far */
+} sb_mesh_series;
+/* Row `row` (<= s->rows: appended, or a row replaced) of the surface
+ * (nv vertices, nt triangles): a new topology version when tri, ref or st
+ * differ from the last version's.  SB_OK or SB_ERR_NOMEM. */
+int  sb_mesh_series_put(sb_mesh_series *s, int row, int nv, int nt, const int *tri, const double *ref,
+                        const double *st, const double *pos);
+void sb_mesh_series_free(sb_mesh_series *s);
+/* Rows 0 .. rows-1 of /steps/mesh of the record PATH into s (s freed
+ * first); SB_ERR_INPUT with a sentence when it has none or too few rows. */
+int  sb_record_read_mesh_series(const char *path, int rows, sb_mesh_series *s, char *err, size_t errlen);
+/* 1 when the record PATH holds /steps/mesh (0: none, or unreadable) and
+ * *rows its rows */
+int  sb_record_has_mesh_series(const char *path, int *rows);
+/* The method's surface of row `step` of /steps/mesh: vertices (current,
+ * reference, st) and triangles into one sb_mesh_topo plus pos (3 nv);
+ * caller frees topo->tri/ref/st and *pos. */
+int  sb_record_read_step_mesh(const char *path, int step, sb_mesh_topo *topo, double **pos, char *err,
+                              size_t errlen);
+
 typedef struct sb_run {
     /* identity */
     char scene_name[SB_NAME_LEN];
@@ -96,6 +135,9 @@ typedef struct sb_run {
      * step k (row 0 = reference), rows 0..steps_done filled; NULL = not kept
      * (written as /steps/sample_pos/NNNNNN, played by the XDMF sidecar) */
     double *sample_traj;       /* (steps_planned + 1) * n_samples * 3 */
+    /* the method's own triangles at every step (NULL: a method without a
+     * triangle surface, or a series that outgrew its limit) */
+    sb_mesh_series *mesh;
     /* where the final state strains the material (methods with material_state) */
     int has_material;
     sb_material_state material;
@@ -171,9 +213,15 @@ int sb_record_xdmf_path(const char *h5path, char *buf, size_t len);
  * ".steps.xdmf" (appended otherwise); SB_OK or SB_ERR_INPUT. */
 int sb_record_steps_xdmf_path(const char *h5path, char *buf, size_t len);
 
+/* The mesh time-series sidecar: PATH with ".h5" replaced by ".mesh.xdmf"
+ * (appended otherwise); SB_OK or SB_ERR_INPUT. */
+int sb_record_mesh_xdmf_path(const char *h5path, char *buf, size_t len);
+
 /* Write atomically: to PATH.tmp.<pid>, then rename. Also writes PATH minus
  * ".h5" plus ".xdmf", and, when the run keeps its time series
- * (sample_traj), PATH minus ".h5" plus ".steps.xdmf" (removed otherwise).
+ * (sample_traj), PATH minus ".h5" plus ".steps.xdmf" (removed otherwise),
+ * and when it keeps its mesh series (mesh), PATH minus ".h5" plus
+ * ".mesh.xdmf" (removed otherwise).
  * Returns SB_OK or SB_ERR_IO with a message in err. */
 int sb_record_write(const sb_run *run, const char *path, char *err, size_t errlen);
 

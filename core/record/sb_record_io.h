@@ -27,6 +27,11 @@ int sb_record_write_xdmf(const sb_run *run, const char *xdmf_path, const char *h
 int sb_record_write_steps_xdmf(const sb_run *run, const char *path, const char *h5_name,
                                char *err, size_t errlen);
 
+/* The mesh time-series sidecar (RUN.mesh.xdmf) of a run that keeps its
+ * method's triangles (run->mesh).  SB_OK or SB_ERR_IO. */
+int sb_record_write_mesh_xdmf(const sb_run *run, const char *path, const char *h5_name,
+                              char *err, size_t errlen);
+
 /* ---- HDF5 writers (sb_record_h5w.c): 0, or -1 after noting the object ---- */
 typedef struct sb_h5w {
     char failed[160];      /* first object that could not be written */
@@ -60,6 +65,8 @@ extern const int sb_record_n_iter_cols, sb_record_n_step_cols;
 int   sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp);
 /* /steps: the sample grid of every step (sb_record_steps.c); 0 or -1. */
 int   sb_record_write_steps(sb_h5w *w, hid_t f, const sb_run *r);
+/* /steps/mesh: the method's triangles of every step (sb_record_mesh.c); 0 or -1. */
+int   sb_record_write_mesh(sb_h5w *w, hid_t f, const sb_run *r);
 /* The resume log as root attributes (every record). */
 int   sb_record_write_resume_log(sb_h5w *w, hid_t f, const sb_resume_log *log);
 

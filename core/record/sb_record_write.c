@@ -181,6 +181,7 @@ const sb_record_column sb_record_step_cols[] = {
     { "force_scale", offsetof(sb_step_record, force_scale), 0, "" },
     { "gstop", offsetof(sb_step_record, gstop), 0, "" },
     { "dofs", offsetof(sb_step_record, dofs), 1, "" },
+    { "triangles", offsetof(sb_step_record, triangles), 1, "" },
 };
 const int sb_record_n_step_cols = (int)(sizeof sb_record_step_cols / sizeof *sb_record_step_cols);
 
@@ -402,6 +403,7 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
     if (!bad) bad = write_final(w, f, run);
     if (!bad) bad = write_error(w, f, run);
     if (!bad) bad = sb_record_write_steps(w, f, run);
+    if (!bad) bad = sb_record_write_mesh(w, f, run);
     if (!bad) bad = sb_record_write_resume_log(w, f, &run->resumed);
     if (!bad && run->resume) bad = sb_record_write_resume(w, f, run->resume);
     if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = sb_h5w_fail(w, -1, "(flush)");
@@ -452,13 +454,15 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
 {
     int rc = validate(run, path, err, errlen);
     if (rc) return rc;
-    char tmp[4096], xpath[4096], xtmp[4096], spath[4096], stmp[4096];
+    char tmp[4096], xpath[4096], xtmp[4096], spath[4096], stmp[4096], mpath[4096], mtmp[4096];
     long pid = (long)getpid();
     if (snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, pid) >= (int)sizeof tmp ||
         sb_record_xdmf_path(path, xpath, sizeof xpath) != SB_OK ||
         snprintf(xtmp, sizeof xtmp, "%s.tmp.%ld", xpath, pid) >= (int)sizeof xtmp ||
         sb_record_steps_xdmf_path(path, spath, sizeof spath) != SB_OK ||
-        snprintf(stmp, sizeof stmp, "%s.tmp.%ld", spath, pid) >= (int)sizeof stmp) {
+        snprintf(stmp, sizeof stmp, "%s.tmp.%ld", spath, pid) >= (int)sizeof stmp ||
+        sb_record_mesh_xdmf_path(path, mpath, sizeof mpath) != SB_OK ||
+        snprintf(mtmp, sizeof mtmp, "%s.tmp.%ld", mpath, pid) >= (int)sizeof mtmp) {
         snprintf(err, errlen, "cannot record run: output path too long (%zu characters)", strlen(path));
         return SB_ERR_INPUT;
     }
@@ -467,7 +471,8 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
     sb_output_kind kind;
     if (sb_output_check(path, "record", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD ||
         sb_output_check(xpath, "XDMF sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD ||
-        sb_output_check(spath, "XDMF time-series sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD) {
+        sb_output_check(spath, "XDMF time-series sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD ||
+        sb_output_check(mpath, "XDMF mesh time-series sidecar", &kind, err, errlen) || kind == SB_OUTPUT_DISCARD) {
         if (kind == SB_OUTPUT_DISCARD) snprintf(err, errlen, "will not write record %s: the null device", path);
         return SB_ERR_INPUT;
     }
@@ -516,10 +521,14 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
     rc = sb_record_write_xdmf(run, xtmp, sb_record_basename(path), err, errlen);
     const int steps = run->sample_traj && run->n_samples > 0;
     if (!rc && steps) rc = sb_record_write_steps_xdmf(run, stmp, sb_record_basename(path), err, errlen);
+    const int mesh = run->mesh && run->mesh->rows > 0;
+    if (mesh) unlink(mtmp);
+    if (!rc && mesh) rc = sb_record_write_mesh_xdmf(run, mtmp, sb_record_basename(path), err, errlen);
     if (rc) {
         unlink(tmp);
         unlink(xtmp);
         if (steps) unlink(stmp);
+        if (mesh) unlink(mtmp);
         return rc;
     }
     /* The record first: a sidecar never points at a record that is not there. */
@@ -527,12 +536,16 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
         snprintf(err, errlen, "cannot write record %s: rename from %s failed: %s", path, tmp, strerror(errno));
         unlink(tmp);
         unlink(xtmp);
+        if (steps) unlink(stmp);
+        if (mesh) unlink(mtmp);
         return SB_ERR_IO;
     }
     if (rename(xtmp, xpath) != 0) {
         snprintf(err, errlen, "record %s written, but its XDMF sidecar %s could not be renamed into place: %s",
                  path, xpath, strerror(errno));
         unlink(xtmp);
+        if (steps) unlink(stmp);
+        if (mesh) unlink(mtmp);
         return SB_ERR_IO;
     }
     /* the time series; an older sidecar of a run that kept none would point at nothing */
@@ -540,6 +553,13 @@ int sb_record_write(const sb_run *run, const char *path, char *err, size_t errle
         snprintf(err, errlen, "record %s written, but its time-series sidecar %s could not be %s: %s", path, spath,
                  steps ? "renamed into place" : "removed", strerror(errno));
         if (steps) unlink(stmp);
+        if (mesh) unlink(mtmp);
+        return SB_ERR_IO;
+    }
+    if (mesh ? rename(mtmp, mpath) != 0 : (unlink(mpath) != 0 && errno != ENOENT)) {
+        snprintf(err, errlen, "record %s written, but its mesh time-series sidecar %s could not be %s: %s", path, mpath,
+                 mesh ? "renamed into place" : "removed", strerror(errno));
+        if (mesh) unlink(mtmp);
         return SB_ERR_IO;
     }
     sb_record_fsync_dir(path);

@@ -8,7 +8,9 @@
  * file next to it (referenced by its base name, so the pair can be moved
  * together).  When the record keeps the time series, a second sidecar
  * RUN.steps.xdmf holds a temporal collection of one grid per step
- * (/steps/sample_pos/NNNNNN, /steps/displacement/NNNNNN, times /steps/t):
+ * (/steps/sample_pos/NNNNNN, /steps/displacement/NNNNNN, times /steps/t)
+ * and, for methods with a triangle surface, RUN.mesh.xdmf the same of the
+ * method's own (possibly changing) triangles (/steps/mesh, sb_record_mesh.c):
  * a separate file because ParaView's Xdmf3 readers read no points from a
  * domain that mixes a temporal collection with uniform grids.  XDMF 3 format,
  * https://www.xdmf.org/index.php/XDMF_Model_and_Format.  `make check-paraview`
@@ -167,6 +169,46 @@ int sb_record_write_steps_xdmf(const sb_run *run, const char *path, const char *
         fprintf(f, "      </Geometry>\n");
         fprintf(f, "      <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n");
         data_item(f, h5, disp, n, 3, "Float", 8);
+        fprintf(f, "      </Attribute>\n    </Grid>\n");
+    }
+    fprintf(f, "    </Grid>\n  </Domain>\n</Xdmf>\n");
+    return close_fsync(f, path, err, errlen);
+}
+
+/* RUN.mesh.xdmf: the method's own triangles at every step (/steps/mesh,
+ * sb_record_mesh.c), one grid per step whose topology and reference are its
+ * version's datasets (stored once per version) and whose geometry is the
+ * step's positions: point and cell counts change with an adaptive mesh. */
+int sb_record_write_mesh_xdmf(const sb_run *run, const char *path, const char *h5, char *err, size_t errlen)
+{
+    const sb_mesh_series *s = run->mesh;
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        snprintf(err, errlen, "cannot create XDMF sidecar %s: %s", path, strerror(errno));
+        return SB_ERR_IO;
+    }
+    const int rows = s->rows < run->steps_done + 1 ? s->rows : run->steps_done + 1;
+    domain_open(f, run);
+    fprintf(f, "    <Grid Name=\"mesh\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+    for (int k = 0; k < rows; k++) {
+        double t = k;
+        if (k > 0 && run->stats && (size_t)k <= run->stats->n_steps && run->stats->steps[k - 1].step == k)
+            t = run->stats->steps[k - 1].t;
+        const int v = s->row_topo[k];
+        const sb_mesh_topo *tp = &s->topo[v];
+        char tri[64], ref[64], pos[48];
+        snprintf(tri, sizeof tri, "/steps/mesh/topology/%06d/triangles", v);
+        snprintf(ref, sizeof ref, "/steps/mesh/topology/%06d/reference", v);
+        snprintf(pos, sizeof pos, "/steps/mesh/pos/%06d", k);
+        fprintf(f, "    <Grid Name=\"step %d\" GridType=\"Uniform\">\n", k);
+        fprintf(f, "      <Time Value=\"%.17g\"/>\n", t);
+        fprintf(f, "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n", tp->nt);
+        data_item(f, h5, tri, tp->nt, 3, "Int", 4);
+        fprintf(f, "      </Topology>\n      <Geometry GeometryType=\"XYZ\">\n");
+        data_item(f, h5, pos, tp->nv, 3, "Float", 8);
+        fprintf(f, "      </Geometry>\n");
+        fprintf(f, "      <Attribute Name=\"reference\" AttributeType=\"Vector\" Center=\"Node\">\n");
+        data_item(f, h5, ref, tp->nv, 3, "Float", 8);
         fprintf(f, "      </Attribute>\n    </Grid>\n");
     }
     fprintf(f, "    </Grid>\n  </Domain>\n</Xdmf>\n");
