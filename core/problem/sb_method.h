@@ -17,6 +17,7 @@
 #include "sb_params.h"
 #include "sb_sparse.h"
 #include "sb_material_state.h"
+#include "sb_blob.h"
 
 struct sb_context;
 struct sb_csr;
@@ -155,6 +156,19 @@ typedef struct sb_method_type {
      * re-allocates the solver (sb_problem_rebuild); counted as event adapt. */
     int  (*adapt)(void *state, const double *x, const double *v, int *changed);
     int  (*adapt_state)(void *state, double *x, double *v);
+    /* optional, adaptive meshes: what the method's current discretization
+     * is (its mesh and whatever later adaptations need) as a blob of
+     * integers and doubles for checkpoints (b starts zeroed; the caller
+     * frees it with sb_blob_free), and restore_mesh, which rebuilds that
+     * discretization from a blob of the same run before --resume continues
+     * (afterwards the core re-queries dofs, pattern, Dirichlet set and mass
+     * as after an adaptation).  A restored method must adapt later exactly
+     * as the saved one would have (a resumed run equals an uninterrupted
+     * one bit for bit).  SB_ERR_INPUT with a sentence for a blob it cannot
+     * use.  Without them an adaptive run refuses --resume and
+     * --stop-after-steps and writes no checkpoints. */
+    int  (*save_mesh)(const void *state, sb_blob *b);
+    int  (*restore_mesh)(void *state, const sb_blob *b);
     /* optional: the contact sample points of `level` (sb_contact_points.h,
      * docs/contact.md) — smooth methods a grid of per_side x per_side points
      * per element through their basis, triangle methods their vertices;

@@ -6,10 +6,13 @@
  * solver.  The time spent is event `adapt`; each step records its dofs.
  * A method may declare method.adaptive too: its runs with adaptive = 0 keep
  * their mesh (no adapt calls, resumable).
- * Resuming an adaptive run is not supported yet (the checkpoint does not
- * carry the mesh): --stop-after-steps and --resume from a checkpoint are
- * refused (--resume with no checkpoint starts at step 1, as study sweeps
- * ask), and run.checkpoint is ignored, with a sentence. */
+ * Checkpoints of an adaptive run carry the method's mesh at the resume
+ * point (save_mesh, written as /resume/mesh_*); --resume restores it
+ * (restore_mesh) and follows it as after an adaptation, so a resumed run
+ * equals an uninterrupted one bit for bit (tests/test_a3_resume.c).  A
+ * method without save_mesh / restore_mesh refuses --stop-after-steps and
+ * --resume from a checkpoint (--resume with no checkpoint starts at step
+ * 1, as study sweeps ask) and writes no checkpoints, with a sentence. */
 #include "sb_run_state.h"
 
 #include <stdlib.h>
@@ -29,21 +32,28 @@ int sb_run_adapt_every(const run_state *R)
     return every;
 }
 
+int sb_run_adapt_resumable(const run_state *R)
+{
+    return R->mt && R->mt->save_mesh && R->mt->restore_mesh;
+}
+
 int sb_run_adapt_check(run_state *R, const sb_run_request *req)
 {
-    if (sb_run_adapt_every(R) <= 0) return -1;
-    /* --resume with nothing to resume starts at step 1 (a study sweep asks
-     * every run to resume), and a finished record is "nothing to do" as for
-     * every method; only a checkpoint to continue from is refused */
+    if (sb_run_adapt_every(R) <= 0 || sb_run_adapt_resumable(R)) return -1;
+    /* a method that cannot save its mesh: --resume with nothing to resume
+     * starts at step 1 (a study sweep asks every run to resume), and a
+     * finished record is "nothing to do" as for every method; only a
+     * checkpoint to continue from is refused */
     const int has_checkpoint = req->resume && R->partial_path[0] && access(R->partial_path, F_OK) == 0;
     if (has_checkpoint || req->stop_after_steps > 0) {
-        fprintf(R->err, "shellbench: method %s adapts its mesh during the run (method.adapt_every = %d), and resuming "
-                "an adaptive run is not supported yet: %s\n", R->mt->name, sb_run_adapt_every(R),
+        fprintf(R->err, "shellbench: method %s adapts its mesh during the run (method.adapt_every = %d) and cannot "
+                "save it in a checkpoint (no save_mesh / restore_mesh), so its runs cannot be resumed: %s\n",
+                R->mt->name, sb_run_adapt_every(R),
                 has_checkpoint ? "remove its checkpoint or run it without --resume" : "run it without --stop-after-steps");
         return SB_EXIT_INPUT;
     }
     if (R->checkpoints_on && !req->quiet)
-        fprintf(R->err, "shellbench: note: no checkpoints for the adaptive method %s (resume is not supported yet)\n",
+        fprintf(R->err, "shellbench: note: no checkpoints for the adaptive method %s (it cannot save its mesh)\n",
                 R->mt->name);
     R->checkpoints_on = 0;
     return -1;
@@ -57,6 +67,30 @@ static int grow(double **p, int n)
     return SB_OK;
 }
 
+int sb_run_adapt_follow(run_state *R, int take_state)
+{
+    const int F = sb_problem_finest(R->prob);
+    const int n = R->mt->n_dofs(R->ms, F);
+    int rc = n > 0 ? SB_OK : SB_ERR_INTERNAL;
+    if (!rc && (grow(&R->x, n) || grow(&R->xn, n) || grow(&R->v, n) || grow(&R->xref, n) || grow(&R->bp.x, n) ||
+                grow(&R->bp.v, n)))
+        rc = SB_ERR_NOMEM;
+    if (!rc && take_state) rc = R->mt->adapt_state(R->ms, R->x, R->v);
+    if (!rc) rc = R->mt->initial(R->ms, F, R->xref);
+    if (!rc) rc = sb_problem_rebuild(R->prob);
+    if (!rc) {
+        /* the solver's vectors have the old size: allocated anew */
+        R->stype->free(R->ss);
+        memset(R->ss, 0, R->stype->state_size);
+        rc = R->stype->alloc(R->ss, R->prob, &R->ctx.params);
+    }
+    if (!rc) {
+        R->rec.n_x = R->rec.n_dofs = n;   /* the record's dofs: the final mesh's (per step: history) */
+        R->rec.x_final = R->x;            /* re-allocated above */
+    }
+    return rc;
+}
+
 int sb_run_adapt(run_state *R, int step, int *n_out)
 {
     const int every = sb_run_adapt_every(R);
@@ -66,24 +100,9 @@ int sb_run_adapt(run_state *R, int step, int *n_out)
     double t0 = sb_now();
     int changed = 0, rc = R->mt->adapt(R->ms, R->x, R->v, &changed);
     if (rc == SB_OK && changed) {
-        const int n = R->mt->n_dofs(R->ms, F);
-        if (n <= 0) rc = SB_ERR_INTERNAL;
-        if (!rc && (grow(&R->x, n) || grow(&R->xn, n) || grow(&R->v, n) || grow(&R->xref, n) || grow(&R->bp.x, n) ||
-                    grow(&R->bp.v, n)))
-            rc = SB_ERR_NOMEM;
-        if (!rc) rc = R->mt->adapt_state(R->ms, R->x, R->v);
-        if (!rc) rc = R->mt->initial(R->ms, F, R->xref);
-        if (!rc) rc = sb_problem_rebuild(R->prob);
-        if (!rc) {
-            /* the solver's vectors have the old size: allocated anew */
-            R->stype->free(R->ss);
-            memset(R->ss, 0, R->stype->state_size);
-            rc = R->stype->alloc(R->ss, R->prob, &R->ctx.params);
-        }
-        if (!rc) {
-            R->rec.n_x = R->rec.n_dofs = n;   /* the record's dofs: the final mesh's (per step: history) */
-            R->rec.x_final = R->x;            /* re-allocated above */
-        }
+        rc = sb_run_adapt_follow(R, 1);
+        /* a resumed process's first analysis after a change is the run's own, not a repeat (sb_run_fold_resume_setup) */
+        if (R->resumed) R->resume_folded = 1;
     }
     sb_stats_event(stats, F, SB_EV_ADAPT, t0);
     if (rc) {

@@ -72,6 +72,21 @@ void sb_run_mark_boundary(run_state *R, int step)
     b->stats.steps = NULL;
     b->stats.cap_iters = b->stats.cap_steps = 0;
     b->seconds = sb_now() - R->t_start;
+    /* an adaptive method's mesh at the boundary: the next step may adapt
+     * before a checkpoint is written (checkpoints are also written mid-step) */
+    sb_blob_free(&b->mesh);
+    b->has_mesh = 0;
+    if (sb_run_adapt_every(R) > 0 && sb_run_adapt_resumable(R)) {
+        if (R->mt->save_mesh(R->ms, &b->mesh) == SB_OK) {
+            b->has_mesh = 1;
+        } else {
+            sb_blob_free(&b->mesh);
+            if (R->checkpoints_on && !R->checkpoint_failed)
+                fprintf(R->err, "shellbench: warning: no more checkpoints: method %s could not save its mesh: %s\n",
+                        R->mt->name, R->ctx.err[0] ? R->ctx.err : "(no message)");
+            R->checkpoint_failed = 1;
+        }
+    }
 }
 
 /* "a,b" + ",c" into a fixed buffer (kept whole or left as it was) */
@@ -117,8 +132,42 @@ int sb_run_resume(run_state *R, int quiet)
         fprintf(R->err, "shellbench: out of memory\n");
         return -1;
     }
+    /* an adaptive run: the mesh of the resume point, followed as after an
+     * adaptation (sb_run_adapt.c), before the state of that mesh is taken */
+    if (rp.has_mesh || sb_run_adapt_every(R) > 0) {
+        int rc = SB_OK;
+        if (!rp.has_mesh) {
+            fprintf(R->err, "shellbench: cannot resume from %s: it holds no mesh of the adaptive method %s (/resume/mesh_ints; "
+                    "written by a build that did not keep it); move it away to start the run afresh\n", R->partial_path,
+                    R->mt->name);
+            rc = SB_ERR_INPUT;
+        } else if (!sb_run_adapt_resumable(R)) {
+            fprintf(R->err, "shellbench: cannot resume from %s: it holds a mesh, which method %s cannot restore\n",
+                    R->partial_path, R->mt->name);
+            rc = SB_ERR_INPUT;
+        } else if ((rc = R->mt->restore_mesh(R->ms, &rp.mesh)) != SB_OK) {
+            fprintf(R->err, "shellbench: cannot resume from %s: its mesh (/resume/mesh_ints): %s\n", R->partial_path,
+                    R->ctx.err[0] ? R->ctx.err : "not restorable");
+        } else if ((rc = sb_run_adapt_follow(R, 0)) != SB_OK) {
+            fprintf(R->err, "shellbench: resuming from %s: following the restored mesh failed: %s\n", R->partial_path,
+                    R->ctx.err[0] ? R->ctx.err : "(no message)");
+        } else if (rp.n_x != R->rec.n_x) {
+            fprintf(R->err, "shellbench: cannot resume from %s: /resume/x has %d dofs, its restored mesh %d\n",
+                    R->partial_path, rp.n_x, R->rec.n_x);
+            rc = SB_ERR_INPUT;
+        }
+        if (rc) {
+            sb_resume_point_free(&rp);
+            return -1;
+        }
+    }
     sb_copy(rp.n_x, rp.x, R->x);
     sb_copy(rp.n_x, rp.v, R->v);
+    /* the method's triangles per step so far; a checkpoint without them gives a record without them */
+    if (rec->mesh && sb_record_read_mesh_series(R->partial_path, rp.step + 1, rec->mesh, msg, sizeof msg)) {
+        sb_mesh_series_free(rec->mesh);
+        rec->mesh = NULL;
+    }
     /* the time series so far; a checkpoint without it (older build) gives a
      * record without one */
     if (rec->sample_traj && sb_record_read_sample_traj(R->partial_path, rp.step, rec->n_samples, rec->sample_traj,
@@ -157,7 +206,9 @@ int sb_run_resume(run_state *R, int quiet)
 
 void sb_run_fold_resume_setup(run_state *R)
 {
-    if (!R->resumed) return;
+    /* not after an adaptive mesh changed in this process: the analyses from
+     * then on are the run's own (sb_run_adapt sets resume_folded) */
+    if (!R->resumed || R->resume_folded) return;
     for (int l = 0; l < SB_MAX_LEVELS; l++) {
         sb_event_stat *ev = &R->ctx.stats.ev[l][SB_EV_ANALYZE];
         const sb_event_stat *b = &R->analyze_at_resume[l];

@@ -52,7 +52,7 @@ typedef struct run_state {
      * process's repeat of a symbolic factorization done before is set-up
      * (sb_run_fold_resume_setup) */
     int resumed;
-    int resume_folded;                 /* the resumed process's repeated analysis moved to set-up (once) */
+    int resume_folded;                 /* 1 once an adaptive mesh changed in the resumed process: no more folding */
     sb_event_stat analyze_at_resume[SB_MAX_LEVELS];
     /* the method's own triangles per step (methods whose surface op gives
      * triangles; sb_run_record_mesh): rec.mesh points here while kept */
@@ -134,9 +134,17 @@ int    sb_run_resume(run_state *R, int quiet);
 /* ---- adaptive meshes (sb_run_adapt.c) ------------------------------------ */
 /* method.adapt_every of a method with the adapt op (0: it never adapts) */
 int    sb_run_adapt_every(const run_state *R);
-/* Refuses --resume / --stop-after-steps for an adaptive run and turns its
- * checkpoints off: -1 to go on, else the exit code. */
+/* 1 when the method can save and restore its mesh (checkpoints of adaptive runs) */
+int    sb_run_adapt_resumable(const run_state *R);
+/* For an adaptive method that cannot save its mesh: refuses --resume from
+ * a checkpoint and --stop-after-steps, and turns checkpoints off.  -1 to
+ * go on, else the exit code. */
 int    sb_run_adapt_check(run_state *R, const sb_run_request *req);
+/* After the method's discretization changed (an adaptation, or a mesh
+ * restored for --resume): the run's vectors re-sized (x, v taken from
+ * adapt_state when take_state), the reference, problem and solver rebuilt,
+ * the record's dof count updated.  SB_OK or an error status. */
+int    sb_run_adapt_follow(run_state *R, int take_state);
 /* Before step `step`: the method's adaptation when it is due; on a change
  * the run's vectors, the problem and the solver follow, *n gets the new
  * dof count.  -1 to go on, else the exit code. */

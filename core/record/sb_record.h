@@ -7,6 +7,7 @@
 #include "sb_params.h"
 #include "sb_stats.h"
 #include "sb_material_state.h"
+#include "sb_blob.h"
 #include <stdio.h>
 
 /* Interruptions a run came through (--resume), accumulated over resumes and
@@ -27,6 +28,10 @@ typedef struct sb_resume_point {
     int n_x;
     double *x, *v;             /* state at the end of `step` */
     double seconds;            /* seconds_total at the boundary */
+    /* adaptive methods (sb_method.h save_mesh): the discretization at the
+     * boundary (/resume/mesh_ints, /resume/mesh_doubles); has_mesh 0: none */
+    int has_mesh;
+    sb_blob mesh;
     /* statistics at the boundary: event counts and seconds per level, work
      * units, not_posdef; history records of steps 1..step (n_iters, n_steps) */
     sb_stats stats;
@@ -288,7 +293,9 @@ typedef struct sb_record_setup {
  * identity filled in, params resolved): refuses, with a sentence naming the
  * file and the field, a checkpoint of another scene text, method, solver,
  * resolution, level count, dof count or parameter value (run.checkpoint may
- * differ), and one without a /resume group.  On success rp owns x, v and
+ * differ), and one without a /resume group.  A checkpoint that holds the
+ * method's mesh (rp->has_mesh, adaptive methods) is not held to
+ * expect->n_dofs: the caller restores the mesh and checks rp->n_x.  On success rp owns x, v and
  * stats.iters / stats.steps (sb_resume_point_free), `ckpt_seconds` is the
  * checkpoint's seconds_total, `ckpt_build` its build id, `log` its resume
  * log, and probe_traj receives rows 0..step of its probe trajectory

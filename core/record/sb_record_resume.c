@@ -54,6 +54,12 @@ int sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp)
     bad |= sb_h5w_dset_dbl(w, g, "v", 1, &dx, rp->v, NULL);
     bad |= sb_h5w_dset_long(w, g, "events_count", 2, d2, cnt, "calls");
     bad |= sb_h5w_dset_dbl(w, g, "events_seconds", 2, d2, sec, "s");
+    if (rp->has_mesh) {
+        /* the adaptive method's discretization at the boundary (sb_method.h save_mesh) */
+        hsize_t di = (hsize_t)rp->mesh.n_int, dd = (hsize_t)rp->mesh.n_dbl;
+        bad |= sb_h5w_dset_int(w, g, "mesh_ints", 1, &di, rp->mesh.ints, NULL);
+        bad |= sb_h5w_dset_dbl(w, g, "mesh_doubles", 1, &dd, rp->mesh.dbls, NULL);
+    }
     H5Gclose(g);
     return bad ? -1 : 0;
 }
@@ -98,7 +104,9 @@ static int check_identity(sb_h5r *r, hid_t f, const sb_run *e)
         return mismatch(r, "levels", a, b);
     }
     if (!rc) rc = sb_h5r_attr_num(r, f, "n_dofs", H5T_NATIVE_LONG, &n);
-    if (!rc && n != e->n_dofs) {
+    /* an adaptive method's checkpoint holds its mesh: its dofs are checked against the restored mesh */
+    const int has_mesh = H5Lexists(f, "/resume", H5P_DEFAULT) > 0 && H5Lexists(f, "/resume/mesh_ints", H5P_DEFAULT) > 0;
+    if (!rc && n != e->n_dofs && !has_mesh) {
         snprintf(a, sizeof a, "%ld", n);
         snprintf(b, sizeof b, "%ld", e->n_dofs);
         return mismatch(r, "n_dofs", a, b);
@@ -253,7 +261,20 @@ int sb_record_read_resume(const char *path, const sb_run *expect, sb_resume_poin
     hsize_t dx = 0, dv = 0;
     if (!rc) rc = sb_h5r_dset(&r, f, "/resume/x", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dx, (void **)&rp->x);
     if (!rc) rc = sb_h5r_dset(&r, f, "/resume/v", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dv, (void **)&rp->v);
-    if (!rc && (dx != (hsize_t)expect->n_dofs || dv != dx))
+    if (!rc && H5Lexists(f, "/resume/mesh_ints", H5P_DEFAULT) > 0) {
+        hsize_t di = 0, dd = 0;
+        rc = sb_h5r_dset(&r, f, "/resume/mesh_ints", 1, H5T_NATIVE_INT, sizeof(int), &di, (void **)&rp->mesh.ints);
+        if (!rc) rc = sb_h5r_dset(&r, f, "/resume/mesh_doubles", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dd,
+                                  (void **)&rp->mesh.dbls);
+        if (!rc && (di > (hsize_t)INT32_MAX || dd > (hsize_t)INT32_MAX))
+            rc = sb_h5r_fail(&r, SB_ERR_INPUT, "too long a mesh in", "/resume");
+        if (!rc) {
+            rp->mesh.n_int = (int)di;
+            rp->mesh.n_dbl = (int)dd;
+            rp->has_mesh = 1;
+        }
+    }
+    if (!rc && ((!rp->has_mesh && dx != (hsize_t)expect->n_dofs) || dv != dx || dx > (hsize_t)INT32_MAX))
         rc = sb_h5r_fail(&r, SB_ERR_INPUT, "state of the wrong length in", "/resume");
     if (!rc) rp->n_x = (int)dx;
     if (!rc) rc = read_events(&r, f, &rp->stats);
@@ -297,6 +318,8 @@ void sb_resume_point_free(sb_resume_point *rp)
     if (!rp) return;
     free(rp->x);
     free(rp->v);
+    sb_blob_free(&rp->mesh);
+    rp->has_mesh = 0;
     sb_stats_free(&rp->stats);
     rp->x = rp->v = NULL;
     rp->n_x = 0;

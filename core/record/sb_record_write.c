@@ -442,7 +442,8 @@ static int validate(const sb_run *r, const char *path, char *err, size_t errlen)
     if (s && (s->n_iters > INT32_MAX || s->n_steps > INT32_MAX))
         BAD("cannot record %s: history too long", path);
     const sb_resume_point *rp = r->resume;
-    if (rp && (rp->n_x != r->n_x || !rp->x || !rp->v || !s || rp->stats.n_iters > s->n_iters ||
+    /* an adaptive run's resume point may hold the mesh before the adaptation of the step under way */
+    if (rp && ((rp->n_x != r->n_x && !rp->has_mesh) || !rp->x || !rp->v || !s || rp->stats.n_iters > s->n_iters ||
                rp->stats.n_steps > s->n_steps || rp->step > r->steps_done))
         BAD("cannot record %s: resume point (step %d, %zu iterations) inconsistent with the record", path,
             rp->step, rp->stats.n_iters);

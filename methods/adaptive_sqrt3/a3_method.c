@@ -242,6 +242,25 @@ static int a3_surface(void *state, int level, const double *x, sb_surface *out)
     return SB_OK;
 }
 
+/* checkpoints of adaptive runs (sb_method.h save_mesh / restore_mesh): the
+ * sqrt3 forest is the whole discretization; the model is rebuilt from it
+ * from scratch, as after every adaptation (a3_adapt.c) */
+static int a3_save_mesh(const void *state, sb_blob *b)
+{
+    const a3_state *S = state;
+    return a3_forest_save(&S->forest, b);
+}
+
+static int a3_restore_mesh(void *state, const sb_blob *b)
+{
+    a3_state *S = state;
+    char msg[256];
+    int rc = a3_forest_load(&S->forest, b, msg, sizeof msg);
+    if (rc) return a3_fail(S, rc, "%s", msg);
+    a3_free_model(S);
+    return a3_build_model(S);
+}
+
 static void a3_describe(const void *state, char *buf, size_t len)
 {
     const a3_state *S = state;
@@ -275,4 +294,6 @@ const sb_method_type sb_method_adaptive_sqrt3 = {
     .surface = a3_surface,
     .adapt = a3_adapt,
     .adapt_state = a3_adapt_state,
+    .save_mesh = a3_save_mesh,
+    .restore_mesh = a3_restore_mesh,
 };

@@ -421,6 +421,131 @@ int a3_forest_coarsen_all(a3_forest *F)
     return SB_OK;
 }
 
+/* ---- checkpoints ------------------------------------------------------------------ */
+
+enum { A3_BLOB_MAGIC = 0x53513301, A3_BLOB_HEAD = 6, A3_V_INTS = 5, A3_T_INTS = 7, A3_OP_INTS = 12 };
+
+int a3_forest_save(const a3_forest *F, sb_blob *b)
+{
+    memset(b, 0, sizeof *b);
+    const long ni = A3_BLOB_HEAD + (long)A3_V_INTS * F->nv + (long)A3_T_INTS * F->nt + (long)A3_OP_INTS * F->nop;
+    const long nd = 5L * F->nv;
+    if (ni > 0x7fffffffL || nd > 0x7fffffffL) return SB_ERR_NOMEM;
+    b->ints = malloc(sizeof(int) * (size_t)ni);
+    b->dbls = malloc(sizeof(double) * (size_t)(nd ? nd : 1));
+    if (!b->ints || !b->dbls) { sb_blob_free(b); return SB_ERR_NOMEM; }
+    b->n_int = (int)ni;
+    b->n_dbl = (int)nd;
+    int *p = b->ints;
+    *p++ = A3_BLOB_MAGIC; *p++ = F->nv; *p++ = F->nt; *p++ = F->nop; *p++ = F->nt0; *p++ = F->max_gen;
+    for (int v = 0; v < F->nv; v++) {
+        *p++ = F->vgen[v];
+        *p++ = F->vbnd[v];
+        for (int k = 0; k < 3; k++) *p++ = F->vpar[3 * v + k];
+    }
+    for (int t = 0; t < F->nt; t++) {
+        const a3_ftri *T = &F->t[t];
+        *p++ = T->v[0]; *p++ = T->v[1]; *p++ = T->v[2];
+        *p++ = T->gen; *p++ = T->mate; *p++ = T->alive; *p++ = T->child_op;
+    }
+    for (int k = 0; k < F->nop; k++) {
+        const a3_op *o = &F->op[k];
+        *p++ = o->kind; *p++ = o->applied; *p++ = o->n_in; *p++ = o->n_out; *p++ = o->n_vnew;
+        *p++ = o->in[0]; *p++ = o->in[1]; *p++ = o->out[0]; *p++ = o->out[1]; *p++ = o->out[2];
+        *p++ = o->vnew[0]; *p++ = o->vnew[1];
+    }
+    memcpy(b->dbls, F->st, sizeof(double) * 2 * (size_t)F->nv);
+    memcpy(b->dbls + 2 * (size_t)F->nv, F->vw, sizeof(double) * 3 * (size_t)F->nv);
+    return SB_OK;
+}
+
+static int in_range(int i, int lo, int hi) { return i >= lo && i < hi; }
+
+int a3_forest_load(a3_forest *F, const sb_blob *b, char *msg, size_t len)
+{
+    const int *p = b->ints;
+    if (b->n_int < A3_BLOB_HEAD || p[0] != A3_BLOB_MAGIC || p[1] < 0 || p[2] < 0 || p[3] < 0) {
+        snprintf(msg, len, "not a sqrt3 forest of this build");
+        return SB_ERR_INPUT;
+    }
+    const int nv = p[1], nt = p[2], nop = p[3];
+    if (p[4] != F->nt0 || p[5] != F->max_gen || nv < F->nv || nt < F->nt0 ||
+        (long)b->n_int != A3_BLOB_HEAD + (long)A3_V_INTS * nv + (long)A3_T_INTS * nt + (long)A3_OP_INTS * nop ||
+        (long)b->n_dbl != 5L * nv) {
+        snprintf(msg, len, "a forest of another base mesh or max generation (%d base triangles, g_max %d; this run: %d, %d)",
+                 p[4], p[5], F->nt0, F->max_gen);
+        return SB_ERR_INPUT;
+    }
+    /* validated before anything is changed */
+    const int *pv = p + A3_BLOB_HEAD, *pt = pv + A3_V_INTS * nv, *po = pt + A3_T_INTS * nt;
+    for (int v = 0; v < nv; v++) {
+        const int *q = pv + A3_V_INTS * v;
+        if (q[0] < 0 || !in_range(q[1], 0, 2) || !in_range(q[2], -1, nv) || !in_range(q[3], -1, nv) || !in_range(q[4], -1, nv)) {
+            snprintf(msg, len, "vertex %d of the forest is malformed", v);
+            return SB_ERR_INPUT;
+        }
+    }
+    for (int t = 0; t < nt; t++) {
+        const int *q = pt + A3_T_INTS * t;
+        if (!in_range(q[0], 0, nv) || !in_range(q[1], 0, nv) || !in_range(q[2], 0, nv) || q[3] < 0 ||
+            !in_range(q[4], -1, 3) || !in_range(q[5], 0, 2) || !in_range(q[6], -1, nop)) {
+            snprintf(msg, len, "triangle %d of the forest is malformed", t);
+            return SB_ERR_INPUT;
+        }
+    }
+    for (int k = 0; k < nop; k++) {
+        const int *q = po + A3_OP_INTS * k;
+        int ok = in_range(q[0], 0, 3) && in_range(q[1], 0, 2) && in_range(q[2], 0, 3) && in_range(q[3], 0, 4) &&
+                 in_range(q[4], 0, 3);
+        for (int i = 0; ok && i < q[2]; i++) ok = in_range(q[5 + i], 0, nt);
+        for (int i = 0; ok && i < q[3]; i++) ok = in_range(q[7 + i], 0, nt);
+        for (int i = 0; ok && i < q[4]; i++) ok = in_range(q[10 + i], 0, nv);
+        if (!ok) {
+            snprintf(msg, len, "operation %d of the forest is malformed", k);
+            return SB_ERR_INPUT;
+        }
+    }
+    const int nt0 = F->nt0, max_gen = F->max_gen;
+    a3_forest_free(F);
+    F->nt0 = nt0;
+    F->max_gen = max_gen;
+    for (int v = 0; v < nv; v++) {
+        const int *q = pv + A3_V_INTS * v;
+        const double *st = b->dbls + 2 * (size_t)v, *w = b->dbls + 2 * (size_t)nv + 3 * (size_t)v;
+        if (new_vertex(F, st[0], st[1], q[0], q[1], q + 2, w) < 0) goto nomem;
+    }
+    for (int t = 0; t < nt; t++) {
+        const int *q = pt + A3_T_INTS * t;
+        const int k = new_tri(F, q[0], q[1], q[2], q[3], q[4]);
+        if (k < 0) goto nomem;
+        F->t[k].child_op = q[6];
+    }
+    for (int k = 0; k < nop; k++) {
+        const int *q = po + A3_OP_INTS * k;
+        const int j = new_op(F, q[0]);
+        if (j < 0) goto nomem;
+        a3_op *o = &F->op[j];
+        o->applied = q[1]; o->n_in = q[2]; o->n_out = q[3]; o->n_vnew = q[4];
+        o->in[0] = q[5]; o->in[1] = q[6]; o->out[0] = q[7]; o->out[1] = q[8]; o->out[2] = q[9];
+        o->vnew[0] = q[10]; o->vnew[1] = q[11];
+    }
+    /* alive triangles in record order: vertex use counts and the edge map as the run had them */
+    for (int t = 0; t < nt; t++) {
+        if (!pt[A3_T_INTS * t + 5]) continue;
+        int rc = tri_on(F, t);
+        if (rc == SB_ERR_NOMEM) goto nomem;
+        if (rc) {
+            snprintf(msg, len, "the alive triangles of the forest are not a manifold mesh");
+            return SB_ERR_INPUT;
+        }
+    }
+    if (a3_forest_check(F, msg, len)) return SB_ERR_INPUT;
+    return SB_OK;
+nomem:
+    snprintf(msg, len, "out of memory restoring the sqrt3 forest");
+    return SB_ERR_NOMEM;
+}
+
 /* ---- set-up, checks, export ----------------------------------------------------- */
 
 void a3_forest_free(a3_forest *F)

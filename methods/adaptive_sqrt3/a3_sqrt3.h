@@ -38,6 +38,7 @@
 #define A3_SQRT3_H
 
 #include "sb_mesh.h"
+#include "sb_blob.h"
 
 enum { A3_OP_SPLIT = 0, A3_OP_FLIP = 1, A3_OP_BSPLIT = 2 };
 
@@ -92,6 +93,16 @@ int  a3_forest_check(const a3_forest *F, char *msg, size_t len);
 /* The alive mesh: sb_mesh (geometry from the scene, boundary parts tagged)
  * and vmap[new vertex] = forest vertex (caller frees). */
 int  a3_forest_mesh(const a3_forest *F, const sb_scene *sc, sb_mesh *m, int **vmap);
+/* The whole forest (vertices with their parents and weights, every
+ * triangle record, every operation) as a blob for checkpoints; the vertex
+ * use counts and the edge map are not stored (load rebuilds them from the
+ * alive triangles).  SB_OK or SB_ERR_NOMEM. */
+int  a3_forest_save(const a3_forest *F, sb_blob *b);
+/* Replace F (made from the same base mesh and max generation) by a saved
+ * forest; validated first (SB_ERR_INPUT with a sentence in msg, F
+ * untouched), then checked (a3_forest_check).  A loaded forest refines and
+ * coarsens exactly as the saved one would have. */
+int  a3_forest_load(a3_forest *F, const sb_blob *b, char *msg, size_t len);
 /* the alive triangle across edge (a, b), other than t; -1 on the boundary */
 int  a3_forest_across(const a3_forest *F, int a, int b, int t);
 
