@@ -138,6 +138,50 @@ SB_TEST(tessellation_steps_and_time_series)
     CHECK(strstr(out, "mem.h5") && strstr(out, "step 9") && lines(out) == 1);
 }
 
+/* triangle methods record their own mesh per step (/steps/mesh): --step K
+ * draws it; an adaptive run's steps have their own triangle counts, and its
+ * final state (a mesh the method cannot rebuild from the scene) is drawn
+ * from the last recorded row */
+SB_TEST(triangle_methods_draw_their_recorded_mesh)
+{
+    static char out[8192];
+    char scene[512];
+    snprintf(scene, sizeof scene, "%s/hang.json", tmpdir);
+    FILE *f = fopen(scene, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("{\"name\": \"hang\", \"domain\": {\"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [1, 1.5]},"
+          " \"geometry\": {\"type\": \"plane\"}, \"material\": {\"model\": \"stvk\", \"young\": 1e6, \"poisson\": 0.33,"
+          " \"thickness\": 0.001, \"density\": 0.1}, \"loads\": [{\"type\": \"gravity\", \"acceleration\": [0, -9.81, -5]}],"
+          " \"boundary\": [{\"type\": \"fixed\", \"at\": [0, 1.5]}], \"time\": {\"mode\": \"dynamic\", \"dt\": 0.005, \"steps\": 24}}",
+          f);
+    fclose(f);
+    CHECK_EQ_INT(sh(NULL, 0, "%s run --scene %s --method adaptive_sqrt3 --solver linearized --res 4 --out %s/a3.h5 --quiet "
+                    "--set method.max_generation=4 --set method.curv_base=0.01 --set method.curv_max=0.1 "
+                    "--set run.single_step_rtol=1e300", sb_test_bin(), scene, tmpdir), 0);
+    int nt[2] = { 0, 0 };
+    for (int k = 0; k < 2; k++) {
+        CHECK_EQ_INT(sh(out, sizeof out, "%s render %s/a3.h5 --step %d --size 40x30 --spp 1 --color strain --out %s/a3_%d.png",
+                        sb_test_bin(), tmpdir, k ? 24 : 0, tmpdir, k), 0);
+        const char *p = strstr(out, "spp, ");
+        CHECK_MSG(p && strstr(out, "triangles of the method's recorded mesh of step"), "%s", out);
+        if (p) nt[k] = atoi(p + 5);
+    }
+    CHECK_MSG(nt[0] == 32 && nt[1] > nt[0], "triangles at steps 0 and 24: %d, %d", nt[0], nt[1]);
+    CHECK_EQ_INT(sh(out, sizeof out, "%s render %s/a3.h5 --size 40x30 --spp 1 --out %s/a3_final.png", sb_test_bin(), tmpdir,
+                    tmpdir), 0);
+    CHECK_MSG(strstr(out, "recorded mesh of step 24"), "%s", out);
+    char png[512];
+    snprintf(png, sizeof png, "%s/a3_final.png", tmpdir);
+    CHECK(is_png(png));
+    /* not adaptive: linear_fem's steps are its own triangles too */
+    CHECK_EQ_INT(sh(NULL, 0, "cd %s && %s run --scene tests/scenes/trampoline_1step.json --method linear_fem --solver lsnewton "
+                    "--res 4 --out %s/lf.h5 --quiet --set run.penalty_tol=0", sb_test_root(), sb_test_bin(), tmpdir), 0);
+    CHECK_EQ_INT(sh(out, sizeof out, "%s render %s/lf.h5 --step 1 --size 40x30 --spp 1 --out %s/lf1.png", sb_test_bin(),
+                    tmpdir, tmpdir), 0);
+    CHECK_MSG(strstr(out, "triangles of the method's recorded mesh of step 1"), "%s", out);
+}
+
 SB_TEST(resumed_run_keeps_its_time_series)
 {
     /* an uninterrupted run and one stopped after step 1 and resumed: the
@@ -278,6 +322,7 @@ int main(int argc, char **argv)
     mkdir(tmpdir, 0755);
     static const sb_test_case cases[] = {
         SB_CASE(every_method_renders_its_own_primitives), SB_CASE(tessellation_steps_and_time_series),
+        SB_CASE(triangle_methods_draw_their_recorded_mesh),
         SB_CASE(resumed_run_keeps_its_time_series), SB_CASE(a_checkpoint_renders_labelled_as_one),
         SB_CASE(unrenderable_records_and_bad_options_exit_2), SB_CASE(image_outputs_refused),
         SB_CASE(report_entry_point_renders_a_thumbnail), SB_END,

@@ -12,8 +12,12 @@
  *   any other    a triangulation of eval_points on a grid of 8 points per
  *                element side inside the domain (stated in the picture's
  *                description).
- * --step K draws the recorded sample grid of step K (a triangulation of
- * /steps/sample_pos, 21 x 21 points by default). */
+ * --step K draws the method's own triangles of step K when the record has
+ * them (/steps/mesh: linear_fem, adaptive_sqrt3, whose mesh changes), else
+ * the recorded sample grid of step K (a triangulation of /steps/sample_pos,
+ * 21 x 21 points by default).  The final state of an adaptive run, whose
+ * mesh the method cannot rebuild from the scene, is the last row of
+ * /steps/mesh. */
 #include "sb_render.h"
 #include "sb_obstacle.h"
 #include "sb_context.h"
@@ -213,6 +217,32 @@ static int step_surface(const char *path, int step, sb_surface *s, char *err, si
     return SB_OK;
 }
 
+/* the method's own triangles of row `step` of /steps/mesh (sb_record_mesh.c) */
+static int mesh_surface(const char *path, int step, sb_surface *s, char *err, size_t errlen)
+{
+    sb_mesh_topo t;
+    double *pos = NULL;
+    int rc = sb_record_read_step_mesh(path, step, &t, &pos, err, errlen);
+    if (rc) return rc == SB_ERR_NOMEM ? rc : SB_ERR_INPUT;
+    if (t.nt == 0 || sb_surface_alloc_tris(s, t.nv, t.nt, 1, 1)) {
+        if (t.nt == 0) snprintf(err, errlen, "%s: the recorded mesh of step %d has no triangles", path, step);
+        else snprintf(err, errlen, "out of memory reading %s", path);
+        rc = t.nt == 0 ? SB_ERR_INPUT : SB_ERR_NOMEM;
+    } else {
+        memcpy(s->vert, pos, (size_t)t.nv * 3 * sizeof(double));
+        memcpy(s->vert_ref, t.ref, (size_t)t.nv * 3 * sizeof(double));
+        memcpy(s->vert_st, t.st, (size_t)t.nv * 2 * sizeof(double));
+        memcpy(s->tri, t.tri, (size_t)t.nt * 3 * sizeof(int));
+        snprintf(s->what, sizeof s->what, "%d triangles of the method's recorded mesh of step %d (%d vertices, exact)",
+                 t.nt, step, t.nv);
+    }
+    free(pos);
+    free(t.tri);
+    free(t.ref);
+    free(t.st);
+    return rc;
+}
+
 int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *info, size_t infolen, char *err,
                      size_t errlen)
 {
@@ -234,9 +264,24 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
     sb_surface surf;
     memset(&surf, 0, sizeof surf);
     sb_image img = { 0, 0, NULL };
+    /* the method's own triangles per step (/steps/mesh), when the record has them */
+    int mesh_rows = 0;
+    const int has_mesh = sb_record_has_mesh_series(path, &mesh_rows) && mesh_rows > 0;
     rc = rebuild(path, &su, rq->step < 0, &b, err, errlen);
+    int from_mesh = -1;   /* the row of /steps/mesh drawn, -1 none */
+    if (rc && rq->step < 0 && has_mesh) {
+        /* an adaptive method's final mesh is not the one it rebuilds from the
+         * scene: the recorded mesh of the last step is drawn */
+        rebuilt_free(&b);
+        rc = rebuild(path, &su, 0, &b, err, errlen);
+        from_mesh = mesh_rows - 1;
+    } else if (rq->step >= 0 && has_mesh) {
+        from_mesh = rq->step;
+    }
     if (!rc) {
-        if (rq->step >= 0) {
+        if (from_mesh >= 0) {
+            rc = mesh_surface(path, from_mesh, &surf, err, errlen);
+        } else if (rq->step >= 0) {
             rc = step_surface(path, rq->step, &surf, err, errlen);
         } else if (b.mt->surface) {
             rc = b.mt->surface(b.state, b.mt->n_levels(b.state) - 1, su.x, &surf);
@@ -275,9 +320,13 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
             else if (sum.status == SB_STATUS_UNFINISHED) snprintf(state, sizeof state, "CHECKPOINT, run unfinished");
             else snprintf(state, sizeof state, "NOT converged (%s)", sum.reason_name);
             /* a checkpoint (.partial) draws the last saved state, not a final one */
-            snprintf(o.subtitle, sizeof o.subtitle, "%s %d/%d | %s | %ld dofs",
+            char size[64];
+            /* a recorded mesh: its own size at that step (an adaptive mesh changes it) */
+            if (from_mesh >= 0) snprintf(size, sizeof size, "%d vertices, %d triangles", surf.n_verts, surf.n_tris);
+            else snprintf(size, sizeof size, "%ld dofs", sum.dofs);
+            snprintf(o.subtitle, sizeof o.subtitle, "%s %d/%d | %s | %s",
                      rq->step >= 0 ? "step" : sum.status == SB_STATUS_UNFINISHED ? "saved, step" : "final, step", step,
-                     sum.steps_planned, state, sum.dofs);
+                     sum.steps_planned, state, size);
         }
         add_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o);
         rc = sb_render_surface(&surf, have_mat ? &mat : NULL, &o, &img, st, err, errlen);
