@@ -9,8 +9,13 @@ both Xdmf3 readers (point and cell counts of the "final" and "reference"
 grids, one displacement and one position against /final/...), the
 time-series sidecar RECORD.steps.xdmf (time values against /steps/t, points
 at the first, a middle and the last step against /steps/sample_pos/NNNNNN
-and the last against /final/sample_pos), and a screenshot of the final
-surface coloured by displacement magnitude (OUTDIR/NAME.png).  Prints one
+and the last against /final/sample_pos), the mesh time-series sidecar
+RECORD.mesh.xdmf of methods with a triangle surface (time values against
+/steps/t; at every step the point and cell counts of /steps/mesh/pos/NNNNNN
+and of its topology version's triangles, and one position; an adaptive
+record's counts must change; a screenshot of the last step's triangles with
+their edges, OUTDIR/NAME.mesh.png), and a screenshot of the final surface
+coloured by displacement magnitude (OUTDIR/NAME.png).  Prints one
 line per check; exits 1 if any failed."""
 import os, re, subprocess, sys
 
@@ -129,6 +134,70 @@ for rec in RECORDS:
             if k == 0:
                 check(close(got, ref), "%s: step 0 is the reference" % label)
         Delete(r)
+    # the method's own triangles per step (RECORD.mesh.xdmf, /steps/mesh)
+    mesh = rec[:-3] + ".mesh.xdmf"
+    if h5_shape(rec, "/steps/mesh/topology_of"):
+        check(os.path.exists(mesh), "%s: mesh time-series sidecar %s" % (name, mesh))
+        topo_of = [int(x) for x in h5(rec, "/steps/mesh/topology_of")]
+        n_pts = [h5_shape(rec, "/steps/mesh/pos/%06d" % k)[0] for k in range(len(topo_of))]
+        n_cells = {v: h5_shape(rec, "/steps/mesh/topology/%06d/triangles" % v)[0] for v in set(topo_of)}
+        tris_hist = [int(x) for x in h5(rec, "/history/steps/triangles")]
+        check(tris_hist == [n_cells[v] for v in topo_of[1:]],
+              "%s: /history/steps/triangles equals the recorded meshes' triangles" % name)
+        adaptive = len(set(topo_of)) > 1
+        print("info  %s: %d steps, %d topology versions, points %d .. %d, cells %d .. %d"
+              % (name, len(topo_of), len(set(topo_of)), min(n_pts), max(n_pts), min(n_cells.values()),
+                 max(n_cells.values())))
+        if name == "adaptive_sqrt3":
+            check(adaptive and len(set(n_pts)) > 1, "%s: the mesh changes during the run" % name)
+        for label, make in (("XDMF Reader", lambda f: XDMFReader(FileNames=[f])),
+                            ("Xdmf3ReaderS", lambda f: Xdmf3ReaderS(FileName=[f])),
+                            ("Xdmf3ReaderT", lambda f: Xdmf3ReaderT(FileName=[f]))):
+            if not os.path.exists(mesh):
+                break
+            r = make(mesh)
+            tv = list(r.TimestepValues) if r.TimestepValues else []
+            check(close(tv, t_rec), "%s mesh: %d time steps (record /steps/t: %d)" % (label, len(tv), len(t_rec)))
+            seen_p, seen_c, bad = [], [], []
+            for k in range(len(topo_of)):
+                bl = blocks(fetch(r, t_rec[k]))
+                d = bl[0] if bl else None
+                np_, nc = (d.GetNumberOfPoints(), d.GetNumberOfCells()) if d else (-1, -1)
+                seen_p.append(np_)
+                seen_c.append(nc)
+                if np_ != n_pts[k] or nc != n_cells[topo_of[k]]:
+                    bad.append(k)
+                elif k in (0, len(topo_of) - 1) or topo_of[k] != topo_of[k - 1]:
+                    v = n_pts[k] // 2
+                    want = h5(rec, "/steps/mesh/pos/%06d" % k, "%d,0" % v, "1,3")
+                    if not close(list(d.GetPoint(v)), want):
+                        bad.append(k)
+            check(not bad, "%s mesh: every step's points and cells equal the record's (points %s, cells %s)%s"
+                  % (label, sorted(set(seen_p)), sorted(set(seen_c)), "; wrong at steps %s" % bad[:8] if bad else ""))
+            if adaptive:
+                check(len(set(seen_c)) > 1, "%s mesh: the cell count changes during the run" % label)
+            Delete(r)
+        # a picture of the last step's own triangles, edges drawn
+        if os.path.exists(mesh):
+            r = XDMFReader(FileNames=[mesh])
+            r.UpdatePipeline(t_rec[-1])
+            view = GetActiveViewOrCreate("RenderView")
+            view.ViewSize = [640, 480]
+            view.ViewTime = t_rec[-1]
+            shown = Show(r, view)
+            shown.SetRepresentationType("Surface With Edges")
+            view.CameraPosition = [2.0, -2.5, 1.8]
+            view.CameraFocalPoint = [0, 0, 0]
+            view.CameraViewUp = [0, 0, 1]
+            ResetCamera(view)
+            Render(view)
+            png = os.path.join(OUT, name + ".mesh.png")
+            SaveScreenshot(png, view, ImageResolution=[640, 480])
+            check(os.path.exists(png) and os.path.getsize(png) > 1000, "screenshot of the mesh of step %d: %s"
+                  % (len(t_rec) - 1, png))
+            __import__("paraview.simple", fromlist=["Hide"]).Hide(r, view)
+            Delete(r)
+
     # a picture of the last step (the final state), coloured by |displacement|
     r = XDMFReader(FileNames=[steps])
     r.UpdatePipeline(t_rec[-1])

@@ -35,9 +35,20 @@ for m in $("$BIN" list methods | awk '{print $1}'); do
   else
     scene=drape
   fi
+  solver=lsnewton
+  sets=()
+  if [ "$m" = adaptive_sqrt3 ]; then
+    # its forces are not a potential (linearized only), and the drape's 5
+    # steps would not adapt: a sheet that folds within 20 steps, adapted
+    # every 2nd step with low curvature limits, so that its mesh changes
+    scene=tests/scenes/a3_hanging.json
+    solver=linearized
+    sets=(--set method.max_generation=4 --set method.curv_base=0.01 --set method.curv_max=0.1
+          --set method.adapt_every=2 --set run.single_step_rtol=1e300)
+  fi
   echo "check_paraview: $m on $scene" >&2
-  rm -f "$OUT/$m.h5" "$OUT/$m.xdmf" "$OUT/$m.steps.xdmf"
-  if "$BIN" run --scene "$scene" --method "$m" --solver lsnewton --res 4 --out "$OUT/$m.h5" --quiet; then
+  rm -f "$OUT/$m.h5" "$OUT/$m.xdmf" "$OUT/$m.steps.xdmf" "$OUT/$m.mesh.xdmf"
+  if "$BIN" run --scene "$scene" --method "$m" --solver $solver --res 4 --out "$OUT/$m.h5" --quiet "${sets[@]}"; then
     records+=("$OUT/$m.h5")
   else
     echo "check_paraview: $m did not converge on $scene (its record is checked all the same)" >&2
