@@ -292,6 +292,17 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
             return SB_EXIT_INTERNAL;
         }
+        if (sb_problem_take_pattern_change(R->prob)) {
+            /* self-contact replaced a sparsity pattern (docs/contact.md): the
+               solver's pattern-bound data are allocated anew, as after an
+               adaptation */
+            R->stype->free(R->ss);
+            memset(R->ss, 0, R->stype->state_size);
+            if ((rc = R->stype->alloc(R->ss, R->prob, &R->ctx.params))) {
+                fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+                return SB_EXIT_INTERNAL;
+            }
+        }
         /* lifting of boundary motion; not for the single-step solver, which is
          * by definition one Newton step from x_n */
         if (sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
