@@ -237,8 +237,8 @@ int sb_self_begin_step(sb_self *s, const double *x0, const double *xhat)
         eval_points(s, xhat, s->xp);
         for (int p = 0; p < s->np; p++) move = fmax(move, dist3(s->xp + 3 * p, s->x0 + 3 * p));
     }
-    /* assumption: room for three times the inertial prediction's motion */
-    s->margin = fmax(4 * s->dhat, 3 * move);
+    /* assumption: room for four times the inertial prediction's motion, at least 8 dhat */
+    s->margin = fmax(8 * s->dhat, 4 * move);
     return search(s, s->x0, s->dhat + s->margin, 1, NULL);
 }
 
@@ -324,12 +324,21 @@ static int scatter_pair(const sb_self *s, const int pts[4], const double G[12], 
 static double pair_energy(const sb_self *s, int k, const double x[12], double *G, double *Hp, int *active)
 {
     const int is_pt = k < s->npt;
+    *active = 0;
+    /* cheap rejection: the two primitives' boxes more than dhat apart on an axis */
+    const int na = is_pt ? 1 : 2;
+    for (int a = 0; a < 3; a++) {
+        double lo1 = x[a], hi1 = x[a], lo2 = x[3 * na + a], hi2 = x[3 * na + a];
+        for (int u = 1; u < na; u++) { lo1 = fmin(lo1, x[3 * u + a]); hi1 = fmax(hi1, x[3 * u + a]); }
+        for (int u = na + 1; u < 4; u++) { lo2 = fmin(lo2, x[3 * u + a]); hi2 = fmax(hi2, x[3 * u + a]); }
+        if (lo1 > hi2 + s->dhat || lo2 > hi1 + s->dhat) return 0.0;
+    }
     const sb_dist_type type = is_pt ? sb_pt_type(x, x + 3, x + 6, x + 9) : sb_ee_type(x, x + 3, x + 6, x + 9);
     double g2[12], H2[144];
-    const double d2 = sb_typed_dist2(type, x, g2, Hp ? H2 : NULL);
-    *active = 0;
+    double d2 = sb_typed_dist2(type, x, NULL, NULL);
     if (d2 >= s->dhat * s->dhat) return 0.0;
     if (!(d2 > 0)) return INFINITY;
+    d2 = sb_typed_dist2(type, x, g2, Hp ? H2 : NULL);
     *active = 1;
     const sb_contact_points *P = s->P;
     int pts[4];

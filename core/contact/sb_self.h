@@ -32,7 +32,7 @@ int  sb_self_create(const sb_contact_points *pts, const double *xref, double dha
 void sb_self_free(sb_self *s);
 
 /* The candidate set of a step: pairs within dhat + margin at x0, with
- * margin = max(4 dhat, 3 max_p |xhat_p - x0_p|) (xhat: the inertial
+ * margin = max(8 dhat, 4 max_p |xhat_p - x0_p|) (xhat: the inertial
  * prediction x_n + dt v_n, or NULL); x0 is the centre of the step filter's
  * margin.  SB_OK or SB_ERR_NOMEM. */
 int  sb_self_begin_step(sb_self *s, const double *x0, const double *xhat);
