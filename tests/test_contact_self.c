@@ -238,7 +238,7 @@ SB_TEST(refusals)
 /* ---- the scene -------------------------------------------------------------- */
 
 typedef struct result {
-    int iterations, accepted, crossings, nonfinite, max_active, pattern_changes, steps_done;
+    int iterations, accepted, crossings, nonfinite, max_active, pattern_changes, steps_done, first_active;
     double dmin, fd_grad, fd_hess;
 } result;
 
@@ -333,6 +333,7 @@ static void run_case(sb_test_state *T, const sb_method_type *mt, const char *sol
                        step, it, cr, info.accepted, (int)info.fail, dmin, pairs, mm);
             out->dmin = fmin(out->dmin, dmin);
             if (act > out->max_active) out->max_active = act;
+            if (act > 0 && !out->first_active) out->first_active = step;
             if (info.fail == SB_REASON_NONFINITE) out->nonfinite++;
             if (info.fail || info.gnorm <= 1e-9 * g0) break;
         }
@@ -368,19 +369,21 @@ SB_TEST(no_sample_edge_crosses_a_sample_triangle)
             snprintf(tag, sizeof tag, "%s/%s", mts[m]->name, solvers[k]);
             if (only && strcmp(only, tag) != 0) continue;
             result r;
-            run_case(T, mts[m], solvers[k], 4, rmtr ? 2 : 1, 24, k == 0, &r);
+            run_case(T, mts[m], solvers[k], 4, rmtr ? 2 : 1, 14, k == 0, &r);
             printf("    %-10s %-10s %2d steps, %4d iterations, %4d accepted, %3d pattern changes, max %4d active "
-                   "pairs, min distance %.3g m, crossings %d%s", mts[m]->name, solvers[k], r.steps_done,
-                   r.iterations, r.accepted, r.pattern_changes, r.max_active, r.dmin, r.crossings,
+                   "pairs (from step %d), min distance %.3g m, crossings %d%s", mts[m]->name, solvers[k],
+                   r.steps_done, r.iterations, r.accepted, r.pattern_changes, r.max_active, r.first_active, r.dmin, r.crossings,
                    r.nonfinite ? " (nonfinite recorded)" : "");
             if (r.fd_grad >= 0) printf(", FD gradient %.2e Hessian %.2e", r.fd_grad, r.fd_hess);
             printf("\n");
             CHECK_MSG(r.crossings == 0, "%s/%s: %d crossings after accepted iterations", mts[m]->name, solvers[k],
                       r.crossings);
             CHECK(r.accepted > 0);
+            /* the tube folds onto itself within these steps (damped, capped at
+               15 iterations a step, and linearized, one Newton step, lag behind) */
+            if (k == 0 || k == 1 || k == 4)
+                CHECK_MSG(r.max_active > 0, "%s/%s: no self-contact pair became active", mts[m]->name, solvers[k]);
             if (k == 0) {
-                /* the crown reaches the bottom: self-contact is active */
-                CHECK_MSG(r.max_active > 0, "%s: no self-contact pair became active", mts[m]->name);
                 CHECK_MSG(r.fd_grad >= 0 && r.fd_grad < 1e-6 && r.fd_hess < 1e-5, "%s: FD gradient %g, Hessian %g",
                           mts[m]->name, r.fd_grad, r.fd_hess);
             }

@@ -336,6 +336,15 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             rec->contact_active = act;
             rec->contact_inside = ins;
             rec->contact_steps_inside += ins > 0;
+            int pairs, sact, cross;
+            double sdmin;
+            if (sb_problem_self_measure(R->prob, R->x, &pairs, &sact, &sdmin, &cross)) {
+                if (!rec->has_self || sdmin < rec->self_min_distance) rec->self_min_distance = sdmin;
+                rec->has_self = 1;
+                rec->self_pairs = pairs;
+                rec->self_active = sact;
+                rec->self_steps_crossing += cross != 0;
+            }
         }
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
         if (!req->quiet)
