@@ -228,11 +228,31 @@ SB_TEST(refusals)
     CHECK_EQ_INT(sb_self_create(&cp, x, 1e-3, 1, 0.9, &s, why, sizeof why), SB_ERR_UNSUPPORTED);
     CHECK(strstr(why, "triangulate") != NULL);
     sb_contact_points_free(&cp);
-    /* dhat not below half the rest distance: the scene's run is refused with a sentence */
-    char cmd[2048];
-    snprintf(cmd, sizeof cmd, "%s run --scene %s/bench/scenes/tube_collapse.json --method bhem --res 4 --out none "
-             "--quiet --set-scene contact.dhat=0.02 2>&1", sb_test_bin(), sb_test_root());
-    (void)cmd;
+    /* dhat not below half the rest distance of non-incident primitives: the
+       problem is refused with a sentence, for every method */
+    const sb_method_type *mts[] = { &sb_method_bhem, &sb_method_subdiv, &sb_method_linear_fem };
+    for (int m = 0; m < 3; m++) {
+        sb_context ctx;
+        sb_scene sc;
+        sb_context_init(&ctx);
+        char path[1024], err[1024];
+        snprintf(path, sizeof path, "%s/bench/scenes/tube_collapse.json", sb_test_root());
+        CHECK_EQ_INT(sb_scene_load(path, &sc, err, sizeof err), 0);
+        sc.contact.dhat = 0.05;   /* the sample spacing at res 4 is about 7 cm */
+        void *ms = calloc(1, mts[m]->state_size);
+        if (mts[m]->params) sb_paramset_add(&ctx.params, "method", mts[m]->params);
+        sb_method_config cfg = { 4, 1, &ctx.params, &ctx, 0 };
+        sb_problem *p = NULL;
+        CHECK_EQ_INT(mts[m]->create(ms, &sc, &cfg), 0);
+        CHECK_EQ_INT(sb_problem_create(&ctx, mts[m], ms, &sc, &p), SB_ERR_UNSUPPORTED);
+        CHECK_MSG(strstr(ctx.err, "rest state would touch itself") != NULL, "%s: %s", mts[m]->name, ctx.err);
+        printf("    %s: %s\n", mts[m]->name, ctx.err);
+        sb_problem_free(p);
+        mts[m]->destroy(ms);
+        free(ms);
+        sb_scene_free(&sc);
+        sb_context_free(&ctx);
+    }
 }
 
 /* ---- the scene -------------------------------------------------------------- */
