@@ -24,6 +24,8 @@
 extern const sb_method_type sb_method_bhem, sb_method_subdiv, sb_method_linear_fem;
 extern const sb_param_def sb_solve_params[];
 
+static unsigned lcg(unsigned *s) { return *s = *s * 1103515245u + 12345u; }
+
 /* ---- distances ------------------------------------------------------------ */
 
 typedef double (*fun12)(const double x[12], void *data, double *g, double *H);
@@ -212,6 +214,117 @@ SB_TEST(segment_triangle_test)
     CHECK(!sb_segment_triangle_intersect((double[]){ 2, 0, 5e-14 }, (double[]){ 3, 0, 9e-14 }, t0, t1, t2));
 }
 
+/* ---- two layers: the filter and the barrier on their own ------------------ */
+
+/* two 3 x 3 grids of points (one term each: x_p = q_p) 1 cm apart, the upper
+ * one turned by `angle` about z (small: nearly parallel edges, the
+ * mollifier active) */
+static void two_layers(sb_contact_points *cp, double *x, double gap, double angle)
+{
+    memset(cp, 0, sizeof *cp);
+    int map[9];
+    for (int layer = 0; layer < 2; layer++) {
+        for (int j = 0; j < 3; j++)
+            for (int i = 0; i < 3; i++) {
+                const int p = cp->n, dof = 3 * p;
+                const double w = 1.0, u = 0.05 * i - 0.05, v = 0.05 * j - 0.05;
+                const double c = cos(layer * angle), s = sin(layer * angle);
+                x[dof] = c * u - s * v;
+                x[dof + 1] = s * u + c * v;
+                x[dof + 2] = layer * gap;
+                map[j * 3 + i] = p;
+                sb_contact_points_add(cp, 1, &dof, &w, 0.0025, u, v);
+            }
+        sb_contact_grid_triangles(cp, map, 2, 2);
+    }
+}
+
+static double self_f(sb_self *s, const double *x, double *g, sb_matrix *H, int n)
+{
+    double e = 0;
+    if (g) memset(g, 0, n * sizeof *g);
+    if (H) sb_matrix_zero(H);
+    sb_self_energy(s, x, &e, g, H);
+    return e;
+}
+
+SB_TEST(two_layers_barrier_and_filter)
+{
+    sb_contact_points cp;
+    double x[54], d[54], xt[54];
+    /* the rest state: the layers 1 m apart (at 3 mm it is refused) */
+    two_layers(&cp, x, 0.003, 0.002);
+    CHECK_EQ_INT(cp.n, 18);
+    CHECK_EQ_INT(cp.nt, 16);
+    char why[512] = "";
+    sb_self *s = NULL;
+    CHECK_EQ_INT(sb_self_create(&cp, x, 0.004, 100.0, 0.9, &s, why, sizeof why), SB_ERR_UNSUPPORTED);
+    for (int p = 9; p < 18; p++) x[3 * p + 2] = 1.0;
+    CHECK_EQ_INT(sb_self_create(&cp, x, 0.004, 100.0, 0.9, &s, why, sizeof why), 0);
+    for (int p = 9; p < 18; p++) x[3 * p + 2] = 0.003;
+    if (!s) { sb_contact_points_free(&cp); return; }
+    /* the barrier, mollified edge pairs included, against central
+       differences, on a dense pattern */
+    CHECK_EQ_INT(sb_self_begin_step(s, x, NULL), 0);
+    sb_self_report rep;
+    CHECK_EQ_INT(sb_self_measure(s, x, &rep), 0);
+    CHECK(rep.active > 0 && rep.crossings == 0);
+    sb_pattern_builder *pb = sb_pattern_builder_new(18, 3);
+    int nodes[18];
+    for (int i = 0; i < 18; i++) nodes[i] = i;
+    sb_pattern_builder_add(pb, 18, nodes);
+    sb_pattern *pat = NULL;
+    CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pat), 0);
+    sb_matrix H;
+    sb_matrix_init(&H, pat);
+    double g[54], gp[54], gm[54], Hd[54], dir[54];
+    unsigned seed = 3;
+    for (int i = 0; i < 54; i++) {
+        dir[i] = (double)(lcg(&seed) >> 8) / (double)(1u << 24) - 0.5;
+        x[i] += 2e-4 * ((double)(lcg(&seed) >> 8) / (double)(1u << 24) - 0.5);
+    }
+    self_f(s, x, g, &H, 54);
+    sb_matrix_symv(&H, dir, Hd);
+    double best_g = INFINITY, best_h = INFINITY, gd = 0, hn = 0;
+    for (int i = 0; i < 54; i++) { gd += g[i] * dir[i]; hn += Hd[i] * Hd[i]; }
+    for (double h = 1e-6; h > 1e-9; h /= 4) {
+        for (int i = 0; i < 54; i++) xt[i] = x[i] + h * dir[i];
+        const double fp = self_f(s, xt, gp, NULL, 54);
+        for (int i = 0; i < 54; i++) xt[i] = x[i] - h * dir[i];
+        const double fm = self_f(s, xt, gm, NULL, 54);
+        double e2 = 0;
+        for (int i = 0; i < 54; i++) e2 += pow((gp[i] - gm[i]) / (2 * h) - Hd[i], 2);
+        best_g = fmin(best_g, fabs((fp - fm) / (2 * h) - gd) / fabs(gd));
+        best_h = fmin(best_h, sqrt(e2 / hn));
+    }
+    printf("    two layers: %d active pairs, barrier FD gradient %.2e, Hessian %.2e\n", rep.active, best_g, best_h);
+    CHECK(best_g < 1e-6 && best_h < 1e-5);
+    sb_matrix_free(&H);
+    sb_pattern_free(pat);
+    /* a step that carries the upper layer through the lower one: without
+       the filter the edges cross the triangles; with it they stay apart */
+    /* (one side of the upper layer goes down 3 cm: the layer tilts through the lower one) */
+    for (int i = 0; i < 54; i++) d[i] = (i >= 27 && i % 3 == 2 && (i / 3 - 9) % 3 == 0) ? -0.03 : 0.0;
+    for (int i = 0; i < 54; i++) xt[i] = x[i] + d[i];
+    CHECK_EQ_INT(sb_self_begin_step(s, x, xt), 0);    /* margin from the predicted motion */
+    CHECK_EQ_INT(sb_self_measure(s, xt, &rep), 0);
+    CHECK(rep.crossings > 0);
+    const double alpha = sb_self_step_bound(s, x, d);
+    for (int i = 0; i < 54; i++) xt[i] = x[i] + alpha * d[i];
+    CHECK_EQ_INT(sb_self_measure(s, xt, &rep), 0);
+    printf("    two layers pushed through: alpha %.4f, crossings at alpha %d, min distance %.3g m\n", alpha,
+           rep.crossings, rep.min_distance);
+    CHECK(alpha > 0 && alpha < 0.2);
+    CHECK_EQ_INT(rep.crossings, 0);
+    CHECK(rep.min_distance > 0);
+    /* a sideways step: no impact; the margin alone bounds it (margin/2 over |d|) */
+    for (int i = 0; i < 54; i++) d[i] = (i >= 27 && i % 3 == 0) ? 1.0 : 0.0;
+    CHECK_EQ_INT(sb_self_begin_step(s, x, NULL), 0);
+    CHECK_NEAR(sb_self_step_bound(s, x, d), 0.5 * sb_self_margin(s), 1e-12);
+    sb_self_free(s);
+    sb_contact_points_free(&cp);
+}
+
 /* ---- refusals ----------------------------------------------------------- */
 
 SB_TEST(refusals)
@@ -262,7 +375,6 @@ typedef struct result {
     double dmin, fd_grad, fd_hess;
 } result;
 
-static unsigned lcg(unsigned *s) { return *s = *s * 1103515245u + 12345u; }
 
 static void run_case(sb_test_state *T, const sb_method_type *mt, const char *solver, int res, int levels, int steps,
                      int fd, result *out)
@@ -415,6 +527,6 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = {
         SB_CASE(point_triangle_types_and_derivatives), SB_CASE(edge_edge_types_and_derivatives),
         SB_CASE(edge_edge_mollifier), SB_CASE(edge_edge_ccd_degenerate_cases), SB_CASE(segment_triangle_test),
-        SB_CASE(refusals), SB_CASE(no_sample_edge_crosses_a_sample_triangle), SB_END };
+        SB_CASE(two_layers_barrier_and_filter), SB_CASE(refusals), SB_CASE(no_sample_edge_crosses_a_sample_triangle), SB_END };
     return sb_test_main(argc, argv, cases);
 }
