@@ -441,6 +441,20 @@ double sb_self_step_bound(sb_self *s, const double *x, const double *d)
             }
         }
         if (!moving) continue;
+        /* the swept boxes of the two primitives apart on an axis: no impact
+           (every point of a primitive stays in the box of its vertices' paths) */
+        const int na = k < s->npt ? 1 : 2;
+        int apart = 0;
+        for (int a = 0; a < 3 && !apart; a++) {
+            double lo1 = INFINITY, hi1 = -INFINITY, lo2 = INFINITY, hi2 = -INFINITY;
+            for (int u = 0; u < 4; u++) {
+                const double l = fmin(X[u][a], Y[u][a]), h = fmax(X[u][a], Y[u][a]);
+                if (u < na) { lo1 = fmin(lo1, l); hi1 = fmax(hi1, h); }
+                else { lo2 = fmin(lo2, l); hi2 = fmax(hi2, h); }
+            }
+            apart = lo1 > hi2 || lo2 > hi1;
+        }
+        if (apart) continue;
         const double t = k < s->npt ? sb_ccd_point_triangle(X[0], Y[0], X[1], Y[1], X[2], Y[2], X[3], Y[3])
                                     : sb_ccd_edge_edge(X[0], Y[0], X[1], Y[1], X[2], Y[2], X[3], Y[3]);
         toi = fmin(toi, t);
