@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # bench/contact/run.sh — the contact scenes (issue 25: cloth_sphere,
 # drape_box, needles) with every method and the lsnewton and tr solvers, at
-# the scenes' resolutions and at twice them, one JSON summary per run
+# the scenes' resolutions and at twice them, and the self-contact scene
+# tube_collapse at half and at its resolution (self-contact at twice it
+# takes minutes a run), one JSON summary per run
 # (`shellbench run --summary json`) under results/contact/runs/; the report
 # (results/contact_report.md: the contact share of the run time) is made
 # from those files by bench/contact/report.py, never by re-running.  A
@@ -27,6 +29,19 @@ for scene in cloth_sphere drape_box needles; do
           --out none --summary json --quiet > "$f.tmp" 2> "$OUT/$tag.log"
         mv "$f.tmp" "$f"
       done
+    done
+  done
+done
+for method in bhem rmtr linear_fem; do
+  for solver in lsnewton tr; do
+    for res in 4 8; do
+      tag="tube_collapse-$method-$solver-r$res"
+      f="$OUT/$tag.json"
+      [ -s "$f" ] && continue
+      echo "== $tag" >&2
+      "$BIN" run --scene tube_collapse --method "$method" --solver "$solver" --res "$res" \
+        --out none --summary json --quiet > "$f.tmp" 2> "$OUT/$tag.log"
+      mv "$f.tmp" "$f"
     done
   done
 done

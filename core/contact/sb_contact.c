@@ -3,6 +3,7 @@
  * as a dissipative potential, and the step filter (sb_contact.h). */
 #include "sb_contact.h"
 #include "sb_obstacle.h"
+#include "sb_self.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -33,6 +34,7 @@ struct sb_contact {
      * point's first assembly, for the pattern hpat */
     const sb_pattern *hpat;
     long **hpos;
+    sb_self *self;           /* self-contact (contact.self), NULL without */
 };
 
 /* IPC barrier, Li et al. 2020 Eq. (6): b = -(d - dhat)^2 ln(d / dhat) on (0, dhat) */
@@ -90,6 +92,7 @@ int sb_contact_create(const sb_scene *sc, sb_contact_points *pts, sb_contact **o
 void sb_contact_free(sb_contact *c)
 {
     if (!c) return;
+    sb_self_free(c->self);
     for (int o = 0; o < SB_SCENE_MAX_OBSTACLES; o++) free(c->mesh[o].vw);
     if (c->hpos)
         for (int p = 0; p < c->pts.n; p++) free(c->hpos[p]);
@@ -100,6 +103,21 @@ void sb_contact_free(sb_contact *c)
 }
 
 int sb_contact_n_points(const sb_contact *c) { return c->pts.n; }
+
+int sb_contact_self_setup(sb_contact *c, const double *xref, char *why, size_t why_size)
+{
+    return sb_self_create(&c->pts, xref, c->dhat, c->kappa, c->filter, &c->self, why, why_size);
+}
+
+sb_self *sb_contact_self(sb_contact *c) { return c->self; }
+const sb_contact_points *sb_contact_points_of(const sb_contact *c) { return &c->pts; }
+
+void sb_contact_pattern_changed(sb_contact *c)
+{
+    if (c->hpos)
+        for (int q = 0; q < c->pts.n; q++) { free(c->hpos[q]); c->hpos[q] = NULL; }
+    c->hpat = NULL;
+}
 
 static void update_meshes(sb_contact *c)
 {
@@ -373,6 +391,11 @@ int sb_contact_energy(sb_contact *c, const double *x, double *f, double *g, sb_m
             }
         if ((rc = scatter(c, F->p, G, H ? B : NULL, g, H))) return rc < 0 ? SB_ERR_NOMEM : SB_ERR_INTERNAL;
     }
+    /* self-contact (sb_self.h) */
+    if (c->self && (rc = sb_self_energy(c->self, x, &e, g, H))) {
+        if (rc == SB_NONFINITE) *f = INFINITY;
+        return rc;
+    }
     *f += e;
     return isfinite(e) ? SB_OK : SB_NONFINITE;
 }
@@ -414,7 +437,9 @@ double sb_contact_step_bound(sb_contact *c, const double *x, const double *d)
             }
         }
     }
-    return tmin <= 1.0 ? c->filter * tmin : 1.0;
+    double a = tmin <= 1.0 ? c->filter * tmin : 1.0;
+    if (c->self) a = fmin(a, sb_self_step_bound(c->self, x, d));
+    return a;
 }
 
 typedef struct meas_data { double dmin; int active; } meas_data;
@@ -439,5 +464,16 @@ void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r)
         r->inside += visit_pairs(c, c->pose, xp, INFINITY, 0, meas_pair, &M);
         r->min_distance = fmin(r->min_distance, M.dmin);
         if (M.dmin < c->dhat) r->active++;
+    }
+    r->self_min_distance = INFINITY;
+    if (c->self) {
+        sb_self_report s;
+        if (sb_self_measure(c->self, x, &s) == SB_OK) {
+            r->self_pairs = s.pairs;
+            r->self_active = s.active;
+            r->self_min_distance = s.min_distance;
+            r->self_crossings = s.crossings;
+            r->self_max_move = s.max_move;
+        } else r->self_crossings = -1;
     }
 }

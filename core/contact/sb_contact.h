@@ -16,6 +16,8 @@
 #include "sb_sparse.h"
 #include "sb_contact_points.h"
 
+#include <stddef.h>
+
 typedef struct sb_contact sb_contact;
 
 /* Takes ownership of *pts (left zeroed). */
@@ -44,8 +46,25 @@ typedef struct sb_contact_report {
     int active;              /* points within dhat of an obstacle (barrier active) */
     int inside;              /* points inside an analytic obstacle or on a mesh triangle */
     double min_distance;     /* smallest distance of a sample point to an obstacle (m) */
+    /* self-contact (zero / INFINITY without) */
+    int self_pairs;          /* candidate pairs of the step */
+    int self_active;         /* candidate pairs within dhat */
+    double self_min_distance;/* smallest distance of a candidate pair (m) */
+    int self_crossings;      /* sample edges crossing a non-incident sample triangle (-1: out of memory) */
+    double self_max_move;    /* largest distance of a sample point from its step-start position (m) */
 } sb_contact_report;
 void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r);
+
+/* Self-contact (docs/contact.md "Self-contact", sb_self.h): set up from the
+ * triangles of the sample points at the reference state xref;
+ * SB_ERR_UNSUPPORTED with a sentence in why when it cannot be honoured.
+ * Afterwards the energy, the step filter and the measurement include it. */
+struct sb_self;
+int  sb_contact_self_setup(sb_contact *c, const double *xref, char *why, size_t why_size);
+struct sb_self *sb_contact_self(sb_contact *c);
+const sb_contact_points *sb_contact_points_of(const sb_contact *c);
+/* The Hessian's pattern was replaced (forget cached positions). */
+void sb_contact_pattern_changed(sb_contact *c);
 
 /* IPC barrier b(d) and its first two derivatives (Li et al. 2020 Eq. 6). */
 double sb_barrier(double d, double dhat, double *db, double *ddb);

@@ -42,9 +42,41 @@ int sb_contact_points_add(sb_contact_points *cp, int k, const int *dof, const do
     return SB_OK;
 }
 
+int sb_contact_points_add_tri(sb_contact_points *cp, int a, int b, int c)
+{
+    if (cp->nt == cp->cap_tri) {
+        int nc = cp->cap_tri ? 2 * cp->cap_tri : 512;
+        int *t = realloc(cp->tri, (size_t)3 * nc * sizeof *t);
+        if (!t) return SB_ERR_NOMEM;
+        cp->tri = t;
+        cp->cap_tri = nc;
+    }
+    cp->tri[3 * cp->nt] = a;
+    cp->tri[3 * cp->nt + 1] = b;
+    cp->tri[3 * cp->nt + 2] = c;
+    cp->nt++;
+    return SB_OK;
+}
+
+int sb_contact_grid_triangles(sb_contact_points *cp, const int *map, int ns, int nt)
+{
+    for (int j = 0; j < nt; j++)
+        for (int i = 0; i < ns; i++) {
+            const int a = map[j * (ns + 1) + i], b = map[j * (ns + 1) + i + 1];
+            const int c = map[(j + 1) * (ns + 1) + i + 1], d = map[(j + 1) * (ns + 1) + i];
+            if (a < 0 || b < 0 || c < 0 || d < 0) continue;
+            int rc = (i + j) % 2 == 0
+                         ? sb_contact_points_add_tri(cp, a, b, c) || sb_contact_points_add_tri(cp, a, c, d)
+                         : sb_contact_points_add_tri(cp, a, b, d) || sb_contact_points_add_tri(cp, b, c, d);
+            if (rc) return SB_ERR_NOMEM;
+        }
+    return SB_OK;
+}
+
 void sb_contact_points_free(sb_contact_points *cp)
 {
     if (!cp) return;
+    free(cp->tri);
     free(cp->off); free(cp->dof); free(cp->w); free(cp->area); free(cp->st);
     memset(cp, 0, sizeof *cp);
 }

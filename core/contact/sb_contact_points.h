@@ -17,11 +17,23 @@ typedef struct sb_contact_points {
     double *area;       /* n: reference area per point (m^2) */
     double *st;         /* 2n: grid parameter (s, t) of each point (for messages and records) */
     int cap_p, cap_t;
+    /* The surface between the points (self-contact, docs/contact.md): nt
+     * triangles of point indices (3 nt), consistently oriented, or nt = 0 when
+     * the method does not triangulate its points. */
+    int nt, cap_tri;
+    int *tri;
 } sb_contact_points;
 
 /* Append one point with k terms; SB_OK or SB_ERR_NOMEM. */
 int  sb_contact_points_add(sb_contact_points *cp, int k, const int *dof, const double *w, double area, double s,
                            double t);
+/* Append triangle (a, b, c) of point indices; SB_OK or SB_ERR_NOMEM. */
+int  sb_contact_points_add_tri(sb_contact_points *cp, int a, int b, int c);
+/* Triangulate a (ns+1) x (nt+1) grid of points, map[j (ns+1) + i] = the
+ * index of grid point (i, j) or -1 (absent): every cell with four points
+ * gives two triangles, counter-clockwise in (i, j), its diagonal alternating
+ * with the parity of i + j (no directional bias). */
+int  sb_contact_grid_triangles(sb_contact_points *cp, const int *map, int ns, int nt);
 void sb_contact_points_free(sb_contact_points *cp);
 /* x_p of point p from the dof vector x */
 void sb_contact_points_eval(const sb_contact_points *cp, int p, const double *x, double xp[3]);

@@ -4,6 +4,7 @@
 #include "sb_context.h"
 #include "sb_galerkin.h"
 #include "sb_contact.h"
+#include "sb_self.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -37,6 +38,8 @@ struct sb_problem {
     int dynamic, damping;
     double dt, ray_a, ray_b;
     double *scale_x, *scale_g;  /* sb_problem_force_scale (finest level, allocated on first use) */
+    int self;                   /* self-contact on every level (contact.self) */
+    int pattern_changed;        /* a level's pattern was replaced (sb_problem_take_pattern_change) */
 };
 
 static void level_free(sb_problem *p, level_data *L)
@@ -84,9 +87,6 @@ static int contact_create(sb_problem *p)
     if (sc->contact.model == SB_CONTACT_IMPULSE)
         return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s: contact.model \"impulse\" is not wired into the "
                         "run loop in this build", sc->name);
-    if (sc->contact.self)
-        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for self-contact (contact.self), which this "
-                        "build does not implement", sc->name);
     for (int l = 0; l < p->nl; l++) {
         sb_contact_points cp;
         memset(&cp, 0, sizeof cp);
@@ -96,6 +96,20 @@ static int contact_create(sb_problem *p)
         if (rc) return rc < 0 ? sb_error(p->ctx, rc, "method %s: contact sample points of level %d failed",
                                          p->mt->name, l)
                               : sb_error(p->ctx, SB_ERR_INTERNAL, "contact set-up of level %d failed", l);
+        if (!sc->contact.self) continue;
+        /* self-contact (docs/contact.md "Self-contact"): the triangles between
+           the sample points, checked at the reference state */
+        double *xref = malloc((size_t)p->lv[l].n * sizeof *xref);
+        if (!xref) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (self-contact)");
+        char why[512] = "";
+        rc = p->mt->initial(p->ms, l, xref);
+        if (!rc) rc = sb_contact_self_setup(p->lv[l].contact, xref, why, sizeof why);
+        free(xref);
+        if (rc == SB_ERR_UNSUPPORTED)
+            return sb_error(p->ctx, rc, "scene %s asks for self-contact (contact.self), which method %s cannot "
+                            "honour on level %d: %s", sc->name, p->mt->name, l, why);
+        if (rc) return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "self-contact set-up of level %d failed", l);
+        p->self = 1;
     }
     return SB_OK;
 }
@@ -279,29 +293,169 @@ double sb_problem_norm(const sb_problem *p, int level, const double *v)
 
 /* obstacle poses of the step and the friction lagged at x_n on every level
  * (coarse levels: x_n projected, as the inertia data are) */
-static int contact_begin_step(sb_problem *p, const sb_step_info *si, const double *x_n)
+static int self_repattern(sb_problem *p, int l);
+
+/* self-contact of level l at the start of a step: the candidate set at x0
+ * (margin from the inertial prediction xhat, or NULL) and the pattern */
+static int self_begin_step(sb_problem *p, int l, const double *x0, const double *xhat)
+{
+    sb_self *S = sb_contact_self(p->lv[l].contact);
+    if (!S) return SB_OK;
+    int rc = sb_self_begin_step(S, x0, xhat);
+    return rc ? rc : self_repattern(p, l);
+}
+
+static int contact_begin_step(sb_problem *p, const sb_step_info *si, const double *x_n, const double *v_n,
+                              const double *x0)
 {
     const int F = p->nl - 1;
     if (!p->lv[F].contact) return SB_OK;
     double t0 = sb_now();
     int rc = sb_contact_begin_step(p->lv[F].contact, si->step, p->dt, x_n);
-    const double *xf = x_n;
-    double *buf[2] = { NULL, NULL };
+    double *xhat = NULL;
+    if (!rc && p->self && p->dynamic && v_n) {
+        /* the inertial prediction x_n + dt v_n sizes the self-contact margin */
+        xhat = malloc((size_t)p->lv[F].n * sizeof *xhat);
+        if (!xhat) rc = SB_ERR_NOMEM;
+        else
+            for (int i = 0; i < p->lv[F].n; i++) xhat[i] = x0[i] + p->dt * v_n[i];
+    }
+    if (!rc) rc = self_begin_step(p, F, x0, xhat);
+    const double *xf = x_n, *x0f = x0, *xhf = xhat;
+    double *buf[2][3] = { { NULL, NULL, NULL }, { NULL, NULL, NULL } };
     for (int l = F - 1; l >= 0 && !rc; l--) {
         if (!(p->mt->flags & SB_METHOD_HIERARCHY)) break;
-        double *xc = malloc((size_t)p->lv[l].n * sizeof *xc);
-        if (!xc) { rc = SB_ERR_NOMEM; break; }
-        if ((rc = p->mt->project(p->ms, l, xf, xc))) { free(xc); break; }
-        rc = sb_contact_begin_step(p->lv[l].contact, si->step, p->dt, xc);
-        free(buf[l % 2]);
-        buf[l % 2] = xc;
-        xf = xc;
+        double **b = buf[l % 2];
+        for (int k = 0; k < 3; k++) { free(b[k]); b[k] = NULL; }
+        const int nc = p->lv[l].n;
+        b[0] = malloc((size_t)nc * sizeof(double));
+        if (p->self) {
+            b[1] = malloc((size_t)nc * sizeof(double));
+            if (xhf) b[2] = malloc((size_t)nc * sizeof(double));
+        }
+        if (!b[0] || (p->self && !b[1]) || (xhf && !b[2])) { rc = SB_ERR_NOMEM; break; }
+        if ((rc = p->mt->project(p->ms, l, xf, b[0]))) break;
+        rc = sb_contact_begin_step(p->lv[l].contact, si->step, p->dt, b[0]);
+        if (!rc && p->self) {
+            rc = p->mt->project(p->ms, l, x0f, b[1]);
+            if (!rc && xhf) rc = p->mt->project(p->ms, l, xhf, b[2]);
+            if (!rc) rc = self_begin_step(p, l, b[1], xhf ? b[2] : NULL);
+        }
+        xf = b[0];
+        x0f = b[1];
+        xhf = b[2];
     }
-    free(buf[0]);
-    free(buf[1]);
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 3; k++) free(buf[i][k]);
+    free(xhat);
     sb_stats_event(&p->ctx->stats, F, SB_EV_COLLIDE, t0);
     if (rc) return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "contact: starting step %d failed", si->step);
     return SB_OK;
+}
+
+/* Self-contact couples the dofs of distant elements, outside the method's
+ * pattern (docs/contact.md "Self-contact: sparsity"): when a candidate pair
+ * of the step couples two nodes the level's pattern lacks, the pattern is
+ * rebuilt as the method's pattern plus one element per candidate pair, the
+ * level's matrices are re-created on it (mass recomputed, constraints
+ * re-indexed), and the symbolic analysis follows at the next factorization
+ * (counted there as event analyze); the solver is told through
+ * sb_problem_take_pattern_change.  A set whose couplings are all in the
+ * pattern changes nothing. */
+static int pair_nodes(const sb_contact_points *P, const int pts[4], int bs, int *nodes, int cap)
+{
+    int m = 0;
+    for (int u = 0; u < 4; u++)
+        for (int a = P->off[pts[u]]; a < P->off[pts[u] + 1]; a++)
+            for (int c = 0; c < 3; c++) {   /* the three dofs of the term (bs may be 1) */
+                const int nd = (P->dof[a] + c) / bs;
+                int k = 0;
+                while (k < m && nodes[k] != nd) k++;
+                if (k == m && m < cap) nodes[m++] = nd;
+            }
+    return m;
+}
+
+static int self_repattern(sb_problem *p, int l)
+{
+    level_data *L = &p->lv[l];
+    sb_self *S = sb_contact_self(L->contact);
+    const sb_contact_points *P = sb_contact_points_of(L->contact);
+    const int bs = L->pat->bs, npairs = sb_self_n_pairs(S);
+    enum { CAP = 1024 };
+    int nodes[CAP], need = 0;
+    for (int k = 0; k < npairs && !need; k++) {
+        int pts[4];
+        sb_self_pair_points(S, k, pts);
+        const int m = pair_nodes(P, pts, bs, nodes, CAP);
+        for (int i = 0; i < m && !need; i++)
+            for (int j = i; j < m && !need; j++)
+                if (sb_pattern_find(L->pat, nodes[i] * bs, nodes[j] * bs) < 0) need = 1;
+    }
+    if (!need) return SB_OK;
+    sb_pattern_builder *pb = sb_pattern_builder_new(L->n / bs, bs);
+    if (!pb) return SB_ERR_NOMEM;
+    int rc = p->mt->pattern(p->ms, l, pb);
+    for (int k = 0; k < npairs && !rc; k++) {
+        int pts[4];
+        sb_self_pair_points(S, k, pts);
+        const int m = pair_nodes(P, pts, bs, nodes, CAP);
+        rc = sb_pattern_builder_add(pb, m, nodes);
+    }
+    sb_pattern *pat = NULL;
+    int rc2 = sb_pattern_builder_finish(pb, &pat);
+    if (rc || rc2) { sb_pattern_free(pat); return rc ? rc : rc2; }
+    sb_matrix_free(&L->H);
+    sb_matrix_free(&L->M);
+    sb_matrix_free(&L->D);
+    sb_linsolve_free(L->lin);
+    L->lin = NULL;
+    for (int k = 0; k < p->nl; k++) {   /* Galerkin products refer to the patterns of two levels */
+        sb_galerkin_free(p->lv[k].gal);
+        p->lv[k].gal = NULL;
+    }
+    sb_pattern_free(L->pat);
+    L->pat = pat;
+    p->ctx->stats.matrix_nnz[l] = pat->nnz;
+    if ((rc = sb_matrix_init(&L->H, pat))) return rc;
+    if (p->dynamic) {
+        if ((rc = sb_matrix_init(&L->M, pat))) return rc;
+        if ((rc = p->mt->mass(p->ms, l, &L->M))) return rc;
+        if (p->damping && (rc = sb_matrix_init(&L->D, pat))) return rc;
+    }
+    if (L->bc && (rc = build_constraints(p, L))) return rc;
+    sb_contact_pattern_changed(L->contact);
+    p->pattern_changed = 1;
+    return SB_OK;
+}
+
+int sb_problem_take_pattern_change(sb_problem *p)
+{
+    const int c = p->pattern_changed;
+    p->pattern_changed = 0;
+    return c;
+}
+
+int sb_problem_self_measure(sb_problem *p, const double *x, int *pairs, int *active, double *min_distance,
+                            int *crossings)
+{
+    double mm;
+    return sb_problem_self_measure_ex(p, x, pairs, active, min_distance, crossings, &mm);
+}
+
+int sb_problem_self_measure_ex(sb_problem *p, const double *x, int *pairs, int *active, double *min_distance,
+                               int *crossings, double *max_move)
+{
+    level_data *L = &p->lv[p->nl - 1];
+    if (!L->contact || !sb_contact_self(L->contact)) return 0;
+    sb_contact_report r;
+    sb_contact_measure(L->contact, x, &r);
+    *pairs = r.self_pairs;
+    *active = r.self_active;
+    *min_distance = r.self_min_distance;
+    *crossings = r.self_crossings;
+    *max_move = r.self_max_move;
+    return 1;
 }
 
 int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x_n, const double *v_n, double *x0)
@@ -322,7 +476,7 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
     const int F = p->nl - 1;
     sb_copy(p->lv[F].n, x_n, x0);
     sb_problem_impose(p, F, x0);
-    if ((rc = contact_begin_step(p, si, x_n))) return rc;
+    if ((rc = contact_begin_step(p, si, x_n, v_n, x0))) return rc;
     if (!p->dynamic) return SB_OK;
 
     /* xhat = x_n + dt v_n on the finest level; coarse levels get projections
@@ -409,6 +563,9 @@ int sb_problem_lift(sb_problem *p, const double *x_n, double *x0)
     level_data *L = &p->lv[F];
     const int n = L->n;
     if (!L->bc || !L->bc->n) return SB_OK;
+    /* no lifting with self-contact: the lifted start would not pass through
+       the self-contact step filter (docs/contact.md) */
+    if (p->self) return SB_OK;
     double *d = calloc((size_t)n, sizeof *d), *r = malloc((size_t)n * sizeof *r);
     double *xl = malloc((size_t)n * sizeof *xl);
     if (!d || !r || !xl) { free(d); free(r); free(xl); return SB_ERR_NOMEM; }

@@ -120,4 +120,17 @@ void sb_problem_count_qp(sb_problem *p, int level, double seconds);
 /* Account CG iterations on a level. */
 void sb_problem_count_cg(sb_problem *p, int level, int iters);
 
+/* Self-contact (docs/contact.md): 1 once after a level's sparsity pattern
+ * was replaced at the start of a step (the solver re-allocates its
+ * pattern-bound data), else 0. */
+int  sb_problem_take_pattern_change(sb_problem *p);
+/* Self-contact figures at x on the finest level: candidate pairs, pairs
+ * within dhat, smallest distance, sample edges crossing sample triangles;
+ * returns 0 (and leaves them) without self-contact. */
+int  sb_problem_self_measure(sb_problem *p, const double *x, int *pairs, int *active, double *min_distance,
+                             int *crossings);
+/* ... and the largest distance of a sample point from its step-start position */
+int  sb_problem_self_measure_ex(sb_problem *p, const double *x, int *pairs, int *active, double *min_distance,
+                                int *crossings, double *max_move);
+
 #endif

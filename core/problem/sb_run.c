@@ -308,6 +308,17 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
             return SB_EXIT_INTERNAL;
         }
+        if (sb_problem_take_pattern_change(R->prob)) {
+            /* self-contact replaced a sparsity pattern (docs/contact.md): the
+               solver's pattern-bound data are allocated anew, as after an
+               adaptation */
+            R->stype->free(R->ss);
+            memset(R->ss, 0, R->stype->state_size);
+            if ((rc = R->stype->alloc(R->ss, R->prob, &R->ctx.params))) {
+                fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+                return SB_EXIT_INTERNAL;
+            }
+        }
         /* lifting of boundary motion; not for the single-step solver, which is
          * by definition one Newton step from x_n */
         if (sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
@@ -346,6 +357,15 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             rec->contact_active = act;
             rec->contact_inside = ins;
             rec->contact_steps_inside += ins > 0;
+            int pairs, sact, cross;
+            double sdmin;
+            if (sb_problem_self_measure(R->prob, R->x, &pairs, &sact, &sdmin, &cross)) {
+                if (!rec->has_self || sdmin < rec->self_min_distance) rec->self_min_distance = sdmin;
+                rec->has_self = 1;
+                rec->self_pairs = pairs;
+                rec->self_active = sact;
+                rec->self_steps_crossing += cross != 0;
+            }
         }
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
         if (!req->quiet)

@@ -264,6 +264,17 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
         json_object_set_new(co, "inside", json_integer(R->rec.contact_inside));
         json_object_set_new(co, "steps_inside", json_integer(R->rec.contact_steps_inside));
         json_set_num(co, "min_distance", R->rec.contact_min_distance);
+        if (R->rec.has_self) {
+            /* self-contact: candidate pairs and pairs within dhat at the end,
+               smallest pair distance over the step ends, steps that ended with
+               a sample edge through a sample triangle */
+            json_t *se = json_object();
+            json_object_set_new(se, "pairs", json_integer(R->rec.self_pairs));
+            json_object_set_new(se, "active", json_integer(R->rec.self_active));
+            json_set_num(se, "min_distance", R->rec.self_min_distance);
+            json_object_set_new(se, "steps_crossing", json_integer(R->rec.self_steps_crossing));
+            json_object_set_new(co, "self", se);
+        }
         json_object_set_new(o, "contact", co);
     }
     json_set_num(o, "energy_final", R->rec.has_energy ? R->rec.energy_final : NAN);

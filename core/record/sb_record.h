@@ -166,6 +166,9 @@ typedef struct sb_run {
     int has_contact;
     int contact_points, contact_active, contact_inside, contact_steps_inside;
     double contact_min_distance;
+    /* self-contact (contact.self; docs/contact.md): end-of-step figures */
+    int has_self, self_pairs, self_active, self_steps_crossing;
+    double self_min_distance;
     /* validation (docs/trust.md): every expected value of every probe */
     int validation;            /* SB_VALIDATION_* */
     int n_checks;

@@ -5,12 +5,15 @@
  * RMTR paper §5.2, cc_face_basis): the barrier's chain rule runs through
  * these weights.  Area per point: |x_u x x_v| / per_side^2 at the reference
  * control points (a midpoint-like rule; boundary points get a full cell's
- * share — assumption). */
+ * share — assumption).  The surface between the points (self-contact):
+ * each grid cell whose four corners are points, cut into two triangles
+ * along alternating diagonals. */
 #include "cc.h"
 #include "cc_method.h"
 #include "sb_contact_points.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 int cc_contact_points(void *state, int level, int per_side, sb_contact_points *cp)
 {
@@ -20,12 +23,16 @@ int cc_contact_points(void *state, int level, int per_side, sb_contact_points *c
     int idx[CC_MAX_BASIS], dof[CC_MAX_BASIS], k, f;
     double W[6 * CC_MAX_BASIS], w[CC_MAX_BASIS], u, v;
     cc_err e = { "" };
+    int *map = malloc((size_t)(ns + 1) * (nt + 1) * sizeof *map);
+    if (!map) return SB_ERR_NOMEM;
     for (int j = 0; j <= nt; j++)
         for (int i = 0; i <= ns; i++) {
             const double s = (double)i / ns, t = (double)j / nt;
+            map[j * (ns + 1) + i] = -1;
             if (cc_level_locate(L, s, t, &f, &u, &v)) continue;   /* outside an L-shaped domain */
             int rc = cc_face_basis(L->mesh, f, u, v, &k, idx, W, CC_MAX_BASIS, &e);
-            if (rc) return cc_state_fail(S, rc, "%s", e.msg);
+            if (rc) { free(map); return cc_state_fail(S, rc, "%s", e.msg); }
+            map[j * (ns + 1) + i] = cp->n;
             double xu[3] = { 0, 0, 0 }, xv[3] = { 0, 0, 0 };
             int m = 0;
             for (int a = 0; a < k; a++) {
@@ -39,7 +46,9 @@ int cc_contact_points(void *state, int level, int per_side, sb_contact_points *c
             }
             double nrm[3] = { xu[1] * xv[2] - xu[2] * xv[1], xu[2] * xv[0] - xu[0] * xv[2], xu[0] * xv[1] - xu[1] * xv[0] };
             const double area = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]) / ((double)per_side * per_side);
-            if ((rc = sb_contact_points_add(cp, m, dof, w, area, s, t))) return rc;
+            if ((rc = sb_contact_points_add(cp, m, dof, w, area, s, t))) { free(map); return rc; }
         }
-    return SB_OK;
+    int rc = sb_contact_grid_triangles(cp, map, ns, nt);
+    free(map);
+    return rc;
 }
