@@ -47,6 +47,13 @@ typedef struct sb_contact_report {
 } sb_contact_report;
 void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r);
 
+/* After a change of mesh (adaptation): push the sample points that are
+ * inside an obstacle or closer than target out to target, moving the free
+ * vertices of their combinations (fixed: per dof, may be NULL); obstacle
+ * poses of step `step`.  *moved = points moved; returns the points still
+ * closer than target (sb_contact.c). */
+int  sb_contact_separate(sb_contact *c, int step, double *x, const unsigned char *fixed, double target, int *moved);
+
 /* IPC barrier b(d) and its first two derivatives (Li et al. 2020 Eq. 6). */
 double sb_barrier(double d, double dhat, double *db, double *ddb);
 /* IPC friction mollifier f0(y) with eps (Li et al. 2020 Eq. 16) and f1 = f0', f1' */

@@ -74,6 +74,14 @@ int sb_run_adapt(run_state *R, int step, int *n_out)
         if (!rc) rc = R->mt->adapt_state(R->ms, R->x, R->v);
         if (!rc) rc = R->mt->initial(R->ms, F, R->xref);
         if (!rc) rc = sb_problem_rebuild(R->prob);
+        if (!rc && sb_problem_has_contact(R->prob)) {
+            /* the new surface (inserted vertices, flips, joins) may put a
+             * sample point inside an obstacle the old one kept clear of:
+             * pushed out at the state's time t_(step-1) (docs/contact.md) */
+            int moved = 0, left = sb_problem_contact_separate(R->prob, step - 1, R->x, &moved);
+            if (left < 0) rc = left;
+            R->contact_separated += moved;
+        }
         if (!rc) {
             /* the solver's vectors have the old size: allocated anew */
             R->stype->free(R->ss);

@@ -233,6 +233,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
         json_object_set_new(co, "inside", json_integer(R->rec.contact_inside));
         json_object_set_new(co, "steps_inside", json_integer(R->rec.contact_steps_inside));
         json_set_num(co, "min_distance", R->rec.contact_min_distance);
+        if (R->mt && R->mt->adapt) json_object_set_new(co, "separated", json_integer(R->contact_separated));
         json_object_set_new(o, "contact", co);
     }
     json_set_num(o, "energy_final", R->rec.has_energy ? R->rec.energy_final : NAN);

@@ -53,6 +53,9 @@ typedef struct run_state {
      * (sb_run_fold_resume_setup) */
     int resumed;
     sb_event_stat analyze_at_resume[SB_MAX_LEVELS];
+    /* contact sample points pushed out of obstacles after adaptations
+     * (sb_run_adapt, sb_problem_contact_separate) */
+    int contact_separated;
 } run_state;
 
 
