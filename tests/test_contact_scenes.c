@@ -161,7 +161,7 @@ SB_TEST(adaptive_sqrt3_no_sample_point_inside)
         const long sep = (long)json_integer_value(json_object_get(c, "separated"));
         const long adapt = (long)json_integer_value(json_object_get(json_object_get(o, "counts"), "adapt"));
         const double dmin = json_number_value(json_object_get(c, "min_distance"));
-        printf("    %-12s adaptive_sqrt3 linearized res %d: %ld steps, %ld adaptations, %ld points pushed out, "
+        printf("    %-12s adaptive_sqrt3 linearized res %d: %ld steps, %ld adaptations, %ld pushes out, "
                "min distance %.3g m, inside %ld\n", scenes[s], res[s],
                (long)json_integer_value(json_object_get(o, "steps")), adapt, sep, dmin, inside);
         CHECK_EQ_INT(json_integer_value(json_object_get(o, "steps")), steps[s]);

@@ -452,7 +452,9 @@ void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r)
  * than target (at most 50 passes).  Poses of step `step`.  Analytic
  * obstacles by their signed distance (also inside); mesh obstacles only for
  * points at a distance in (0, target) (a point on a triangle has no side).
- * *moved: points moved; returns the points still closer than target. */
+ * A point is pushed to 1.01 target, so that rounding does not leave it just
+ * short of target for another pass.  *moved: pushes (a point pushed in two
+ * passes counts twice); returns the points still closer than target. */
 typedef struct sep_data { double d, g[3]; } sep_data;
 
 static void sep_pair(void *data, int o, double d, const double g[3], const double H[9])
@@ -493,7 +495,7 @@ int sb_contact_separate(sb_contact *c, int step, double *x, const unsigned char 
             if (!(S.d < target)) continue;
             double gn = sqrt(S.g[0] * S.g[0] + S.g[1] * S.g[1] + S.g[2] * S.g[2]);
             if (!(gn > 0)) { left++; continue; }
-            const double s = (target - S.d) / gn;
+            const double s = (1.01 * target - S.d) / gn;
             int free_terms = 0;
             for (int k = P->off[p]; k < P->off[p + 1]; k++) {
                 const int dof = P->dof[k];

@@ -50,8 +50,8 @@ void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r);
 /* After a change of mesh (adaptation): push the sample points that are
  * inside an obstacle or closer than target out to target, moving the free
  * vertices of their combinations (fixed: per dof, may be NULL); obstacle
- * poses of step `step`.  *moved = points moved; returns the points still
- * closer than target (sb_contact.c). */
+ * poses of step `step`.  *moved = pushes (a point pushed in two passes
+ * counts twice); returns the points still closer than target (sb_contact.c). */
 int  sb_contact_separate(sb_contact *c, int step, double *x, const unsigned char *fixed, double target, int *moved);
 
 /* IPC barrier b(d) and its first two derivatives (Li et al. 2020 Eq. 6). */
