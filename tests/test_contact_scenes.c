@@ -16,6 +16,7 @@
 #include "sb_run_state.h"
 #include "sb_solver.h"
 #include "sb_test.h"
+#include "run_json.h"
 
 extern const sb_method_type sb_method_bhem, sb_method_subdiv, sb_method_linear_fem;
 extern const sb_param_def sb_solve_params[];
@@ -122,8 +123,62 @@ SB_TEST(no_sample_point_inside_after_any_iteration)
             }
 }
 
+/* adaptive_sqrt3 changes its mesh every 5th step, and with it the sample
+ * points (docs/contact.md "Adaptive meshes"): through the run itself
+ * (sb_run_execute, the `shellbench run` path), where the linearized solver's
+ * one accepted iteration per step ends every step and each step end is
+ * measured (contact.inside, contact.steps_inside), and a point the new
+ * surface put inside an obstacle would start the next step at infinite
+ * energy (a recorded `nonfinite`, not converged).  At res 4 the coarse
+ * mesh's refinement puts points inside the sphere and the box
+ * (contact.separated > 0): the separation is exercised, not assumed. */
+SB_TEST(adaptive_sqrt3_no_sample_point_inside)
+{
+    static const char *const scenes[] = { "cloth_sphere", "drape_box", "needles" };
+    static const int res[] = { 4, 4, 8 }, steps[] = { 30, 30, 25 };
+    static const char *const sets[] = { "run.single_step_rtol=1e300" };
+    long separated_total = 0;
+    for (int s = 0; s < 3; s++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/bench/scenes/%s.json", sb_test_root(), scenes[s]);
+        sb_run_request rq;
+        memset(&rq, 0, sizeof rq);
+        rq.scene = path;
+        rq.method = "adaptive_sqrt3";
+        rq.solver = "linearized";
+        rq.res = res[s];
+        rq.out = "none";
+        rq.quiet = 1;
+        rq.n_sets = 1;
+        rq.sets = sets;
+        int code = -1;
+        json_t *o = sb_test_run_json(&rq, &code);
+        CHECK_MSG(code == 0 && o, "%s/adaptive_sqrt3: exit %d", scenes[s], code);
+        if (!o) continue;
+        json_t *c = json_object_get(o, "contact");
+        const long inside = (long)json_integer_value(json_object_get(c, "inside"));
+        const long steps_inside = (long)json_integer_value(json_object_get(c, "steps_inside"));
+        const long sep = (long)json_integer_value(json_object_get(c, "separated"));
+        const long adapt = (long)json_integer_value(json_object_get(json_object_get(o, "counts"), "adapt"));
+        const double dmin = json_number_value(json_object_get(c, "min_distance"));
+        printf("    %-12s adaptive_sqrt3 linearized res %d: %ld steps, %ld adaptations, %ld pushes out, "
+               "min distance %.3g m, inside %ld\n", scenes[s], res[s],
+               (long)json_integer_value(json_object_get(o, "steps")), adapt, sep, dmin, inside);
+        CHECK_EQ_INT(json_integer_value(json_object_get(o, "steps")), steps[s]);
+        CHECK_EQ_INT(inside, 0);
+        CHECK_EQ_INT(steps_inside, 0);
+        CHECK(dmin > 0);
+        CHECK(adapt >= 4);
+        if (s < 2) CHECK_MSG(dmin < 0.005, "%s: the cloth never reached the obstacle (min distance %g)", scenes[s], dmin);
+        separated_total += sep;
+        json_decref(o);
+    }
+    CHECK_MSG(separated_total > 0, "no adaptation put a point inside: the separation was not exercised");
+}
+
 int main(int argc, char **argv)
 {
-    static const sb_test_case cases[] = { SB_CASE(no_sample_point_inside_after_any_iteration), SB_END };
+    static const sb_test_case cases[] = { SB_CASE(no_sample_point_inside_after_any_iteration),
+                                          SB_CASE(adaptive_sqrt3_no_sample_point_inside), SB_END };
     return sb_test_main(argc, argv, cases);
 }

@@ -455,6 +455,48 @@ SB_TEST(parser_features)
     sb_scene_free(&sc);   /* idempotent */
 }
 
+/* Schedules (docs/scene_format.md "Schedules"): a boundary that goes, stays
+ * and comes back, keyframes in seconds of a dynamic scene; an obstacle's
+ * motion with a schedule; the factor is 0 at step 0, interpolated linearly,
+ * held after the last keyframe; a first keyframe after t = 0 is reached from
+ * (0, 0). */
+SB_TEST(schedules_go_and_come_back)
+{
+    static const char text[] =
+        "{\"name\": \"sched\", \"domain\": {\"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [1, 1]},\n"
+        " \"material\": {\"model\": \"stvk\", \"young\": 1e6, \"poisson\": 0.3, \"thickness\": 0.001, \"density\": 0.1},\n"
+        " \"boundary\": [{\"type\": \"moving\", \"at\": [0, 1], \"translation\": [0.5, 0, 0],\n"
+        "               \"schedule\": [[0, 0], [1, 1], [2, 1], [3, -0.5]]},\n"
+        "              {\"type\": \"moving\", \"at\": [1, 1], \"translation\": [0.1, 0, 0], \"schedule\": [[2, 1], [4, 0]]}],\n"
+        " \"obstacles\": [{\"type\": \"plane\", \"point\": [0, 0, -1], \"normal\": [0, 0, 1],\n"
+        "                \"motion\": {\"translation\": [0, 0, 0.5], \"schedule\": [[0.5, 1], [1, 0]]}}],\n"
+        " \"time\": {\"mode\": \"dynamic\", \"dt\": 0.25, \"steps\": 20}}";
+    sb_scene sc;
+    char err[512];
+    int r = sb_scene_parse_string(text, "sched.json", &sc, err, sizeof err);
+    CHECK_MSG(r == SB_OK, "%s", err);
+    if (r) return;
+    const sb_bc *a = &sc.bcs[0], *b = &sc.bcs[1];
+    CHECK_EQ_INT(a->schedule.n, 4);
+    CHECK_NEAR(sb_bc_motion_factor(&sc, a, 0), 0, 0);
+    CHECK_NEAR(sb_bc_motion_factor(&sc, a, 1), 0.25, 1e-15);    /* t = 0.25 s */
+    CHECK_NEAR(sb_bc_motion_factor(&sc, a, 4), 1, 1e-15);       /* t = 1 s */
+    CHECK_NEAR(sb_bc_motion_factor(&sc, a, 6), 1, 1e-15);       /* held */
+    CHECK_NEAR(sb_bc_motion_factor(&sc, a, 10), 0.25, 1e-15);   /* t = 2.5 s: 1 + 0.5 (-1.5) */
+    CHECK_NEAR(sb_bc_motion_factor(&sc, a, 12), -0.5, 1e-15);
+    CHECK_NEAR(sb_bc_motion_factor(&sc, a, 20), -0.5, 1e-15);   /* after the last keyframe */
+    CHECK_NEAR(sb_bc_motion_factor(&sc, b, 4), 0.5, 1e-15);     /* from (0, 0) to (2, 1) */
+    CHECK_NEAR(sb_bc_motion_factor(&sc, b, 12), 0.5, 1e-15);    /* t = 3 s */
+    CHECK_NEAR(sb_bc_motion_factor(&sc, b, 16), 0, 1e-15);
+    const sb_obstacle_spec *o = &sc.obstacles[0];
+    CHECK_EQ_INT(o->schedule.n, 2);
+    CHECK_NEAR(sb_obstacle_motion_factor(&sc, o, 1), 0.5, 1e-15);
+    CHECK_NEAR(sb_obstacle_motion_factor(&sc, o, 2), 1, 1e-15);
+    CHECK_NEAR(sb_obstacle_motion_factor(&sc, o, 3), 0.5, 1e-15);
+    CHECK_NEAR(sb_obstacle_motion_factor(&sc, o, 9), 0, 1e-15);
+    sb_scene_free(&sc);
+}
+
 /* Replace the first occurrence of `from` in base_scene by `to`, parse, and
  * check the error message contains `want` (and names the pointer `ptr`). */
 static void expect_error(sb_test_state *T, const char *from, const char *to, const char *ptr,
@@ -621,7 +663,7 @@ int main(int argc, char **argv)
         SB_CASE(bundled_scenes_parse), SB_CASE(rmtr_paper_scenes),
         SB_CASE(validation_scene_numbers), SB_CASE(bad_files_give_expected_messages),
         SB_CASE(cli_check), SB_CASE(json_pointer_positions),
-        SB_CASE(parser_features), SB_CASE(parser_rejections),
+        SB_CASE(parser_features), SB_CASE(schedules_go_and_come_back), SB_CASE(parser_rejections),
         SB_CASE(pathological_inputs), SB_CASE(random_damage_never_crashes),
         SB_CASE(resolve_names), SB_END
     };

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""bench/sqrt3/distance.py — per-step series of the curtain runs of
-bench/sqrt3/run.sh, read from their HDF5 records with h5dump (hdf5-tools;
+"""bench/sqrt3/distance.py — per-step series of the runs of bench/sqrt3/run.sh
+(the curtain by default; another scene with --full TAG --diag D SHORT=TAG ...), read from their HDF5 records with h5dump (hdf5-tools;
 the report scripts use the Python standard library only): time, dofs and
 seconds of every step of the adaptive and the full-resolution run, and the
 distance between their surfaces on the records' common sample grid (11 x 11
@@ -9,11 +9,27 @@ suite's error measure, DESIGN.md "Accuracy"); every 5th step (the
 adaptation interval) and the last, to keep the file small.  CSV on stdout.
 
     python3 bench/sqrt3/distance.py results/sqrt3 > results/sqrt3/series.csv
+    python3 bench/sqrt3/distance.py results/sqrt3 --full cs-full --diag 0.848528 \
+        adaptive=cs-adaptive loose=cs-adaptive-loose > results/sqrt3/series_cloth_sphere.csv
 """
 import math, os, re, subprocess, sys
 
 DIR = sys.argv[1] if len(sys.argv) > 1 else "results/sqrt3"
 DIAG = math.hypot(1.0, 1.5)          # the curtain is 1 m x 1.5 m (bench/scenes/curtain.json)
+FULL = "curtain-full-cholmod"
+PAIRS = [("curtain-adaptive-cholmod", "adaptive"), ("curtain-adaptive-loose-cholmod", "loose")]
+_rest = sys.argv[2:]
+if _rest:
+    PAIRS = []
+    while _rest:
+        a = _rest.pop(0)
+        if a == "--full":
+            FULL = _rest.pop(0)
+        elif a == "--diag":
+            DIAG = float(_rest.pop(0))
+        else:
+            short, tag = a.split("=", 1)
+            PAIRS.append((tag, short))
 
 
 def h5(path, *args):
@@ -45,11 +61,11 @@ def samples(path):
 
 
 def main():
-    rf = os.path.join(DIR, "records", "curtain-full-cholmod.h5")
+    rf = os.path.join(DIR, "records", FULL + ".h5")
     t = series(rf, "/history/steps/t")
     df, sf, pf = series(rf, "/history/steps/dofs"), series(rf, "/history/steps/seconds"), samples(rf)
     cols, data = [], []
-    for tag, short in (("curtain-adaptive-cholmod", "adaptive"), ("curtain-adaptive-loose-cholmod", "loose")):
+    for tag, short in PAIRS:
         ra = os.path.join(DIR, "records", tag + ".h5")
         if not os.path.exists(ra):
             continue

@@ -477,3 +477,80 @@ void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r)
         } else r->self_crossings = -1;
     }
 }
+
+/* ---- separation after a change of mesh ---------------------------------- */
+
+/* Points of a new mesh (sb_problem_rebuild after an adaptation) that are
+ * inside an obstacle or closer than `target`: each is pushed out along the
+ * obstacle's distance gradient by the missing distance, moving all the
+ * free vertices of its combination by the same vector (the weights sum to
+ * one, so the point moves by it), pass after pass until no point is closer
+ * than target (at most 50 passes).  Poses of step `step`.  Analytic
+ * obstacles by their signed distance (also inside); mesh obstacles only for
+ * points at a distance in (0, target) (a point on a triangle has no side).
+ * A point is pushed to 1.01 target, so that rounding does not leave it just
+ * short of target for another pass.  *moved: pushes (a point pushed in two
+ * passes counts twice); returns the points still closer than target. */
+typedef struct sep_data { double d, g[3]; } sep_data;
+
+static void sep_pair(void *data, int o, double d, const double g[3], const double H[9])
+{
+    (void)o; (void)H;
+    sep_data *S = data;
+    if (d < S->d) {
+        S->d = d;
+        memcpy(S->g, g, sizeof S->g);
+    }
+}
+
+int sb_contact_separate(sb_contact *c, int step, double *x, const unsigned char *fixed, double target, int *moved)
+{
+    const sb_scene *sc = c->sc;
+    const sb_contact_points *P = &c->pts;
+    for (int o = 0; o < sc->n_obstacles; o++)
+        sb_pose_at(&sc->obstacles[o], sb_obstacle_motion_factor(sc, &sc->obstacles[o], step), &c->pose[o]);
+    update_meshes(c);
+    *moved = 0;
+    int left = 0;
+    for (int pass = 0; pass < 50; pass++) {
+        left = 0;
+        for (int p = 0; p < P->n; p++) {
+            double xp[3];
+            sb_contact_points_eval(P, p, x, xp);
+            sep_data S = { INFINITY, { 0, 0, 0 } };
+            for (int o = 0; o < sc->n_obstacles; o++) {
+                const sb_obstacle_spec *ob = &sc->obstacles[o];
+                if (ob->kind == SB_OBST_MESH) continue;
+                double g[3], d = sb_obstacle_phi(ob, &c->pose[o], xp, g, NULL);
+                sep_pair(&S, o, d, g, NULL);
+            }
+            /* mesh triangles (and analytic obstacles again) within reach, at d > 0 */
+            sep_data Sm = { INFINITY, { 0, 0, 0 } };
+            (void)visit_pairs(c, c->pose, xp, target, 0, sep_pair, &Sm);
+            if (Sm.d < S.d) S = Sm;
+            if (!(S.d < target)) continue;
+            double gn = sqrt(S.g[0] * S.g[0] + S.g[1] * S.g[1] + S.g[2] * S.g[2]);
+            if (!(gn > 0)) { left++; continue; }
+            const double s = (1.01 * target - S.d) / gn;
+            int free_terms = 0;
+            for (int k = P->off[p]; k < P->off[p + 1]; k++) {
+                const int dof = P->dof[k];
+                if (fixed && (fixed[dof] || fixed[dof + 1] || fixed[dof + 2])) continue;
+                for (int i = 0; i < 3; i++) x[dof + i] += s * S.g[i] / gn;
+                free_terms++;
+            }
+            if (free_terms) (*moved)++;
+            left++;
+        }
+        if (!left) break;
+    }
+    /* the points still closer than target after the last pass */
+    left = 0;
+    for (int p = 0; p < P->n; p++) {
+        double xp[3];
+        sb_contact_points_eval(P, p, x, xp);
+        meas_data M = { INFINITY, 0 };
+        left += visit_pairs(c, c->pose, xp, target, 0, meas_pair, &M) || M.dmin < target;
+    }
+    return left;
+}

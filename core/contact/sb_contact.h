@@ -65,6 +65,12 @@ struct sb_self *sb_contact_self(sb_contact *c);
 const sb_contact_points *sb_contact_points_of(const sb_contact *c);
 /* The Hessian's pattern was replaced (forget cached positions). */
 void sb_contact_pattern_changed(sb_contact *c);
+/* After a change of mesh (adaptation): push the sample points that are
+ * inside an obstacle or closer than target out to target, moving the free
+ * vertices of their combinations (fixed: per dof, may be NULL); obstacle
+ * poses of step `step`.  *moved = pushes (a point pushed in two passes
+ * counts twice); returns the points still closer than target (sb_contact.c). */
+int  sb_contact_separate(sb_contact *c, int step, double *x, const unsigned char *fixed, double target, int *moved);
 
 /* IPC barrier b(d) and its first two derivatives (Li et al. 2020 Eq. 6). */
 double sb_barrier(double d, double dhat, double *db, double *ddb);

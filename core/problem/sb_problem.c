@@ -697,6 +697,26 @@ double sb_problem_step_bound(sb_problem *p, int level, const double *x, const do
     return a;
 }
 
+int sb_problem_contact_separate(sb_problem *p, int step, double *x, int *moved)
+{
+    level_data *L = &p->lv[p->nl - 1];
+    *moved = 0;
+    if (!L->contact) return 0;
+    double t0 = sb_now();
+    unsigned char *fixed = calloc((size_t)L->n, 1);
+    if (!fixed) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (contact separation)");
+    const sb_dirichlet *bc = p->mt->dirichlet ? p->mt->dirichlet(p->ms, p->nl - 1) : NULL;
+    for (int i = 0; bc && i < bc->n; i++)
+        if (bc->dofs[i] >= 0 && bc->dofs[i] < L->n) fixed[bc->dofs[i]] = 1;
+    /* assumption (docs/contact.md "Adaptive meshes"): a hundredth of dhat,
+     * far below the resting distance (about dhat / 10), so that only points
+     * the new mesh put inside or onto an obstacle move */
+    int left = sb_contact_separate(L->contact, step, x, fixed, 0.01 * p->scene->contact.dhat, moved);
+    free(fixed);
+    sb_stats_event(&p->ctx->stats, p->nl - 1, SB_EV_COLLIDE, t0);
+    return left;
+}
+
 int sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside)
 {
     level_data *L = &p->lv[p->nl - 1];

@@ -113,6 +113,11 @@ double sb_problem_step_bound(sb_problem *p, int level, const double *x, const do
 /* Sample points of the finest level at x: returns their number (0: no
  * contact) and the smallest distance to an obstacle, the points within
  * dhat and the points inside an obstacle. */
+/* After an adaptation (sb_run_adapt): push the finest level's sample points
+ * that the new mesh put inside an obstacle or closer than dhat/100 out to
+ * dhat/100 (obstacle poses of step `step`; sb_contact_separate).  *moved =
+ * pushes (sb_contact_separate); returns the points still closer (0 without contact). */
+int    sb_problem_contact_separate(sb_problem *p, int step, double *x, int *moved);
 int    sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside);
 
 /* Account one trust-region subproblem (QP) solve on a level: QP work units. */

@@ -103,6 +103,14 @@ int sb_run_adapt(run_state *R, int step, int *n_out)
         rc = sb_run_adapt_follow(R, 1);
         /* a resumed process's first analysis after a change is the run's own, not a repeat (sb_run_fold_resume_setup) */
         if (R->resumed) R->resume_folded = 1;
+        if (!rc && sb_problem_has_contact(R->prob)) {
+            /* the new surface (inserted vertices, flips, joins) may put a
+             * sample point inside an obstacle the old one kept clear of:
+             * pushed out at the state's time t_(step-1) (docs/contact.md) */
+            int moved = 0, left = sb_problem_contact_separate(R->prob, step - 1, R->x, &moved);
+            if (left < 0) rc = left;
+            R->contact_separated += moved;
+        }
     }
     sb_stats_event(stats, F, SB_EV_ADAPT, t0);
     if (rc) {

@@ -275,6 +275,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(se, "steps_crossing", json_integer(R->rec.self_steps_crossing));
             json_object_set_new(co, "self", se);
         }
+        if (R->mt && R->mt->adapt) json_object_set_new(co, "separated", json_integer(R->contact_separated));
         json_object_set_new(o, "contact", co);
     }
     json_set_num(o, "energy_final", R->rec.has_energy ? R->rec.energy_final : NAN);

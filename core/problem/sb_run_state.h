@@ -58,6 +58,9 @@ typedef struct run_state {
      * triangles; sb_run_record_mesh): rec.mesh points here while kept */
     int tri_surface;
     sb_mesh_series mesh_series;
+    /* contact sample points pushed out of obstacles after adaptations
+     * (sb_run_adapt, sb_problem_contact_separate) */
+    int contact_separated;
 } run_state;
 
 

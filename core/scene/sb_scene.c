@@ -375,6 +375,8 @@ double sb_bc_motion_factor(const sb_scene *s, const sb_bc *bc, int step)
      * dynamic scenes step/ramp_steps = t / (ramp_steps dt)) */
     int ramp = bc->ramp_steps > 0 ? bc->ramp_steps : (s->time.steps > 0 ? s->time.steps : 1);
     if (step <= 0) return 0;
+    if (bc->schedule.n > 0)   /* keyframes in seconds (dynamic) or load steps */
+        return sb_schedule_factor(&bc->schedule, s->time.mode == SB_TIME_DYNAMIC ? step * s->time.dt : (double)step);
     double f = (double)step / ramp;
     return f < 1 ? f : 1;
 }
@@ -384,6 +386,8 @@ double sb_obstacle_motion_factor(const sb_scene *s, const sb_obstacle_spec *o, i
     /* as sb_bc_motion_factor: min(1, step / ramp_steps), 0 = over all steps */
     int ramp = o->ramp_steps > 0 ? o->ramp_steps : (s->time.steps > 0 ? s->time.steps : 1);
     if (step <= 0 || !o->moving) return 0;
+    if (o->schedule.n > 0)
+        return sb_schedule_factor(&o->schedule, s->time.mode == SB_TIME_DYNAMIC ? step * s->time.dt : (double)step);
     double f = (double)step / ramp;
     return f < 1 ? f : 1;
 }

@@ -98,6 +98,20 @@ typedef struct sb_part {
     double st[2];           /* point: grid parameter of xi */
 } sb_part;
 
+/* ---- motion schedules (docs/scene_format.md "Schedules") ---------------- */
+/* A piecewise-linear motion factor f(t) through keyframes (t_k, f_k):
+ * "schedule": [[t_0, f_0], [t_1, f_1], ...] on a moving boundary or an
+ * obstacle's motion, t in seconds (dynamic scenes) or load steps
+ * (quasi-static), strictly increasing from t_0 >= 0; f = 0 at t = 0 (a
+ * keyframe at t = 0 must have f = 0; before t_0 > 0 the factor runs linearly
+ * from (0, 0)), f_k after the last keyframe.  n = 0: no schedule (the ramp). */
+#define SB_SCHEDULE_MAX 32
+typedef struct sb_schedule {
+    int n;
+    double t[SB_SCHEDULE_MAX];
+    double f[SB_SCHEDULE_MAX];
+} sb_schedule;
+
 /* ---- loads ------------------------------------------------------------ */
 typedef enum {
     SB_LOAD_GRAVITY,     /* vec = acceleration (m/s^2); force density = density * vec */
@@ -144,6 +158,7 @@ typedef struct sb_bc {
     double rot_center[3];
     double rot_angle;        /* rad, total */
     int ramp_steps;          /* moving: 0 = all steps */
+    sb_schedule schedule;    /* moving: n > 0 replaces the ramp (sb_schedule_factor) */
     int clamp_tangent;       /* moving: also prescribe the (rotated) tangents */
 } sb_bc;
 
@@ -228,6 +243,7 @@ typedef struct sb_obstacle_spec {
     double rot_center[3];
     double rot_angle;        /* rad, total */
     int ramp_steps;          /* 0 = all steps */
+    sb_schedule schedule;    /* n > 0 replaces the ramp (sb_schedule_factor) */
     int moving;
 } sb_obstacle_spec;
 
@@ -294,6 +310,8 @@ void sb_scene_bundled_res(const sb_scene *sc, const char *method, int *res, int 
 /* Ramp factors at step n (1-based) of the scene's time spec. */
 double sb_load_factor(const sb_scene *s, const sb_load *ld, int step);
 double sb_bc_motion_factor(const sb_scene *s, const sb_bc *bc, int step);
+/* f(t) of a schedule with n > 0 keyframes (piecewise linear, see sb_schedule) */
+double sb_schedule_factor(const sb_schedule *sch, double t);
 double sb_obstacle_motion_factor(const sb_scene *s, const sb_obstacle_spec *o, int step);
 
 #endif

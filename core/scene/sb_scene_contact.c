@@ -24,15 +24,15 @@ static int unit_vec(sbj_ctx *c, const json_t *o, const char *key, int required, 
     return SB_OK;
 }
 
-static int parse_motion(sbj_ctx *c, const json_t *o, sb_obstacle_spec *ob)
+static int parse_motion(sbj_ctx *c, const json_t *o, const sb_time_spec *tm, sb_obstacle_spec *ob)
 {
-    static const char *const keys[] = { "translation", "rotation", "ramp_steps", NULL };
+    static const char *const keys[] = { "translation", "rotation", "ramp_steps", "schedule", NULL };
     static const char *const rkeys[] = { "axis", "center", "angle", NULL };
     json_t *m, *rot;
     int r = sbj_get_object(c, o, "motion", 0, &m);
     if (r || !m) return r;
     size_t mark = sbj_push(c, "motion");
-    int has_t = 0;
+    int has_t = 0, has_s = 0;
     long ramp = 0;
     if ((r = sbj_check_keys(c, m, keys)) || (r = sbj_get_vec(c, m, "translation", 0, 3, ob->translation, &has_t)) ||
         (r = sbj_get_object(c, m, "rotation", 0, &rot)))
@@ -55,6 +55,11 @@ static int parse_motion(sbj_ctx *c, const json_t *o, sb_obstacle_spec *ob)
     }
     if ((r = sbj_get_int(c, m, "ramp_steps", 0, 0, MAX_RAMP, &ramp))) goto out;
     ob->ramp_steps = (int)ramp;
+    if ((r = sbj_parse_schedule(c, m, tm, &ob->schedule, &has_s))) goto out;
+    if (has_s && json_object_get(m, "ramp_steps")) {
+        r = sbj_fail(c, "schedule", 1, "\"schedule\" and \"ramp_steps\" exclude each other (the schedule sets the timing)");
+        goto out;
+    }
     ob->moving = 1;
 out:
     sbj_pop(c, mark);
@@ -143,7 +148,7 @@ static int parse_obstacle(sbj_ctx *c, const json_t *o, sb_scene *sc, size_t i)
         if ((r = parse_mesh(c, o, ob))) return r;
         break;
     }
-    return parse_motion(c, o, ob);
+    return parse_motion(c, o, &sc->time, ob);
 }
 
 /* contact.model ("barrier" | "impulse") and contact.self (boolean) */

@@ -95,6 +95,9 @@ int sbj_parse_methods(sbj_ctx *c, const json_t *root, sb_scene *sc);
 /* "obstacles" and "contact" (sb_scene_contact.c); OBJ files resolved
  * relative to the directory of c->file */
 int sbj_parse_obstacles(sbj_ctx *c, const json_t *root, sb_scene *sc);
+/* Optional "schedule" of object o (sb_scene_schedule.c): keyframes validated
+ * against the time spec tm (parsed before); *present set. */
+int sbj_parse_schedule(sbj_ctx *c, const json_t *o, const sb_time_spec *tm, sb_schedule *sch, int *present);
 void sbj_free_obstacles(sb_scene *sc);
 /* Wavefront OBJ (v and f lines; polygons fanned into triangles): SB_OK or
  * SB_ERR_INPUT with "FILE:LINE: problem" in msg (sb_obj.c) */

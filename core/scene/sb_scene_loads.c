@@ -106,14 +106,14 @@ static int parse_rotation(sbj_ctx *c, const json_t *o, sb_bc *bc)
     return r;
 }
 
-static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_bc *bc)
+static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_time_spec *tm, sb_bc *bc)
 {
     static const char *const kinds[] = { "fixed", "clamped", "symmetry", "moving", "free", NULL };
     static const char *const k_fixed[] = { "type", "on", "at", "components", NULL };
     static const char *const k_clamp[] = { "type", "on", "at", NULL };
     static const char *const k_sym[] = { "type", "on", "normal", NULL };
     static const char *const k_mov[] = { "type", "on", "at", "components", "translation", "rotation",
-                                         "ramp_steps", "clamp_tangent", NULL };
+                                         "ramp_steps", "schedule", "clamp_tangent", NULL };
     static const char *const k_free[] = { "type", "on", NULL };
     static const char *const *const keys[] = { k_fixed, k_clamp, k_sym, k_mov, k_free };
     static const char *const axes[] = { "x", "y", "z", NULL };
@@ -142,6 +142,10 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_bc *bc)
             return sbj_fail(c, NULL, 0, "a moving boundary needs \"translation\" and/or \"rotation\"");
         if ((r = sbj_get_int(c, o, "ramp_steps", 0, 0, MAX_RAMP, &ramp))) return r;
         bc->ramp_steps = (int)ramp;
+        int has_s = 0;
+        if ((r = sbj_parse_schedule(c, o, tm, &bc->schedule, &has_s))) return r;
+        if (has_s && json_object_get(o, "ramp_steps"))
+            return sbj_fail(c, "schedule", 1, "\"schedule\" and \"ramp_steps\" exclude each other (the schedule sets the timing)");
         return sbj_get_bool(c, o, "clamp_tangent", &bc->clamp_tangent);
     }
     case SB_BC_CLAMPED:
@@ -153,7 +157,7 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_bc *bc)
 
 static int sbj_parse_boundary_item(sbj_ctx *c, const json_t *o, sb_scene *sc, size_t i)
 {
-    return parse_bc(c, o, &sc->domain, &sc->bcs[i]);
+    return parse_bc(c, o, &sc->domain, &sc->time, &sc->bcs[i]);
 }
 
 int sbj_parse_boundary(sbj_ctx *c, const json_t *root, sb_scene *sc)

@@ -59,11 +59,13 @@ int sb_study_dt_scene(const sb_study *st, const sb_plan_run *r, char *buf, size_
     json_t *t = json_object_get(o, "time");
     json_object_set_new(t, "dt", json_real(r->dt));
     json_object_set_new(t, "steps", json_integer(st->dt.steps));
-    /* ramps keep their duration in seconds: ramp_steps = T_ramp / dt */
+    /* ramps keep their duration in seconds: ramp_steps = T_ramp / dt; a
+     * schedule's keyframes are in seconds already (and exclude ramp_steps) */
     size_t k;
     json_t *b;
     json_array_foreach(json_object_get(o, "boundary"), k, b) {
         if (strcmp(json_string_value(json_object_get(b, "type")) ? json_string_value(json_object_get(b, "type")) : "", "moving")) continue;
+        if (json_object_get(b, "schedule")) continue;
         json_int_t rs = json_integer_value(json_object_get(b, "ramp_steps"));
         double T = (rs > 0 ? (double)rs : (double)n0) * dt0;
         json_object_set_new(b, "ramp_steps", json_integer((json_int_t)fmax(1.0, round(T / r->dt))));

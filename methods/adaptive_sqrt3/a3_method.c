@@ -7,6 +7,7 @@
  * is the full-resolution model: every triangle of that mesh is simulated. */
 #include "a3.h"
 #include "sb_surface.h"
+#include "sb_contact_mesh.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -261,6 +262,18 @@ static int a3_restore_mesh(void *state, const sb_blob *b)
     return a3_build_model(S);
 }
 
+/* contact sample points (docs/contact.md): the vertices of the current mesh
+ * and the per_side-fold barycentric subdivision points of its triangles, as
+ * linear_fem's; the core re-creates them after every adaptation
+ * (sb_problem_rebuild).  Every point's terms lie in one triangle, whose three
+ * vertices the membrane couples in the pattern (a3_pattern). */
+static int a3_contact_points(void *state, int level, int per_side, sb_contact_points *cp)
+{
+    (void)level;
+    const a3_state *S = state;
+    return sb_contact_points_mesh(&S->mesh, per_side, cp);
+}
+
 static void a3_describe(const void *state, char *buf, size_t len)
 {
     const a3_state *S = state;
@@ -296,4 +309,5 @@ const sb_method_type sb_method_adaptive_sqrt3 = {
     .adapt_state = a3_adapt_state,
     .save_mesh = a3_save_mesh,
     .restore_mesh = a3_restore_mesh,
+    .contact_points = a3_contact_points,
 };
