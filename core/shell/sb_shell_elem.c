@@ -96,16 +96,23 @@ void sb_shell_batch_free(sb_shell_batch *w)
 }
 
 /* D = dA blockdiag(T, T)^T C6 blockdiag(T, T): the material-frame section
- * tangent in covariant strain components (a congruence: PSD stays PSD) */
+ * tangent in covariant strain components (a congruence: PSD stays PSD).
+ * Fully unrolled (constant indices, no index arithmetic in the loops) and
+ * the upper triangle only (D symmetric); every entry is the same expression
+ * in the same order as before, so the bits are unchanged. */
 void sb_elem_congruence6(const double *C6, const double *T, double dA, double D[6][6])
 {
     double CT[6][6];
+#pragma GCC unroll 6
     for (int i = 0; i < 6; i++)
+#pragma GCC unroll 6
         for (int j = 0; j < 6; j++) {
             const int jb = j < 3 ? 0 : 3, jj = j - jb;
             CT[i][j] = C6[6 * i + jb] * T[jj] + C6[6 * i + jb + 1] * T[3 + jj] + C6[6 * i + jb + 2] * T[6 + jj];
         }
+#pragma GCC unroll 6
     for (int i = 0; i < 6; i++)
+#pragma GCC unroll 6
         for (int j = i; j < 6; j++) {
             const int ib = i < 3 ? 0 : 3, ii = i - ib;
             D[i][j] = D[j][i] = dA * (T[ii] * CT[ib][j] + T[3 + ii] * CT[ib + 1][j] + T[6 + ii] * CT[ib + 2][j]);
@@ -133,41 +140,58 @@ static void jacobian_x(const double *x1, const double *x2, double gv[3][3], doub
 }
 
 /* K = J^T D J in the local jet, the blocks on and above the block diagonal
- * (slot s <= t), exploiting J's sparsity */
+ * (slot s <= t), exploiting J's sparsity: the x-slot rows that touch slot s
+ * are s (A11 for x_,1, A22 for x_,2), 2 (A12) and the bending rows 3..5 —
+ * row 1 - s is zero in slot s and is skipped (a zero term of each sum: the
+ * other terms keep their order, so the bits are those of the full sums).
+ * Fully unrolled: constant indices only. */
 void sb_elem_jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15])
 {
-    /* DJx[r][s][d] = sum_r' D[r][r'] Jx[r'][s][d] */
+    /* DJx[r][s][d] = sum_q D[r][q] Jx[q][s][d], q over s, 2, 3, 4, 5 */
     double DJx[6][2][3];
+#pragma GCC unroll 6
     for (int rr = 0; rr < 6; rr++)
+#pragma GCC unroll 2
         for (int s = 0; s < 2; s++)
-            for (int d = 0; d < 3; d++) {
-                double acc = 0.0;
-                for (int q = 0; q < 6; q++) acc += D[rr][q] * Jx[q][s][d];
-                DJx[rr][s][d] = acc;
-            }
-    /* (x, x) blocks: sum_r Jx[r][s][c] DJx[r][t][d] */
+#pragma GCC unroll 3
+            for (int d = 0; d < 3; d++)
+                DJx[rr][s][d] = D[rr][s] * Jx[s][s][d] + D[rr][2] * Jx[2][s][d] + D[rr][3] * Jx[3][s][d] +
+                                D[rr][4] * Jx[4][s][d] + D[rr][5] * Jx[5][s][d];
+    /* (x, x) blocks: sum_r Jx[r][s][c] DJx[r][t][d], r over s, 2, 3, 4, 5 */
+#pragma GCC unroll 2
     for (int s = 0; s < 2; s++)
+#pragma GCC unroll 2
         for (int tt = s; tt < 2; tt++)
+#pragma GCC unroll 3
             for (int cc = 0; cc < 3; cc++)
-                for (int d = 0; d < 3; d++) {
-                    double acc = 0.0;
-                    for (int rr = 0; rr < 6; rr++) acc += Jx[rr][s][cc] * DJx[rr][tt][d];
-                    K[3 * s + cc][3 * tt + d] = acc;
-                }
+#pragma GCC unroll 3
+                for (int d = 0; d < 3; d++)
+                    K[3 * s + cc][3 * tt + d] = Jx[s][s][cc] * DJx[s][tt][d] + Jx[2][s][cc] * DJx[2][tt][d] +
+                                                Jx[3][s][cc] * DJx[3][tt][d] + Jx[4][s][cc] * DJx[4][tt][d] +
+                                                Jx[5][s][cc] * DJx[5][tt][d];
     /* (x, v_i) blocks: (sum_r Jx[r][s][c] D[r][3+i]) n_d / 2 */
+#pragma GCC unroll 2
     for (int s = 0; s < 2; s++)
+#pragma GCC unroll 3
         for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
             for (int cc = 0; cc < 3; cc++) {
-                double u = 0.0;
-                for (int rr = 0; rr < 6; rr++) u += Jx[rr][s][cc] * D[rr][3 + i];
+                const double u = Jx[s][s][cc] * D[s][3 + i] + Jx[2][s][cc] * D[2][3 + i] +
+                                 Jx[3][s][cc] * D[3][3 + i] + Jx[4][s][cc] * D[4][3 + i] +
+                                 Jx[5][s][cc] * D[5][3 + i];
+#pragma GCC unroll 3
                 for (int d = 0; d < 3; d++) K[3 * s + cc][3 * bslot[i] + d] = 0.5 * u * n[d];
             }
     /* (v_i, v_j) blocks: D[3+i][3+j] n_c n_d / 4 */
+#pragma GCC unroll 3
     for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
         for (int j = 0; j < 3; j++) {
             const int si = bslot[i], sj = bslot[j];
             if (sj < si) continue;
+#pragma GCC unroll 3
             for (int cc = 0; cc < 3; cc++)
+#pragma GCC unroll 3
                 for (int d = 0; d < 3; d++) K[3 * si + cc][3 * sj + d] = 0.25 * D[3 + i][3 + j] * n[cc] * n[d];
         }
 }
