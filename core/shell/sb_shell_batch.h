@@ -57,7 +57,9 @@ static inline void skew3(const double *v, double S[9])
 }
 static inline void mul33(const double *A, const double *B, double *C)
 {
+#pragma GCC unroll 3
     for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
         for (int j = 0; j < 3; j++)
             C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
 }

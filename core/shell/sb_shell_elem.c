@@ -489,7 +489,7 @@ void sb_elem_products(int R, int kp, sb_shell_batch *w)
 /* H (3k x 3k) += sign * the element matrix of the products in w->Hc: entry
  * (3I+c, 3J+d) is H^cd[I][J] for c < d, H^dc[J][I] for c > d and H^cc at
  * (min, max) on the diagonal pairs, so the result is exactly symmetric */
-void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+static inline void scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
 {
     const int n3 = 3 * k;
     const double *H[3][3];
@@ -512,6 +512,18 @@ void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, doubl
             h[2] += sign * H[2][2][dg];
         }
     }
+}
+
+/* sign = 1 (the element) and -1 (the PSD difference) as constants: h += x
+ * instead of h += 1.0 * x, the same bits */
+void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+{
+    if (sign == 1.0)
+        scatter(k, kp, w, hess, 1.0);
+    else if (sign == -1.0)
+        scatter(k, kp, w, hess, -1.0);
+    else
+        scatter(k, kp, w, hess, sign);
 }
 
 double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
@@ -540,7 +552,10 @@ double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, cons
 #if SB_VL == 2
             if (hess) {
                 double *rb = w->Wb + (size_t)2 * (5 * p + s) * kp;
-                for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = row[I];
+                for (int I = 0; I < kp; I++) {   /* one 2-wide store per entry */
+                    sb_vd v2 = { row[I], row[I] };
+                    sb_vstore(rb + 2 * I, v2);
+                }
             }
 #endif
         }
