@@ -74,7 +74,10 @@ sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax)
     w->qd = alloc64(3 * kp);
     w->gd = alloc64(3 * kp);
     w->kd = alloc64((size_t)KD * nqmax);
-    if (!w->kd || !w->Wt || !w->Wb || !w->Z || !w->Hc || !w->Gt || !w->qd || !w->gd) {
+    w->G = alloc64(6 * r / 5 * 3 * kp);
+    w->Gb = alloc64(2 * 6 * r / 5 * 3 * kp);
+    w->C3 = alloc64(9 * kp * kp);
+    if (!w->kd || !w->G || !w->Gb || !w->C3 || !w->Wt || !w->Wb || !w->Z || !w->Hc || !w->Gt || !w->qd || !w->gd) {
         sb_shell_batch_free(w);
         return NULL;
     }
@@ -92,6 +95,9 @@ void sb_shell_batch_free(sb_shell_batch *w)
     free(w->qd);
     free(w->gd);
     free(w->kd);
+    free(w->G);
+    free(w->Gb);
+    free(w->C3);
     free(w);
 }
 
@@ -285,15 +291,31 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
     double *kd = w->keep ? w->kd + (size_t)KD * p : NULL;
     if (kd) {   /* what the strain-space projection takes away from J^T D J */
         kd[KD - 1] = sb_elem_pos_def(6, C6);
+        kd[48] = 0.0;
         if (kd[KD - 1] == 0.0) {
-            double Cp[36], dC[36], dD[6][6];
-            memcpy(Cp, C6, sizeof Cp);
-            sb_elem_psd_part(6, Cp);
-            for (int i = 0; i < 36; i++) dC[i] = C6[i] - Cp[i];
-            sb_elem_congruence6(dC, T, dA, dD);
-            memcpy(kd + 48, Jx, sizeof Jx);
-            memcpy(kd + 84, n, 3 * sizeof *n);
-            memcpy(kd + 87, dD, sizeof dD);
+            /* C6 - C6+ = sum_l lam_l v_l v_l^T over its negative eigenvalues,
+             * so J^T (D - D+) J = -sum_l u_l u_l^T with
+             * u_l = sqrt(-lam_l dA) J^T blockdiag(T, T)^T v_l: one rank-1
+             * term per clamped eigenvalue (ΔD has rank 1-2) instead of the
+             * full 5-slot J^T ΔD J */
+            double lam[6], vec[36];
+            const int nn = sb_elem_neg_eig(6, C6, lam, vec);
+            kd[48] = nn;
+            for (int l = 0; l < nn; l++) {
+                const double *vl = vec + 6 * l, f = sqrt(-lam[l] * dA);
+                double wv[6];
+                for (int i = 0; i < 3; i++) {
+                    wv[i] = f * (T[i] * vl[0] + T[3 + i] * vl[1] + T[6 + i] * vl[2]);
+                    wv[3 + i] = f * (T[i] * vl[3] + T[3 + i] * vl[4] + T[6 + i] * vl[5]);
+                }
+                double *u = kd + 49 + 15 * l;
+                for (int sx = 0; sx < 2; sx++)
+                    for (int d = 0; d < 3; d++)
+                        u[3 * sx + d] = Jx[sx][sx][d] * wv[sx] + Jx[2][sx][d] * wv[2] + Jx[3][sx][d] * wv[3] +
+                                        Jx[4][sx][d] * wv[4] + Jx[5][sx][d] * wv[5];
+                for (int i = 0; i < 3; i++)
+                    for (int d = 0; d < 3; d++) u[3 * bslot[i] + d] = 0.5 * wv[3 + i] * n[d];
+            }
         }
     }
     /* only the blocks on and above the block diagonal (slot s <= t) are
@@ -482,6 +504,12 @@ void sb_elem_products(int R, int kp, sb_shell_batch *w)
         for (int I0 = 0; I0 < kp; I0 += MR)
             for (int J0 = sym ? I0 / NR * NR : 0; J0 < kp; J0 += NR) tile(R, kp, w->Wt, w->Wb, Zp, I0, J0, Hp);
     }
+}
+
+void sb_elem_gram(int R, int n, const double *G, const double *Gb, double *C)
+{
+    for (int I0 = 0; I0 < n; I0 += MR)
+        for (int J0 = I0 / NR * NR; J0 < n; J0 += NR) tile(R, n, G, Gb, G, I0, J0, C);
 }
 
 /* ---- the element ------------------------------------------------------------------ */
