@@ -104,23 +104,25 @@ int sb_elem_neg_eig(int n, const double *C, double *lam, double *vec)
     return m;
 }
 
-/* the Z rows of one point for ns = 3 or 5 slots (a constant once inlined) */
-static inline void zrows(int ns, double Kd[15][15], double *const *u, int kp, double *Z0, size_t zstride)
+/* the Z rows of one point in the 3-slot jet (x,1 x,2 mu); the (mu, mu)
+ * block is zero, so the mu row has 2 terms */
+static void zrows3(double Kd[9][9], double *const *u, int kp, double *Z0, size_t zstride)
 {
     for (int pr = 0; pr < 6; pr++) {
         const int cc = pc[pr], d = pd[pr];
-#pragma GCC unroll 5
-        for (int s = 0; s < ns; s++) {
-            sb_vd kv[5];
-#pragma GCC unroll 5
-            for (int t = 0; t < ns; t++) kv[t] = sb_vbcast(s <= t ? Kd[3 * s + cc][3 * t + d] : Kd[3 * t + d][3 * s + cc]);
+#pragma GCC unroll 3
+        for (int s = 0; s < 3; s++) {
+            sb_vd kv[3];
+#pragma GCC unroll 3
+            for (int t = 0; t < 3; t++) kv[t] = sb_vbcast(s <= t ? Kd[3 * s + cc][3 * t + d] : Kd[3 * t + d][3 * s + cc]);
             double *zs = Z0 + pr * zstride + (size_t)s * kp;
-            for (int J = 0; J < kp; J += SB_VL) {
-                sb_vd z = kv[0] * sb_vload(u[0] + J);
-#pragma GCC unroll 5
-                for (int t = 1; t < ns; t++) z += kv[t] * sb_vload(u[t] + J);
-                sb_vstore(zs + J, z);
-            }
+            if (s < 2)
+                for (int J = 0; J < kp; J += SB_VL)
+                    sb_vstore(zs + J, kv[0] * sb_vload(u[0] + J) + kv[1] * sb_vload(u[1] + J) +
+                                          kv[2] * sb_vload(u[2] + J));
+            else
+                for (int J = 0; J < kp; J += SB_VL)
+                    sb_vstore(zs + J, kv[0] * sb_vload(u[0] + J) + kv[1] * sb_vload(u[1] + J));
         }
     }
 }
@@ -144,18 +146,25 @@ static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, d
 #if SB_VL == 2
         for (int s = 0; s < 3; s++) {
             double *rb = w->Wb + (size_t)2 * (row + s) * kp;
-            for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = u[s][I];
+            for (int I = 0; I < kp; I++) {
+                sb_vd v2 = { u[s][I], u[s][I] };
+                sb_vstore(rb + 2 * I, v2);
+            }
         }
 #endif
         /* the point's difference matrix, blocks on and above the block diagonal:
          * 3-slot (s, t): (0,0) B11, (0,1) B12, (0,2) M1, (1,1) B22, (1,2) -M2, (2,2) 0 */
-        double Kd[15][15];
-        const double *blk[3][3] = { { kd, kd + 9, kd + 27 }, { NULL, kd + 18, kd + 36 }, { NULL, NULL, NULL } };
-        for (int s = 0; s < 3; s++)
-            for (int t = s; t < 3; t++)
-                for (int a = 0; a < 3; a++)
-                    for (int c = 0; c < 3; c++) Kd[3 * s + a][3 * t + c] = blk[s][t] ? blk[s][t][3 * a + c] : 0.0;
-        zrows(3, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
+        double Kd[9][9];
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++) {
+                Kd[a][c] = kd[3 * a + c];
+                Kd[a][3 + c] = kd[9 + 3 * a + c];
+                Kd[a][6 + c] = kd[27 + 3 * a + c];
+                Kd[3 + a][3 + c] = kd[18 + 3 * a + c];
+                Kd[3 + a][6 + c] = kd[36 + 3 * a + c];
+                Kd[6 + a][6 + c] = 0.0;
+            }
+        zrows3(Kd, u, kp, w->Z + (size_t)row * kp, zstride);
         row += 3;
     }
     sb_elem_products(row, kp, w);
@@ -192,11 +201,10 @@ static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, d
     for (int i = 0; i < n3; i++) {
         const double *ci = w->C3 + (size_t)i * n3p;
         double *hi = hess + (size_t)i * n3;
-        hi[i] += ci[i];
-        for (int j = i + 1; j < n3; j++) {
-            hi[j] += ci[j];
-            hess[(size_t)j * n3 + i] += ci[j];
-        }
+        for (int j = i + 1; j < n3; j++) hess[(size_t)j * n3 + i] += ci[j];
+        int j = i;
+        for (; j + SB_VL <= n3; j += SB_VL) sb_vstore(hi + j, sb_vload(hi + j) + sb_vload(ci + j));
+        for (; j < n3; j++) hi[j] += ci[j];
     }
 }
 
