@@ -32,6 +32,7 @@ struct sb_shell_batch {
     double *qd;   /* 3 x kp: control values by component */
     double *gd;   /* 3 x kp: gradient by component */
     int keep;     /* sb_shell_element_psd's exact pass: keep what the PSD difference needs */
+    int store;    /* sb_shell_element_into: the scatter overwrites hess */
     double *kd;   /* nq x KD: per point the PSD difference (see point()) */
     double *G;    /* 6 nq x 3 kp: the PSD difference's rank-1 terms, one row per clamped eigenvalue */
     double *Gb;   /* SB_VL == 2: G with every entry twice (the tiles' broadcast operand) */

@@ -542,6 +542,34 @@ static inline void scatter(int k, int kp, const sb_shell_batch *w, double *hess,
     }
 }
 
+/* hess (3k x 3k) = the element matrix of the products (sb_shell_element_into):
+ * every entry written once, no read; 0.0 + x is what h += x gives on a
+ * zeroed matrix (the same bits, also for x = -0) */
+static void scatter_store(int k, int kp, const sb_shell_batch *w, double *hess)
+{
+    const int n3 = 3 * k;
+    const double *H[3][3];
+    for (int pr = 0; pr < 6; pr++) H[pc[pr]][pd[pr]] = w->Hc + (size_t)pr * kp * kp;
+    for (int I = 0; I < k; I++) {
+        double *row0 = hess + (size_t)(3 * I) * n3;
+        for (int J = 0; J < k; J++) {
+            const size_t ij = (size_t)I * kp + J, ji = (size_t)J * kp + I, dg = I <= J ? ij : ji;
+            double *h = row0 + 3 * J;
+            h[0] = 0.0 + H[0][0][dg];
+            h[1] = 0.0 + H[0][1][ij];
+            h[2] = 0.0 + H[0][2][ij];
+            h += n3;
+            h[0] = 0.0 + H[0][1][ji];
+            h[1] = 0.0 + H[1][1][dg];
+            h[2] = 0.0 + H[1][2][ij];
+            h += n3;
+            h[0] = 0.0 + H[0][2][ji];
+            h[1] = 0.0 + H[1][2][ji];
+            h[2] = 0.0 + H[2][2][dg];
+        }
+    }
+}
+
 /* sign = 1 (the element) and -1 (the PSD difference) as constants: h += x
  * instead of h += 1.0 * x, the same bits */
 void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
@@ -612,15 +640,29 @@ double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, cons
     }
     if (!hess) return e;
     sb_elem_products(5 * nq, kp, w);
-    sb_elem_scatter(k, kp, w, hess, 1.0);
+    if (w->store)
+        scatter_store(k, kp, w, hess);
+    else
+        sb_elem_scatter(k, kp, w, hess, 1.0);
     return e;
 }
 
 double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
                         const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
 {
-    if (w) w->keep = 0;
+    if (w) w->keep = w->store = 0;
     return sb_elem_element(m, nq, r, b, q, grad, hess, kind, w);
+}
+
+double sb_shell_element_into(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                             const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
+{
+    if (!w) return NAN;
+    w->keep = 0;
+    w->store = 1;
+    const double e = sb_elem_element(m, nq, r, b, q, grad, hess, kind, w);
+    w->store = 0;
+    return e;
 }
 
 /* The exact minus the strain-space Hessian of an element (what the exact

@@ -219,6 +219,7 @@ double sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r,
         return NAN;
     }
     w->keep = 1;
+    w->store = 0;
     const double e = sb_elem_element(m, nq, r, b, q, grad, hess, SB_HESS_EXACT, w);
     w->keep = 0;
     const int n = 3 * b[0].k;
