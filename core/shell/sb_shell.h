@@ -96,6 +96,11 @@ sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax);
 void sb_shell_batch_free(sb_shell_batch *w);
 double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
                         const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
+/* The same, but hess is OVERWRITTEN (all 3k x 3k entries; grad is still
+ * accumulated): for an element matrix with no other terms, which then need
+ * not be zeroed first.  Bit-identical to sb_shell_element on a zeroed hess. */
+double sb_shell_element_into(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                             const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
 
 /* The section law of sb_shell_section, evaluated for the fast kernel: the
  * thickness points batched in vectors, denim's powers by vectorized

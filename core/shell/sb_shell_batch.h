@@ -32,12 +32,17 @@ struct sb_shell_batch {
     double *qd;   /* 3 x kp: control values by component */
     double *gd;   /* 3 x kp: gradient by component */
     int keep;     /* sb_shell_element_psd's exact pass: keep what the PSD difference needs */
+    int store;    /* sb_shell_element_into: the scatter overwrites hess */
     double *kd;   /* nq x KD: per point the PSD difference (see point()) */
+    double *G;    /* 6 nq x 3 kp: the PSD difference's rank-1 terms, one row per clamped eigenvalue */
+    double *Gb;   /* SB_VL == 2: G with every entry twice (the tiles' broadcast operand) */
+    double *C3;   /* 3 kp x 3 kp: their Gram matrix G^T G (on and above the diagonal tiles) */
 };
 /* per point: 5 blocks of 3 x 3 (0..44), h (45..47); where the section
- * tangent is not positive definite also Jx (48..83), n (84..86) and the
- * clamped-away part dD of D (87..122); the flag "positive definite" (127) */
-#define KD 128
+ * tangent is not positive definite also the number m of its negative
+ * eigenvalues (48) and m vectors u_l (49 + 15 l .., slot-major jet) with
+ * J^T (D - D+) J = -sum_l u_l u_l^T; the flag "positive definite" (KD - 1) */
+#define KD 144
 
 
 static inline int sb_elem_round_up(int k, int m) { return (k + m - 1) / m * m; }
@@ -57,7 +62,9 @@ static inline void skew3(const double *v, double S[9])
 }
 static inline void mul33(const double *A, const double *B, double *C)
 {
+#pragma GCC unroll 3
     for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
         for (int j = 0; j < 3; j++)
             C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
 }
@@ -74,6 +81,9 @@ double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, cons
                        double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
 /* H^cd = Wt^T Z^cd for the 6 component pairs, inner dimension R rows */
 void sb_elem_products(int R, int kp, sb_shell_batch *w);
+/* C (n x n) = G^T G on and above its diagonal tiles (G, Gb: R x n, n a
+ * multiple of KPAD) */
+void sb_elem_gram(int R, int n, const double *G, const double *Gb, double *C);
 /* hess (3k x 3k) += sign * the products, exactly symmetric */
 void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
 /* D = dA blockdiag(T, T)^T C6 blockdiag(T, T); K = J^T D J (blocks s <= t) */
@@ -82,5 +92,8 @@ void sb_elem_jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[
 /* C (n x n, n <= 6) positive definite?  And C <- its PSD part. */
 int sb_elem_pos_def(int n, const double *C);
 void sb_elem_psd_part(int n, double *C);
+/* the negative eigenvalues of the symmetric n x n C (n <= 6) and their unit
+ * eigenvectors (rows of vec); returns how many */
+int sb_elem_neg_eig(int n, const double *C, double *lam, double *vec);
 
 #endif

@@ -74,7 +74,10 @@ sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax)
     w->qd = alloc64(3 * kp);
     w->gd = alloc64(3 * kp);
     w->kd = alloc64((size_t)KD * nqmax);
-    if (!w->kd || !w->Wt || !w->Wb || !w->Z || !w->Hc || !w->Gt || !w->qd || !w->gd) {
+    w->G = alloc64(6 * r / 5 * 3 * kp);
+    w->Gb = alloc64(2 * 6 * r / 5 * 3 * kp);
+    w->C3 = alloc64(9 * kp * kp);
+    if (!w->kd || !w->G || !w->Gb || !w->C3 || !w->Wt || !w->Wb || !w->Z || !w->Hc || !w->Gt || !w->qd || !w->gd) {
         sb_shell_batch_free(w);
         return NULL;
     }
@@ -92,20 +95,30 @@ void sb_shell_batch_free(sb_shell_batch *w)
     free(w->qd);
     free(w->gd);
     free(w->kd);
+    free(w->G);
+    free(w->Gb);
+    free(w->C3);
     free(w);
 }
 
 /* D = dA blockdiag(T, T)^T C6 blockdiag(T, T): the material-frame section
- * tangent in covariant strain components (a congruence: PSD stays PSD) */
+ * tangent in covariant strain components (a congruence: PSD stays PSD).
+ * Fully unrolled (constant indices, no index arithmetic in the loops) and
+ * the upper triangle only (D symmetric); every entry is the same expression
+ * in the same order as before, so the bits are unchanged. */
 void sb_elem_congruence6(const double *C6, const double *T, double dA, double D[6][6])
 {
     double CT[6][6];
+#pragma GCC unroll 6
     for (int i = 0; i < 6; i++)
+#pragma GCC unroll 6
         for (int j = 0; j < 6; j++) {
             const int jb = j < 3 ? 0 : 3, jj = j - jb;
             CT[i][j] = C6[6 * i + jb] * T[jj] + C6[6 * i + jb + 1] * T[3 + jj] + C6[6 * i + jb + 2] * T[6 + jj];
         }
+#pragma GCC unroll 6
     for (int i = 0; i < 6; i++)
+#pragma GCC unroll 6
         for (int j = i; j < 6; j++) {
             const int ib = i < 3 ? 0 : 3, ii = i - ib;
             D[i][j] = D[j][i] = dA * (T[ii] * CT[ib][j] + T[3 + ii] * CT[ib + 1][j] + T[6 + ii] * CT[ib + 2][j]);
@@ -133,41 +146,58 @@ static void jacobian_x(const double *x1, const double *x2, double gv[3][3], doub
 }
 
 /* K = J^T D J in the local jet, the blocks on and above the block diagonal
- * (slot s <= t), exploiting J's sparsity */
+ * (slot s <= t), exploiting J's sparsity: the x-slot rows that touch slot s
+ * are s (A11 for x_,1, A22 for x_,2), 2 (A12) and the bending rows 3..5 —
+ * row 1 - s is zero in slot s and is skipped (a zero term of each sum: the
+ * other terms keep their order, so the bits are those of the full sums).
+ * Fully unrolled: constant indices only. */
 void sb_elem_jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15])
 {
-    /* DJx[r][s][d] = sum_r' D[r][r'] Jx[r'][s][d] */
+    /* DJx[r][s][d] = sum_q D[r][q] Jx[q][s][d], q over s, 2, 3, 4, 5 */
     double DJx[6][2][3];
+#pragma GCC unroll 6
     for (int rr = 0; rr < 6; rr++)
+#pragma GCC unroll 2
         for (int s = 0; s < 2; s++)
-            for (int d = 0; d < 3; d++) {
-                double acc = 0.0;
-                for (int q = 0; q < 6; q++) acc += D[rr][q] * Jx[q][s][d];
-                DJx[rr][s][d] = acc;
-            }
-    /* (x, x) blocks: sum_r Jx[r][s][c] DJx[r][t][d] */
+#pragma GCC unroll 3
+            for (int d = 0; d < 3; d++)
+                DJx[rr][s][d] = D[rr][s] * Jx[s][s][d] + D[rr][2] * Jx[2][s][d] + D[rr][3] * Jx[3][s][d] +
+                                D[rr][4] * Jx[4][s][d] + D[rr][5] * Jx[5][s][d];
+    /* (x, x) blocks: sum_r Jx[r][s][c] DJx[r][t][d], r over s, 2, 3, 4, 5 */
+#pragma GCC unroll 2
     for (int s = 0; s < 2; s++)
+#pragma GCC unroll 2
         for (int tt = s; tt < 2; tt++)
+#pragma GCC unroll 3
             for (int cc = 0; cc < 3; cc++)
-                for (int d = 0; d < 3; d++) {
-                    double acc = 0.0;
-                    for (int rr = 0; rr < 6; rr++) acc += Jx[rr][s][cc] * DJx[rr][tt][d];
-                    K[3 * s + cc][3 * tt + d] = acc;
-                }
+#pragma GCC unroll 3
+                for (int d = 0; d < 3; d++)
+                    K[3 * s + cc][3 * tt + d] = Jx[s][s][cc] * DJx[s][tt][d] + Jx[2][s][cc] * DJx[2][tt][d] +
+                                                Jx[3][s][cc] * DJx[3][tt][d] + Jx[4][s][cc] * DJx[4][tt][d] +
+                                                Jx[5][s][cc] * DJx[5][tt][d];
     /* (x, v_i) blocks: (sum_r Jx[r][s][c] D[r][3+i]) n_d / 2 */
+#pragma GCC unroll 2
     for (int s = 0; s < 2; s++)
+#pragma GCC unroll 3
         for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
             for (int cc = 0; cc < 3; cc++) {
-                double u = 0.0;
-                for (int rr = 0; rr < 6; rr++) u += Jx[rr][s][cc] * D[rr][3 + i];
+                const double u = Jx[s][s][cc] * D[s][3 + i] + Jx[2][s][cc] * D[2][3 + i] +
+                                 Jx[3][s][cc] * D[3][3 + i] + Jx[4][s][cc] * D[4][3 + i] +
+                                 Jx[5][s][cc] * D[5][3 + i];
+#pragma GCC unroll 3
                 for (int d = 0; d < 3; d++) K[3 * s + cc][3 * bslot[i] + d] = 0.5 * u * n[d];
             }
     /* (v_i, v_j) blocks: D[3+i][3+j] n_c n_d / 4 */
+#pragma GCC unroll 3
     for (int i = 0; i < 3; i++)
+#pragma GCC unroll 3
         for (int j = 0; j < 3; j++) {
             const int si = bslot[i], sj = bslot[j];
             if (sj < si) continue;
+#pragma GCC unroll 3
             for (int cc = 0; cc < 3; cc++)
+#pragma GCC unroll 3
                 for (int d = 0; d < 3; d++) K[3 * si + cc][3 * sj + d] = 0.25 * D[3 + i][3 + j] * n[cc] * n[d];
         }
 }
@@ -261,15 +291,31 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
     double *kd = w->keep ? w->kd + (size_t)KD * p : NULL;
     if (kd) {   /* what the strain-space projection takes away from J^T D J */
         kd[KD - 1] = sb_elem_pos_def(6, C6);
+        kd[48] = 0.0;
         if (kd[KD - 1] == 0.0) {
-            double Cp[36], dC[36], dD[6][6];
-            memcpy(Cp, C6, sizeof Cp);
-            sb_elem_psd_part(6, Cp);
-            for (int i = 0; i < 36; i++) dC[i] = C6[i] - Cp[i];
-            sb_elem_congruence6(dC, T, dA, dD);
-            memcpy(kd + 48, Jx, sizeof Jx);
-            memcpy(kd + 84, n, 3 * sizeof *n);
-            memcpy(kd + 87, dD, sizeof dD);
+            /* C6 - C6+ = sum_l lam_l v_l v_l^T over its negative eigenvalues,
+             * so J^T (D - D+) J = -sum_l u_l u_l^T with
+             * u_l = sqrt(-lam_l dA) J^T blockdiag(T, T)^T v_l: one rank-1
+             * term per clamped eigenvalue (ΔD has rank 1-2) instead of the
+             * full 5-slot J^T ΔD J */
+            double lam[6], vec[36];
+            const int nn = sb_elem_neg_eig(6, C6, lam, vec);
+            kd[48] = nn;
+            for (int l = 0; l < nn; l++) {
+                const double *vl = vec + 6 * l, f = sqrt(-lam[l] * dA);
+                double wv[6];
+                for (int i = 0; i < 3; i++) {
+                    wv[i] = f * (T[i] * vl[0] + T[3 + i] * vl[1] + T[6 + i] * vl[2]);
+                    wv[3 + i] = f * (T[i] * vl[3] + T[3 + i] * vl[4] + T[6 + i] * vl[5]);
+                }
+                double *u = kd + 49 + 15 * l;
+                for (int sx = 0; sx < 2; sx++)
+                    for (int d = 0; d < 3; d++)
+                        u[3 * sx + d] = Jx[sx][sx][d] * wv[sx] + Jx[2][sx][d] * wv[2] + Jx[3][sx][d] * wv[3] +
+                                        Jx[4][sx][d] * wv[4] + Jx[5][sx][d] * wv[5];
+                for (int i = 0; i < 3; i++)
+                    for (int d = 0; d < 3; d++) u[3 * bslot[i] + d] = 0.5 * wv[3 + i] * n[d];
+            }
         }
     }
     /* only the blocks on and above the block diagonal (slot s <= t) are
@@ -460,12 +506,18 @@ void sb_elem_products(int R, int kp, sb_shell_batch *w)
     }
 }
 
+void sb_elem_gram(int R, int n, const double *G, const double *Gb, double *C)
+{
+    for (int I0 = 0; I0 < n; I0 += MR)
+        for (int J0 = I0 / NR * NR; J0 < n; J0 += NR) tile(R, n, G, Gb, G, I0, J0, C);
+}
+
 /* ---- the element ------------------------------------------------------------------ */
 
 /* H (3k x 3k) += sign * the element matrix of the products in w->Hc: entry
  * (3I+c, 3J+d) is H^cd[I][J] for c < d, H^dc[J][I] for c > d and H^cc at
  * (min, max) on the diagonal pairs, so the result is exactly symmetric */
-void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+static inline void scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
 {
     const int n3 = 3 * k;
     const double *H[3][3];
@@ -488,6 +540,46 @@ void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, doubl
             h[2] += sign * H[2][2][dg];
         }
     }
+}
+
+/* hess (3k x 3k) = the element matrix of the products (sb_shell_element_into):
+ * every entry written once, no read; 0.0 + x is what h += x gives on a
+ * zeroed matrix (the same bits, also for x = -0) */
+static void scatter_store(int k, int kp, const sb_shell_batch *w, double *hess)
+{
+    const int n3 = 3 * k;
+    const double *H[3][3];
+    for (int pr = 0; pr < 6; pr++) H[pc[pr]][pd[pr]] = w->Hc + (size_t)pr * kp * kp;
+    for (int I = 0; I < k; I++) {
+        double *row0 = hess + (size_t)(3 * I) * n3;
+        for (int J = 0; J < k; J++) {
+            const size_t ij = (size_t)I * kp + J, ji = (size_t)J * kp + I, dg = I <= J ? ij : ji;
+            double *h = row0 + 3 * J;
+            h[0] = 0.0 + H[0][0][dg];
+            h[1] = 0.0 + H[0][1][ij];
+            h[2] = 0.0 + H[0][2][ij];
+            h += n3;
+            h[0] = 0.0 + H[0][1][ji];
+            h[1] = 0.0 + H[1][1][dg];
+            h[2] = 0.0 + H[1][2][ij];
+            h += n3;
+            h[0] = 0.0 + H[0][2][ji];
+            h[1] = 0.0 + H[1][2][ji];
+            h[2] = 0.0 + H[2][2][dg];
+        }
+    }
+}
+
+/* sign = 1 (the element) and -1 (the PSD difference) as constants: h += x
+ * instead of h += 1.0 * x, the same bits */
+void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+{
+    if (sign == 1.0)
+        scatter(k, kp, w, hess, 1.0);
+    else if (sign == -1.0)
+        scatter(k, kp, w, hess, -1.0);
+    else
+        scatter(k, kp, w, hess, sign);
 }
 
 double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
@@ -516,7 +608,10 @@ double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, cons
 #if SB_VL == 2
             if (hess) {
                 double *rb = w->Wb + (size_t)2 * (5 * p + s) * kp;
-                for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = row[I];
+                for (int I = 0; I < kp; I++) {   /* one 2-wide store per entry */
+                    sb_vd v2 = { row[I], row[I] };
+                    sb_vstore(rb + 2 * I, v2);
+                }
             }
 #endif
         }
@@ -545,15 +640,29 @@ double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, cons
     }
     if (!hess) return e;
     sb_elem_products(5 * nq, kp, w);
-    sb_elem_scatter(k, kp, w, hess, 1.0);
+    if (w->store)
+        scatter_store(k, kp, w, hess);
+    else
+        sb_elem_scatter(k, kp, w, hess, 1.0);
     return e;
 }
 
 double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
                         const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
 {
-    if (w) w->keep = 0;
+    if (w) w->keep = w->store = 0;
     return sb_elem_element(m, nq, r, b, q, grad, hess, kind, w);
+}
+
+double sb_shell_element_into(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                             const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
+{
+    if (!w) return NAN;
+    w->keep = 0;
+    w->store = 1;
+    const double e = sb_elem_element(m, nq, r, b, q, grad, hess, kind, w);
+    w->store = 0;
+    return e;
 }
 
 /* The exact minus the strain-space Hessian of an element (what the exact

@@ -89,87 +89,123 @@ void sb_elem_psd_part(int n, double *C)
         }
 }
 
-/* the Z rows of one point for ns = 3 or 5 slots (a constant once inlined) */
-static inline void zrows(int ns, double Kd[15][15], double *const *u, int kp, double *Z0, size_t zstride)
+int sb_elem_neg_eig(int n, const double *C, double *lam, double *vec)
+{
+    double A[36], V[36];
+    memcpy(A, C, sizeof(double) * n * n);
+    jacobi_eig(n, A, V);
+    int m = 0;
+    for (int l = 0; l < n; l++)
+        if (A[l * n + l] < 0.0) {
+            lam[m] = A[l * n + l];
+            for (int i = 0; i < n; i++) vec[n * m + i] = V[i * n + l];
+            m++;
+        }
+    return m;
+}
+
+/* the Z rows of one point in the 3-slot jet (x,1 x,2 mu); the (mu, mu)
+ * block is zero, so the mu row has 2 terms */
+static void zrows3(double Kd[9][9], double *const *u, int kp, double *Z0, size_t zstride)
 {
     for (int pr = 0; pr < 6; pr++) {
         const int cc = pc[pr], d = pd[pr];
-#pragma GCC unroll 5
-        for (int s = 0; s < ns; s++) {
-            sb_vd kv[5];
-#pragma GCC unroll 5
-            for (int t = 0; t < ns; t++) kv[t] = sb_vbcast(s <= t ? Kd[3 * s + cc][3 * t + d] : Kd[3 * t + d][3 * s + cc]);
+#pragma GCC unroll 3
+        for (int s = 0; s < 3; s++) {
+            sb_vd kv[3];
+#pragma GCC unroll 3
+            for (int t = 0; t < 3; t++) kv[t] = sb_vbcast(s <= t ? Kd[3 * s + cc][3 * t + d] : Kd[3 * t + d][3 * s + cc]);
             double *zs = Z0 + pr * zstride + (size_t)s * kp;
-            for (int J = 0; J < kp; J += SB_VL) {
-                sb_vd z = kv[0] * sb_vload(u[0] + J);
-#pragma GCC unroll 5
-                for (int t = 1; t < ns; t++) z += kv[t] * sb_vload(u[t] + J);
-                sb_vstore(zs + J, z);
-            }
+            if (s < 2)
+                for (int J = 0; J < kp; J += SB_VL)
+                    sb_vstore(zs + J, kv[0] * sb_vload(u[0] + J) + kv[1] * sb_vload(u[1] + J) +
+                                          kv[2] * sb_vload(u[2] + J));
+            else
+                for (int J = 0; J < kp; J += SB_VL)
+                    sb_vstore(zs + J, kv[0] * sb_vload(u[0] + J) + kv[1] * sb_vload(u[1] + J));
         }
     }
 }
 
 static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, double *hess)
 {
-    const int k = b[0].k, kp = sb_elem_round_up(k, KPAD);
+    const int k = b[0].k, kp = sb_elem_round_up(k, KPAD), n3 = 3 * k, n3p = 3 * kp;
     const size_t zstride = (size_t)5 * w->nqmax * kp;
+    /* 1. the membrane and bending part of every point: 3-slot jet */
     int row = 0;
     for (int p = 0; p < nq; p++) {
         const double *kd = w->kd + (size_t)KD * p, *h = kd + 45;
-        const int pd_ok = kd[KD - 1] != 0.0, ns = pd_ok ? 3 : 5;
-        double *u[5];
-        for (int s = 0; s < ns; s++) u[s] = w->Wt + (size_t)(row + s) * kp;
-        if (pd_ok) {
-            for (int I = 0; I < kp; I++) {
-                u[0][I] = I < k ? b[p].N1[I] : 0.0;
-                u[1][I] = I < k ? b[p].N2[I] : 0.0;
-                /* bending component i = 0, 1, 2 is x,11, x,22, x,12 (sb_shell.c bslot) */
-                u[2][I] = I < k ? h[0] * b[p].N11[I] + h[1] * b[p].N22[I] + h[2] * b[p].N12[I] : 0.0;
-            }
-        } else {
-            const double *src[5] = { b[p].N1, b[p].N2, b[p].N11, b[p].N12, b[p].N22 };
-            for (int s = 0; s < 5; s++)
-                for (int I = 0; I < kp; I++) u[s][I] = I < k ? src[s][I] : 0.0;
+        double *u[3];
+        for (int s = 0; s < 3; s++) u[s] = w->Wt + (size_t)(row + s) * kp;
+        for (int I = 0; I < kp; I++) {
+            u[0][I] = I < k ? b[p].N1[I] : 0.0;
+            u[1][I] = I < k ? b[p].N2[I] : 0.0;
+            /* bending component i = 0, 1, 2 is x,11, x,22, x,12 (sb_shell.c bslot) */
+            u[2][I] = I < k ? h[0] * b[p].N11[I] + h[1] * b[p].N22[I] + h[2] * b[p].N12[I] : 0.0;
         }
 #if SB_VL == 2
-        for (int s = 0; s < ns; s++) {
+        for (int s = 0; s < 3; s++) {
             double *rb = w->Wb + (size_t)2 * (row + s) * kp;
-            for (int I = 0; I < kp; I++) rb[2 * I] = rb[2 * I + 1] = u[s][I];
+            for (int I = 0; I < kp; I++) {
+                sb_vd v2 = { u[s][I], u[s][I] };
+                sb_vstore(rb + 2 * I, v2);
+            }
         }
 #endif
         /* the point's difference matrix, blocks on and above the block diagonal:
          * 3-slot (s, t): (0,0) B11, (0,1) B12, (0,2) M1, (1,1) B22, (1,2) -M2, (2,2) 0 */
-        double Kd[15][15];
-        if (pd_ok) {
-            const double *blk[3][3] = { { kd, kd + 9, kd + 27 }, { NULL, kd + 18, kd + 36 }, { NULL, NULL, NULL } };
-            for (int s = 0; s < 3; s++)
-                for (int t = s; t < 3; t++)
-                    for (int a = 0; a < 3; a++)
-                        for (int c = 0; c < 3; c++) Kd[3 * s + a][3 * t + c] = blk[s][t] ? blk[s][t][3 * a + c] : 0.0;
-        } else {
-            double Jx[6][2][3], n[3], dD[6][6];
-            memcpy(Jx, kd + 48, sizeof Jx);
-            memcpy(n, kd + 84, sizeof n);
-            memcpy(dD, kd + 87, sizeof dD);
-            sb_elem_jtdj(Jx, n, dD, Kd);
-            for (int a = 0; a < 3; a++)
-                for (int c = 0; c < 3; c++) {
-                    Kd[3 * S_X1 + a][3 * S_X1 + c] += kd[3 * a + c];
-                    Kd[3 * S_X1 + a][3 * S_X2 + c] += kd[9 + 3 * a + c];
-                    Kd[3 * S_X2 + a][3 * S_X2 + c] += kd[18 + 3 * a + c];
-                    for (int i = 0; i < 3; i++) {
-                        Kd[3 * S_X1 + a][3 * bslot[i] + c] += h[i] * kd[27 + 3 * a + c];
-                        Kd[3 * S_X2 + a][3 * bslot[i] + c] += h[i] * kd[36 + 3 * a + c];
-                    }
-                }
-        }
-        if (pd_ok) zrows(3, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
-        else zrows(5, Kd, u, kp, w->Z + (size_t)row * kp, zstride);
-        row += ns;
+        double Kd[9][9];
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++) {
+                Kd[a][c] = kd[3 * a + c];
+                Kd[a][3 + c] = kd[9 + 3 * a + c];
+                Kd[a][6 + c] = kd[27 + 3 * a + c];
+                Kd[3 + a][3 + c] = kd[18 + 3 * a + c];
+                Kd[3 + a][6 + c] = kd[36 + 3 * a + c];
+                Kd[6 + a][6 + c] = 0.0;
+            }
+        zrows3(Kd, u, kp, w->Z + (size_t)row * kp, zstride);
+        row += 3;
     }
     sb_elem_products(row, kp, w);
     sb_elem_scatter(k, kp, w, hess, -1.0);
+
+    /* 2. the clamped section tangents: hess += sum g g^T over the rank-1
+     * terms, g_(I,c) = sum_s W_s^I u_l[s][c] (3k, padded to 3 kp), as one
+     * Gram product G^T G; h_i h_j = h_j h_i, so the result is exactly
+     * symmetric */
+    int ng = 0;
+    for (int p = 0; p < nq; p++) {
+        const double *kd = w->kd + (size_t)KD * p;
+        if (kd[KD - 1] != 0.0) continue;
+        const double *src[5] = { b[p].N1, b[p].N2, b[p].N11, b[p].N12, b[p].N22 };
+        for (int l = 0; l < (int)kd[48]; l++, ng++) {
+            const double *ul = kd + 49 + 15 * l;
+            double *g = w->G + (size_t)ng * n3p;
+            for (int I = 0; I < k; I++)
+                for (int c = 0; c < 3; c++)
+                    g[3 * I + c] = src[0][I] * ul[c] + src[1][I] * ul[3 + c] + src[2][I] * ul[6 + c] +
+                                   src[3][I] * ul[9 + c] + src[4][I] * ul[12 + c];
+            for (int i = n3; i < n3p; i++) g[i] = 0.0;
+#if SB_VL == 2
+            double *gb = w->Gb + (size_t)2 * ng * n3p;
+            for (int i = 0; i < n3p; i++) {
+                sb_vd v2 = { g[i], g[i] };
+                sb_vstore(gb + 2 * i, v2);
+            }
+#endif
+        }
+    }
+    if (ng == 0) return;
+    sb_elem_gram(ng, n3p, w->G, w->Gb, w->C3);
+    for (int i = 0; i < n3; i++) {
+        const double *ci = w->C3 + (size_t)i * n3p;
+        double *hi = hess + (size_t)i * n3;
+        for (int j = i + 1; j < n3; j++) hess[(size_t)j * n3 + i] += ci[j];
+        int j = i;
+        for (; j + SB_VL <= n3; j += SB_VL) sb_vstore(hi + j, sb_vload(hi + j) + sb_vload(ci + j));
+        for (; j < n3; j++) hi[j] += ci[j];
+    }
 }
 
 /* kind PSD with the fast kernel (issue 30; see sb_shell.h) */
@@ -183,6 +219,7 @@ double sb_shell_element_psd(const sb_material *m, int nq, const sb_shell_ref *r,
         return NAN;
     }
     w->keep = 1;
+    w->store = 0;
     const double e = sb_elem_element(m, nq, r, b, q, grad, hess, SB_HESS_EXACT, w);
     w->keep = 0;
     const int n = 3 * b[0].k;

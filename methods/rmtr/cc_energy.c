@@ -54,6 +54,16 @@ static int terms_reference(cc_asm *a, sb_elem_scratch *T, int el, int k, double 
     return nt;
 }
 
+/* Fast kernel, Hessian not PSD, no pressure and no boundary points on the
+ * element: its matrix is the kernel's alone, so the kernel writes it
+ * (sb_shell_element_into) and it is not zeroed first (an rmtr element
+ * matrix is up to 3k x 3k = 48 x 48 at regular faces). */
+static int cc_fast_store(const cc_asm *a, int el)
+{
+    return a->S->kernel != SB_KERNEL_REFERENCE && a->S->hess != SB_HESS_PSD && !a->has_p &&
+           a->L->ept[el + 1] == a->L->ept[el];
+}
+
 /* The fast kernel: the element's points batched (sb_shell_element); kind
  * PSD by sb_shell_element_psd (exact where the element Hessian is PSD). */
 static int terms_fast(cc_asm *a, sb_elem_scratch *T, int el, int k, double *ge, double *Ke, double *terms)
@@ -81,8 +91,11 @@ static int terms_fast(cc_asm *a, sb_elem_scratch *T, int el, int k, double *ge, 
     }
     kx_used |= a->L->ept[el + 1] > a->L->ept[el];
     E += cc_points_energy(S, a->L, el, qe, ge, Kt);
+    /* Ke with no other terms (no pressure, no boundary points: cc_fast_store)
+     * was not zeroed: the kernel overwrites it (the same bits) */
     terms[0] = psd ? sb_shell_element_psd(&S->mat, Q->nq, r, T->b, qe, ge, Ke, Kt, kx_used, T->batch, T->psd, NULL)
-                   : sb_shell_element(&S->mat, Q->nq, r, T->b, qe, ge, Ke, a->hk, T->batch);
+               : Ke && cc_fast_store(a, el) ? sb_shell_element_into(&S->mat, Q->nq, r, T->b, qe, ge, Ke, a->hk, T->batch)
+                                            : sb_shell_element(&S->mat, Q->nq, r, T->b, qe, ge, Ke, a->hk, T->batch);
     terms[1] = E;
     return 2;
 }
@@ -98,7 +111,7 @@ static void cc_compute(void *ctx, int thread, int el, sb_elem_out *o)
     double *ge = a->g ? o->ge : NULL, *Ke = o->Ke;
     for (int i = 0; i < k; i++) memcpy(T->qe + 3 * i, a->x + 3 * nd[i], 3 * sizeof(double));
     if (ge) memset(ge, 0, (size_t)n * sizeof *ge);
-    if (Ke) memset(Ke, 0, (size_t)n * n * sizeof *Ke);
+    if (Ke && !cc_fast_store(a, el)) memset(Ke, 0, (size_t)n * n * sizeof *Ke);
     o->n_terms = S->kernel == SB_KERNEL_REFERENCE ? terms_reference(a, T, el, k, ge, Ke, o->terms)
                                                  : terms_fast(a, T, el, k, ge, Ke, o->terms);
 }
