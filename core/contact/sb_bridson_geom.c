@@ -143,15 +143,23 @@ static int roots01(double c3, double c2, double c1, double c0, double zero, doub
 static double coplanar_ee(const double *const P[8], double L, double tol)
 {
     if (seg_dist_at(P, 0) <= tol) return 0.0;
+    /* a reference normal: the largest normal of the triples through the
+       first point at t = 0, 1/4, ..., 1 (the common plane may move, e.g. of
+       parallel edges; g below changes sign where the in-plane order flips or
+       where the plane turns through the points' line, and every root is
+       checked by the segments' distance) */
     double x[4][3], n[3] = { 0, 0, 0 }, e[3];
+    for (int q = 0; q <= 4; q++) {
+        for (int k = 0; k < 4; k++) lerp3(P[2 * k], P[2 * k + 1], 0.25 * q, x[k]);
+        for (int k = 1; k < 4; k++)
+            for (int j = k + 1; j < 4; j++) {
+                double a[3], b[3], c[3];
+                sub3(x[k], x[0], a); sub3(x[j], x[0], b);
+                cross3(a, b, c);
+                if (dot3(c, c) > dot3(n, n)) for (int i = 0; i < 3; i++) n[i] = c[i];
+            }
+    }
     for (int k = 0; k < 4; k++) lerp3(P[2 * k], P[2 * k + 1], 0.5, x[k]);
-    for (int k = 1; k < 4; k++)   /* the largest normal of the triples through x[0] */
-        for (int j = k + 1; j < 4; j++) {
-            double a[3], b[3], c[3];
-            sub3(x[k], x[0], a); sub3(x[j], x[0], b);
-            cross3(a, b, c);
-            if (dot3(c, c) > dot3(n, n)) for (int i = 0; i < 3; i++) n[i] = c[i];
-        }
     double best = 2.0;
     if (dot3(n, n) > 1e-24 * L * L * L * L) {
         for (int pe = 0; pe < 2; pe++)          /* end points of edge pe against edge 1 - pe */
