@@ -1,0 +1,223 @@
+/* test_impulse_runs.c — contact.model = "impulse" through the method op
+ * impulse_response and the run loop (docs/contact.md): every registered
+ * method with the op on cloth_sphere and drape_box keeps every mesh vertex
+ * outside the obstacle after every step (an independent inside test on the
+ * method's own surface triangles); whole runs record the response (event
+ * collide each step, /final/contact stats in the summary); what cannot run
+ * the impulse model is refused before any work with a sentence. */
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli_sh.h"
+#include "run_json.h"
+#include "sb_context.h"
+#include "sb_impulse.h"
+#include "sb_run.h"
+#include "sb_run_state.h"
+#include "sb_solver.h"
+#include "sb_surface.h"
+#include "sb_test.h"
+
+extern const sb_param_def sb_solve_params[];
+
+/* the bundled scene with contact.model = "impulse" (and more), written to a temporary file */
+static int impulse_scene(const char *name, int steps, int self, int static_mode, char *path, size_t len)
+{
+    char src[1024];
+    snprintf(src, sizeof src, "%s/bench/scenes/%s.json", sb_test_root(), name);
+    json_error_t e;
+    json_t *j = json_load_file(src, 0, &e);
+    if (!j) return -1;
+    json_t *c = json_object_get(j, "contact"), *t = json_object_get(j, "time");
+    json_object_set_new(c, "model", json_string("impulse"));
+    if (self) json_object_set_new(c, "self", json_true());
+    json_object_set_new(t, "steps", json_integer(steps));
+    if (static_mode) {
+        json_object_set_new(j, "time", json_pack("{s:s, s:i}", "mode", "quasi_static", "steps", 1));
+    }
+    snprintf(path, len, "/tmp/sb_impulse_%s_%d_%d_%d_%ld.json", name, steps, self, static_mode, (long)getpid());
+    int rc = json_dump_file(j, path, JSON_INDENT(1));
+    json_decref(j);
+    return rc;
+}
+
+static int inside_obstacle(const sb_scene *sc, const double *p)
+{
+    for (int o = 0; o < sc->n_obstacles; o++) {
+        const sb_obstacle_spec *ob = &sc->obstacles[o];
+        if (ob->kind == SB_OBST_SPHERE) {
+            double d2 = 0;
+            for (int c = 0; c < 3; c++) d2 += (p[c] - ob->center[c]) * (p[c] - ob->center[c]);
+            if (d2 < ob->radius * ob->radius) return 1;
+        } else if (ob->kind == SB_OBST_BOX) {
+            int in = 1;
+            for (int c = 0; c < 3; c++) in &= fabs(p[c] - ob->center[c]) < ob->half[c];
+            if (in) return 1;
+        }
+    }
+    return 0;
+}
+
+/* steps of scene `name` with method mt driven directly (solve, then the
+ * response), the surface's vertices checked after every step */
+static void drive(sb_test_state *T, const char *name, const sb_method_type *mt, int steps)
+{
+    char path[1024], err[1024];
+    CHECK_EQ_INT(impulse_scene(name, steps, 0, 0, path, sizeof path), 0);
+    sb_context ctx;
+    sb_scene sc;
+    sb_context_init(&ctx);
+    CHECK_EQ_INT(sb_scene_load(path, &sc, err, sizeof err), 0);
+    unlink(path);
+    const int potential = (mt->flags & SB_METHOD_POTENTIAL) != 0;
+    const sb_solver_type *st = sb_solver_find(potential ? "lsnewton" : "linearized");
+    sb_paramset_add(&ctx.params, "run", sb_solve_params);
+    if (st->params) sb_paramset_add(&ctx.params, "solver", st->params);
+    if (mt->params) sb_paramset_add(&ctx.params, "method", mt->params);
+    void *ms = calloc(1, mt->state_size), *ss = calloc(1, st->state_size);
+    sb_method_config cfg = { 8, 1, &ctx.params, &ctx, 0 };
+    sb_problem *p = NULL;
+    int rc = mt->create(ms, &sc, &cfg);
+    if (!rc) rc = sb_problem_create(&ctx, mt, ms, &sc, &p);
+    if (!rc) rc = st->alloc(ss, p, &ctx.params);
+    CHECK_MSG(rc == 0, "%s/%s: %s", name, mt->name, ctx.err);
+    if (rc) goto done;
+    CHECK(!sb_problem_has_contact(p));   /* no barrier terms under the impulse model */
+    CHECK(sb_problem_has_impulse(p));
+    const int F = sb_problem_finest(p), n = sb_problem_n(p, F);
+    double *x = malloc(n * sizeof(double)), *xn = malloc(n * sizeof(double)), *v = calloc(n, sizeof(double));
+    mt->initial(ms, F, x);
+    sb_impulse_stats is;
+    memset(&is, 0, sizeof is);
+    int inside = 0, checked = 0;
+    for (int step = 1; step <= steps; step++) {
+        sb_step_info si;
+        sb_run_step_info(&sc, step, &si);
+        sb_copy(n, x, xn);
+        CHECK_EQ_INT(sb_problem_begin_step(p, &si, xn, v, x), 0);
+        sb_step_outcome o;
+        sb_reason r = sb_solve_step_ex(st, ss, p, &ctx.params, step, x, &o);
+        CHECK_MSG(r != SB_REASON_NONFINITE, "%s/%s step %d: nonfinite", name, mt->name, step);
+        CHECK_EQ_INT(sb_problem_impulse(p, si.t, xn, x, &is), SB_OK);
+        for (int i = 0; i < n; i++) v[i] = (x[i] - xn[i]) / sc.time.dt;
+        sb_surface surf;
+        memset(&surf, 0, sizeof surf);
+        CHECK_EQ_INT(mt->surface(ms, F, x, &surf), 0);
+        for (int k = 0; k < surf.n_verts; k++) inside += inside_obstacle(&sc, surf.vert + 3 * k);
+        checked += surf.n_verts;
+        sb_surface_free(&surf);
+    }
+    printf("    %-12s %-15s %d vertex checks, %d inside; proximity %ld, CCD tests %ld, hits %ld, passes %ld, "
+           "zones %ld, unresolved %ld\n", name, mt->name, checked, inside, is.proximity_impulses, is.ccd_tests,
+           is.ccd_hits, is.ccd_iterations, is.impact_zones, is.unresolved_steps);
+    CHECK_MSG(inside == 0, "%s/%s: %d vertices inside the obstacle after a step", name, mt->name, inside);
+    CHECK(is.proximity_impulses + is.ccd_hits > 0);   /* the cloth reached the obstacle */
+    CHECK_EQ_INT(is.unresolved_steps, 0);
+    CHECK_EQ_INT(sb_stats_event_total(&ctx.stats, SB_EV_COLLIDE).count, steps);
+    free(x); free(xn); free(v);
+done:
+    if (p) st->free(ss);
+    sb_problem_free(p);
+    mt->destroy(ms);
+    free(ms); free(ss);
+    sb_scene_free(&sc);
+    sb_context_free(&ctx);
+}
+
+SB_TEST(every_method_with_the_op_keeps_vertices_outside)
+{
+    int n = 0;
+    for (int i = 0; i < sb_method_count(); i++) {
+        const sb_method_type *mt = sb_method_at(i);
+        if (!mt->impulse_response || (mt->flags & SB_METHOD_TEST_FIXTURE) || !mt->surface) continue;
+        drive(T, "cloth_sphere", mt, 14);
+        drive(T, "drape_box", mt, 14);
+        n++;
+    }
+    CHECK(n >= 2);   /* linear_fem and adaptive_sqrt3 at least */
+}
+
+static json_t *run(const char *scene, const char *method, const char *solver, int n_sets, const char *const *sets,
+                   int *code)
+{
+    sb_run_request req;
+    memset(&req, 0, sizeof req);
+    req.scene = scene;
+    req.method = method;
+    req.solver = solver;
+    req.out = "none";
+    req.summary_json = 1;
+    req.quiet = 1;
+    req.progress = -1;
+    req.n_sets = n_sets;
+    req.sets = sets;
+    return sb_test_run_json(&req, code);
+}
+
+SB_TEST(runs_record_the_response)
+{
+    static const char *const rtol[] = { "run.single_step_rtol=1e300" };
+    struct { const char *scene, *method, *solver; int self, ns; } cases[] = {
+        { "cloth_sphere", "linear_fem", "lsnewton", 0, 0 },
+        { "drape_box", "linear_fem", "lsnewton", 1, 0 },
+        { "cloth_sphere", "adaptive_sqrt3", "linearized", 0, 1 },
+        { "drape_box", "adaptive_sqrt3", "linearized", 1, 1 },
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char path[1024];
+        CHECK_EQ_INT(impulse_scene(cases[k].scene, 12, cases[k].self, 0, path, sizeof path), 0);
+        int code = -1;
+        json_t *j = run(path, cases[k].method, cases[k].solver, cases[k].ns, rtol, &code);
+        unlink(path);
+        CHECK_MSG(code == 0 && j, "%s/%s: exit %d", cases[k].scene, cases[k].method, code);
+        if (!j) continue;
+        json_t *co = json_object_get(j, "contact");
+        CHECK(co && strcmp(json_string_value(json_object_get(co, "model")), "impulse") == 0);
+        CHECK(json_integer_value(json_object_get(co, "ccd_tests")) > 0);
+        CHECK(json_integer_value(json_object_get(co, "proximity_impulses")) + json_integer_value(json_object_get(co, "ccd_hits")) > 0);
+        CHECK_EQ_INT(json_integer_value(json_object_get(co, "unresolved_steps")), 0);
+        CHECK_EQ_INT(json_integer_value(json_object_get(json_object_get(j, "counts"), "collide")), 12);
+        CHECK(json_real_value(json_object_get(json_object_get(j, "seconds"), "collide")) > 0);
+        CHECK(json_object_get(co, "points") == NULL);   /* no barrier sample points */
+        json_decref(j);
+    }
+}
+
+SB_TEST(refusals)
+{
+    char path[1024];
+    int code = -1;
+    /* a static scene has no velocities to act on */
+    CHECK_EQ_INT(impulse_scene("drape_box", 1, 0, 1, path, sizeof path), 0);
+    char out[4096], err[4096];
+    code = sb_sh(out, sizeof out, err, sizeof err, "'%s' run --scene '%s' --method linear_fem --solver lsnewton --out none",
+                 sb_test_bin(), path);
+    CHECK_EQ_INT(code, 2);
+    CHECK_MSG(strstr(err, "static scene") != NULL, "%s", err);
+    unlink(path);
+    /* a method without the op */
+    CHECK_EQ_INT(impulse_scene("drape_box", 2, 0, 0, path, sizeof path), 0);
+    int refused = 0;
+    for (int i = 0; i < sb_method_count(); i++) {
+        const sb_method_type *mt = sb_method_at(i);
+        if (mt->impulse_response || (mt->flags & SB_METHOD_TEST_FIXTURE)) continue;
+        code = sb_sh(out, sizeof out, err, sizeof err, "'%s' run --scene '%s' --method %s --solver lsnewton --out none",
+                     sb_test_bin(), path, mt->name);
+        CHECK_EQ_INT(code, 2);
+        CHECK_MSG(strstr(err, "has no impulse-based collision response") != NULL, "%s: %s", mt->name, err);
+        refused++;
+    }
+    printf("    %d methods without the op refused\n", refused);
+    unlink(path);
+}
+
+int main(int argc, char **argv)
+{
+    static const sb_test_case cases[] = { SB_CASE(every_method_with_the_op_keeps_vertices_outside),
+                                          SB_CASE(runs_record_the_response), SB_CASE(refusals), SB_END };
+    return sb_test_main(argc, argv, cases);
+}
