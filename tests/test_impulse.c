@@ -491,6 +491,37 @@ SB_TEST(impact_zone_groove)
     CHECK_EQ_INT(st.unresolved_steps, 0);
 }
 
+SB_TEST(moving_obstacles)
+{
+    /* a plane and a mesh triangle rise 5 cm in one 0.01 s step through a
+       particle resting 1 mm above them: the particle ends above them, lifted
+       at the obstacle's velocity (inelastic: 5 m/s up, plus the 0.1 h gap) */
+    for (int k = 0; k < 2; k++) {
+        sb_scene sc;
+        scene_base(&sc, 2e-3, 0);
+        sc.n_obstacles = 1;
+        sb_obstacle_spec *o = &sc.obstacles[0];
+        double tv[9] = { -1, -1, 0, 1, -1, 0, 0, 1, 0 };
+        int tt[3] = { 0, 1, 2 };
+        if (k == 0) { o->kind = SB_OBST_PLANE; o->normal[2] = 1; }
+        else { o->kind = SB_OBST_MESH; o->nv = 3; o->nt = 1; o->verts = tv; o->tris = tt; }
+        o->translation[2] = 0.05;
+        o->ramp_steps = 1;
+        o->moving = 1;
+        double x[3] = { 0.1, 0.1, 1e-3 }, v[3] = { 0, 0, 0 }, w[1] = { 1 };
+        sb_bridson_mesh m = { 1, 0, NULL, w };
+        sb_impulse_stats st;
+        memset(&st, 0, sizeof st);
+        CHECK_EQ_INT(step_free(&m, &sc, 0.01, 1, x, v, -9.81, &st), SB_OK);
+        CHECK_MSG(x[2] > 0.05 && x[2] < 0.05 + 2e-3, "%s: z = %.6g after the obstacle rose to 0.05", k ? "mesh" : "plane", x[2]);
+        CHECK_NEAR(v[2], 5.0, 0.1);
+        CHECK_EQ_INT(st.unresolved_steps, 0);
+        /* the next step (the obstacle at rest): the particle stays above it */
+        CHECK_EQ_INT(step_free(&m, &sc, 0.01, 2, x, v, -9.81, &st), SB_OK);
+        CHECK(x[2] > 0.05);
+    }
+}
+
 SB_TEST(nonfinite_input)
 {
     sb_scene sc;
@@ -507,7 +538,7 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = {
         SB_CASE(ccd_edge_edge_cases), SB_CASE(closest_points), SB_CASE(rigid_zone_momenta),
         SB_CASE(vertex_falls_on_triangle), SB_CASE(edge_falls_on_edge), SB_CASE(sheet_on_sphere_and_box),
-        SB_CASE(sheet_on_box_mesh), SB_CASE(friction_on_incline), SB_CASE(folding_strip_self), SB_CASE(impact_zone_groove),
+        SB_CASE(sheet_on_box_mesh), SB_CASE(friction_on_incline), SB_CASE(folding_strip_self), SB_CASE(impact_zone_groove), SB_CASE(moving_obstacles),
         SB_CASE(nonfinite_input), SB_END
     };
     return sb_test_main(argc, argv, cases);
