@@ -5,6 +5,7 @@
  * method's own surface triangles); whole runs record the response (event
  * collide each step, /final/contact stats in the summary); what cannot run
  * the impulse model is refused before any work with a sentence. */
+#include <hdf5.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
@@ -187,6 +188,58 @@ SB_TEST(runs_record_the_response)
     }
 }
 
+static long read_attr_long(const char *path, const char *obj, const char *name)
+{
+    long v = -1;
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);   /* a missing attribute is an answer here */
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0) return -1;
+    hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    if (a >= 0) {
+        if (H5Aread(a, H5T_NATIVE_LONG, &v) < 0) v = -1;
+        H5Aclose(a);
+    }
+    H5Fclose(f);
+    return v;
+}
+
+SB_TEST(record_holds_the_counts)
+{
+    char path[1024], h5[1100];
+    CHECK_EQ_INT(impulse_scene("drape_box", 12, 0, 0, path, sizeof path), 0);
+    snprintf(h5, sizeof h5, "%s.h5", path);
+    sb_run_request req;
+    memset(&req, 0, sizeof req);
+    req.scene = path;
+    req.method = "linear_fem";
+    req.solver = "lsnewton";
+    req.out = h5;
+    req.summary_json = 1;
+    req.quiet = 1;
+    req.progress = -1;
+    int code = -1;
+    json_t *j = sb_test_run_json(&req, &code);
+    CHECK_EQ_INT(code, 0);
+    if (j) {
+        json_t *co = json_object_get(j, "contact");
+        static const char *const keys[] = { "proximity_impulses", "ccd_tests", "ccd_hits", "ccd_iterations",
+                                            "impact_zones", "unresolved_steps" };
+        for (int k = 0; k < 6; k++)
+            CHECK_MSG(read_attr_long(h5, "/final/contact", keys[k]) == json_integer_value(json_object_get(co, keys[k])),
+                      "/final/contact/%s", keys[k]);
+        CHECK(read_attr_long(h5, "/final/contact", "ccd_tests") > 0);
+        CHECK(read_attr_long(h5, "/final/contact", "points") == -1);   /* no barrier figures */
+        json_decref(j);
+    }
+    unlink(h5);
+    unlink(path);
+    char side[1200];   /* the record's XDMF companions */
+    snprintf(side, sizeof side, "%.*s.xdmf", (int)(strlen(h5) - 3), h5);
+    unlink(side);
+    snprintf(side, sizeof side, "%.*s.steps.xdmf", (int)(strlen(h5) - 3), h5);
+    unlink(side);
+}
+
 SB_TEST(refusals)
 {
     char path[1024];
@@ -218,6 +271,7 @@ SB_TEST(refusals)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = { SB_CASE(every_method_with_the_op_keeps_vertices_outside),
-                                          SB_CASE(runs_record_the_response), SB_CASE(refusals), SB_END };
+                                          SB_CASE(runs_record_the_response),
+                                          SB_CASE(record_holds_the_counts), SB_CASE(refusals), SB_END };
     return sb_test_main(argc, argv, cases);
 }
