@@ -183,7 +183,7 @@ static int sys_build(sys *S, const sb_bridson_mesh *m, const sb_scene *sc, doubl
         S->w[i] = m->inv_mass[i];
         S->vobj[i] = 0;
     }
-    memcpy(S->tri, m->tri, (size_t)3 * m->nt * sizeof(int));
+    if (m->nt) memcpy(S->tri, m->tri, (size_t)3 * m->nt * sizeof(int));
     for (int t = 0; t < m->nt; t++) S->tobj[t] = 0;
     for (int b = 1, vo = m->nv, to = m->nt; b < S->nobj; b++) {
         const sb_obstacle_spec *ob = &sc->obstacles[mesh_obstacle(sc, b)];
