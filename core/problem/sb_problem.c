@@ -5,6 +5,7 @@
 #include "sb_galerkin.h"
 #include "sb_contact.h"
 #include "sb_self.h"
+#include "sb_impulse.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -78,15 +79,20 @@ static int contact_create(sb_problem *p)
 {
     const sb_scene *sc = p->scene;
     if (sc->n_obstacles == 0) return SB_OK;
+    if (sc->contact.model == SB_CONTACT_IMPULSE) {
+        /* the papers' own response after each accepted step (sb_run.c); no
+         * barrier terms, the contact objects stay empty */
+        if (!p->mt->impulse_response)
+            return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for contact.model \"impulse\" but method %s "
+                            "has no impulse-based collision response", sc->name, p->mt->name);
+        if (!p->dynamic)
+            return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for contact.model \"impulse\", which acts on "
+                            "the velocities of a dynamic scene; a static scene has none (use the barrier)", sc->name);
+        return SB_OK;
+    }
     if (!p->mt->contact_points)
         return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s has obstacles but method %s provides no contact "
                         "sample points", sc->name, p->mt->name);
-    if (sc->contact.model == SB_CONTACT_IMPULSE && !p->mt->impulse_response)
-        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for contact.model \"impulse\" but method %s "
-                        "has no impulse-based collision response", sc->name, p->mt->name);
-    if (sc->contact.model == SB_CONTACT_IMPULSE)
-        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s: contact.model \"impulse\" is not wired into the "
-                        "run loop in this build", sc->name);
     for (int l = 0; l < p->nl; l++) {
         sb_contact_points cp;
         memset(&cp, 0, sizeof cp);
@@ -686,6 +692,22 @@ int sb_problem_method_energy(sb_problem *p, const double *x, double *e)
 sb_matrix *sb_problem_hessian(sb_problem *p, int level) { return &p->lv[level].H; }
 
 int sb_problem_has_contact(const sb_problem *p) { return p->lv[p->nl - 1].contact != NULL; }
+
+int sb_problem_has_impulse(const sb_problem *p)
+{
+    return p->scene->n_obstacles > 0 && p->scene->contact.model == SB_CONTACT_IMPULSE && p->dynamic;
+}
+
+int sb_problem_impulse(sb_problem *p, double t1, const double *x0, double *x1, sb_impulse_stats *st)
+{
+    const int F = p->nl - 1;
+    double t0 = sb_now();
+    int rc = p->mt->impulse_response(p->ms, p->scene, p->dt, t1, x0, x1, st);
+    sb_stats_event(&p->ctx->stats, F, SB_EV_COLLIDE, t0);
+    if (rc == SB_ERR_NOMEM) return sb_error(p->ctx, rc, "out of memory (impulse collision response)");
+    if (rc < 0) return sb_error(p->ctx, rc, "method %s: impulse collision response failed", p->mt->name);
+    return rc;
+}
 
 double sb_problem_step_bound(sb_problem *p, int level, const double *x, const double *d)
 {

@@ -109,6 +109,13 @@ int  sb_problem_galerkin_prepare(sb_problem *p, int lc);
  * outside every obstacle (1 when the scene has no obstacles); solvers scale
  * their trial steps by it.  Counted as the event "collide". */
 int    sb_problem_has_contact(const sb_problem *p);
+/* contact.model = "impulse" (docs/contact.md): whether the run calls the
+ * method's impulse_response after every accepted step, and that call on
+ * the finest level (x0 at t_n, x1 at t1 corrected in place; timed as event
+ * collide, counted into *st).  SB_OK, SB_NONFINITE, or an error (< 0). */
+struct sb_impulse_stats;
+int    sb_problem_has_impulse(const sb_problem *p);
+int    sb_problem_impulse(sb_problem *p, double t1, const double *x0, double *x1, struct sb_impulse_stats *st);
 double sb_problem_step_bound(sb_problem *p, int level, const double *x, const double *d);
 /* Sample points of the finest level at x: returns their number (0: no
  * contact) and the smallest distance to an obstacle, the points within

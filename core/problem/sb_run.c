@@ -331,6 +331,17 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         const int iters = o.iterations;
         const double f = o.f, gn = o.gnorm;
         sb_run_progress_clear(R);
+        if (sb_reason_converged(reason) && sb_problem_has_impulse(R->prob)) {
+            /* contact.model = "impulse": the method's collision response on
+               the accepted step (docs/contact.md), before v follows */
+            rc = sb_problem_impulse(R->prob, si.t, R->xn, R->x, &rec->impulse);
+            if (rc < 0) {
+                fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+                return SB_EXIT_INTERNAL;
+            }
+            if (rc == SB_NONFINITE) reason = SB_REASON_NONFINITE;
+            rec->has_impulse = 1;
+        }
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
         double tr0 = sb_now();

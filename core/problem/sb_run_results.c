@@ -256,14 +256,16 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     } else {
         json_object_set_new(o, "penalty", json_null());
     }
-    if (R->rec.has_contact) {
+    if (R->rec.has_contact || R->rec.has_impulse) {
         /* contact sample points and distances (docs/contact.md); absent without obstacles */
         json_t *co = json_object();
-        json_object_set_new(co, "points", json_integer(R->rec.contact_points));
-        json_object_set_new(co, "active", json_integer(R->rec.contact_active));
-        json_object_set_new(co, "inside", json_integer(R->rec.contact_inside));
-        json_object_set_new(co, "steps_inside", json_integer(R->rec.contact_steps_inside));
-        json_set_num(co, "min_distance", R->rec.contact_min_distance);
+        if (R->rec.has_contact) {
+            json_object_set_new(co, "points", json_integer(R->rec.contact_points));
+            json_object_set_new(co, "active", json_integer(R->rec.contact_active));
+            json_object_set_new(co, "inside", json_integer(R->rec.contact_inside));
+            json_object_set_new(co, "steps_inside", json_integer(R->rec.contact_steps_inside));
+            json_set_num(co, "min_distance", R->rec.contact_min_distance);
+        }
         if (R->rec.has_self) {
             /* self-contact: candidate pairs and pairs within dhat at the end,
                smallest pair distance over the step ends, steps that ended with
@@ -276,6 +278,16 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(co, "self", se);
         }
         if (R->mt && R->mt->adapt) json_object_set_new(co, "separated", json_integer(R->contact_separated));
+        if (R->rec.has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
+            const sb_impulse_stats *s = &R->rec.impulse;
+            json_object_set_new(co, "model", json_string("impulse"));
+            json_object_set_new(co, "proximity_impulses", json_integer(s->proximity_impulses));
+            json_object_set_new(co, "ccd_tests", json_integer(s->ccd_tests));
+            json_object_set_new(co, "ccd_hits", json_integer(s->ccd_hits));
+            json_object_set_new(co, "ccd_iterations", json_integer(s->ccd_iterations));
+            json_object_set_new(co, "impact_zones", json_integer(s->impact_zones));
+            json_object_set_new(co, "unresolved_steps", json_integer(s->unresolved_steps));
+        }
         json_object_set_new(o, "contact", co);
     }
     json_set_num(o, "energy_final", R->rec.has_energy ? R->rec.energy_final : NAN);

@@ -8,6 +8,7 @@
 #include "sb_stats.h"
 #include "sb_material_state.h"
 #include "sb_blob.h"
+#include "sb_impulse.h"
 #include <stdio.h>
 
 /* Interruptions a run came through (--resume), accumulated over resumes and
@@ -169,6 +170,10 @@ typedef struct sb_run {
     /* self-contact (contact.self; docs/contact.md): end-of-step figures */
     int has_self, self_pairs, self_active, self_steps_crossing;
     double self_min_distance;
+    /* contact.model = "impulse": the collision response's counts summed
+     * over the steps this process ran (sb_impulse.h) */
+    int has_impulse;
+    sb_impulse_stats impulse;
     /* validation (docs/trust.md): every expected value of every probe */
     int validation;            /* SB_VALIDATION_* */
     int n_checks;

@@ -331,11 +331,23 @@ static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
     hid_t g = sb_h5w_group(w, final, "contact");
     if (g < 0) return -1;
     int bad = 0;
-    bad |= sb_h5w_attr_long(w, g, "points", (long)r->contact_points);
-    bad |= sb_h5w_attr_long(w, g, "active", (long)r->contact_active);
-    bad |= sb_h5w_attr_long(w, g, "inside", (long)r->contact_inside);
-    bad |= sb_h5w_attr_long(w, g, "steps_inside", (long)r->contact_steps_inside);
-    bad |= sb_h5w_attr_dbl(w, g, "min_distance", r->contact_min_distance);
+    if (r->has_contact) {
+        bad |= sb_h5w_attr_long(w, g, "points", (long)r->contact_points);
+        bad |= sb_h5w_attr_long(w, g, "active", (long)r->contact_active);
+        bad |= sb_h5w_attr_long(w, g, "inside", (long)r->contact_inside);
+        bad |= sb_h5w_attr_long(w, g, "steps_inside", (long)r->contact_steps_inside);
+        bad |= sb_h5w_attr_dbl(w, g, "min_distance", r->contact_min_distance);
+    }
+    if (r->has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
+        const sb_impulse_stats *s = &r->impulse;
+        bad |= sb_h5w_attr_str(w, g, "model", "impulse");
+        bad |= sb_h5w_attr_long(w, g, "proximity_impulses", s->proximity_impulses);
+        bad |= sb_h5w_attr_long(w, g, "ccd_tests", s->ccd_tests);
+        bad |= sb_h5w_attr_long(w, g, "ccd_hits", s->ccd_hits);
+        bad |= sb_h5w_attr_long(w, g, "ccd_iterations", s->ccd_iterations);
+        bad |= sb_h5w_attr_long(w, g, "impact_zones", s->impact_zones);
+        bad |= sb_h5w_attr_long(w, g, "unresolved_steps", s->unresolved_steps);
+    }
     H5Gclose(g);
     return bad ? -1 : 0;
 }
@@ -362,7 +374,7 @@ static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
     free(disp);
     if (!bad && r->has_material) bad |= write_material(w, g, &r->material);
     if (!bad && r->has_penalty) bad |= write_penalty(w, g, r);
-    if (!bad && r->has_contact) bad |= write_contact(w, g, r);
+    if (!bad && (r->has_contact || r->has_impulse)) bad |= write_contact(w, g, r);
     H5Gclose(g);
     return bad ? -1 : 0;
 }

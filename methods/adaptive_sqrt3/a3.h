@@ -165,6 +165,11 @@ void a3_loads_update(a3_state *S);
 int  a3_energy(a3_state *S, const double *x, double *f, double *g, sb_matrix *H);
 int  a3_mass(a3_state *S, sb_matrix *M);
 
+/* ---- Bridson et al. 2002 collision response (a3_impulse.c) ---------------- */
+struct sb_impulse_stats;
+int  a3_impulse_response(void *state, const sb_scene *scene, double dt, double t1, const double *x0, double *x1,
+                         struct sb_impulse_stats *st);
+
 extern const sb_param_def a3_params[];
 extern const sb_method_type sb_method_adaptive_sqrt3;
 

@@ -302,6 +302,7 @@ const sb_method_type sb_method_adaptive_sqrt3 = {
     .dirichlet = a3_dirichlet,
     .energy = a3_energy_op,
     .mass = a3_mass_op,
+    .impulse_response = a3_impulse_response,
     .eval_points = a3_eval,
     .describe = a3_describe,
     .surface = a3_surface,

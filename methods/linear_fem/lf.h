@@ -259,4 +259,9 @@ extern const sb_method_type sb_method_linear_fem;
 struct sb_contact_points;
 int lf_contact_points(void *state, int level, int per_side, struct sb_contact_points *cp);
 
+/* Bridson et al. 2002 collision response (lf_impulse.c, sb_method.h impulse_response) */
+struct sb_impulse_stats;
+int lf_impulse_response(void *state, const sb_scene *scene, double dt, double t1, const double *x0, double *x1,
+                        struct sb_impulse_stats *st);
+
 #endif

@@ -294,6 +294,7 @@ const sb_method_type sb_method_linear_fem = {
     .dirichlet = lf_dirichlet,
     .energy = lf_energy_op,
     .mass = lf_mass_op,
+    .impulse_response = lf_impulse_response,
     .eval_points = lf_eval_op,
     .prolong = lf_prolong_op,
     .restrict_adj = lf_restrict_op,
