@@ -81,12 +81,14 @@ static int contact_create(sb_problem *p)
     if (sc->contact.model == SB_CONTACT_IMPULSE && !p->mt->impulse_response)
         return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for contact.model \"impulse\" but method %s "
                         "has no impulse-based collision response", sc->name, p->mt->name);
-    if (sc->contact.model == SB_CONTACT_IMPULSE)
-        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s: contact.model \"impulse\" is not wired into the "
-                        "run loop in this build", sc->name);
     if (sc->contact.self)
         return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for self-contact (contact.self), which this "
                         "build does not implement", sc->name);
+    /* contact.model "impulse": the method's post-step response (sb_run.c), no barrier in Phi */
+    if (sc->contact.model == SB_CONTACT_IMPULSE && !p->dynamic)
+        return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for contact.model \"impulse\", a response "
+                        "after each time step, but is not dynamic", sc->name);
+    if (sc->contact.model == SB_CONTACT_IMPULSE) return SB_OK;
     for (int l = 0; l < p->nl; l++) {
         sb_contact_points cp;
         memset(&cp, 0, sizeof cp);

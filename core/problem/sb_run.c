@@ -304,6 +304,19 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         const int iters = o.iterations;
         const double f = o.f, gn = o.gnorm;
         sb_run_progress_clear(R);
+        /* contact.model = "impulse" (issue 25): the method's collision response
+         * corrects an accepted step before its velocity is taken; event collide */
+        if (sc->n_obstacles > 0 && sc->contact.model == SB_CONTACT_IMPULSE && sc->time.mode == SB_TIME_DYNAMIC &&
+            sb_reason_converged(reason)) {
+            double tc = sb_now();
+            rc = R->mt->impulse_response(R->ms, sc, sc->time.dt, si.t, R->xn, R->x, &rec->impulse);
+            sb_stats_event(stats, F, SB_EV_COLLIDE, tc);
+            rec->has_impulse = 1;
+            if (rc < 0) {
+                fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
+                return SB_EXIT_INTERNAL;
+            }
+        }
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
         double tr0 = sb_now();

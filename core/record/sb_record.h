@@ -7,6 +7,7 @@
 #include "sb_params.h"
 #include "sb_stats.h"
 #include "sb_material_state.h"
+#include "sb_impulse.h"
 #include <stdio.h>
 
 /* Interruptions a run came through (--resume), accumulated over resumes and
@@ -119,6 +120,9 @@ typedef struct sb_run {
     int has_contact;
     int contact_points, contact_active, contact_inside, contact_steps_inside;
     double contact_min_distance;
+    /* contact.model = "impulse": the method's collision response, summed over steps */
+    int has_impulse;
+    sb_impulse_stats impulse;
     /* validation (docs/trust.md): every expected value of every probe */
     int validation;            /* SB_VALIDATION_* */
     int n_checks;

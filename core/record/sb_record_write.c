@@ -339,6 +339,23 @@ static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
     return bad ? -1 : 0;
 }
 
+/* /final/impulse: the impulse-based collision response (sb_impulse.h) */
+static int write_impulse(sb_h5w *w, hid_t final, const sb_run *r)
+{
+    hid_t g = sb_h5w_group(w, final, "impulse");
+    if (g < 0) return -1;
+    const sb_impulse_stats *s = &r->impulse;
+    int bad = 0;
+    bad |= sb_h5w_attr_long(w, g, "proximity_impulses", s->proximity_impulses);
+    bad |= sb_h5w_attr_long(w, g, "ccd_tests", s->ccd_tests);
+    bad |= sb_h5w_attr_long(w, g, "ccd_hits", s->ccd_hits);
+    bad |= sb_h5w_attr_long(w, g, "ccd_iterations", s->ccd_iterations);
+    bad |= sb_h5w_attr_long(w, g, "impact_zones", s->impact_zones);
+    bad |= sb_h5w_attr_long(w, g, "unresolved_steps", s->unresolved_steps);
+    H5Gclose(g);
+    return bad ? -1 : 0;
+}
+
 static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
 {
     hid_t g = sb_h5w_group(w, f, "/final");
@@ -362,6 +379,7 @@ static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
     if (!bad && r->has_material) bad |= write_material(w, g, &r->material);
     if (!bad && r->has_penalty) bad |= write_penalty(w, g, r);
     if (!bad && r->has_contact) bad |= write_contact(w, g, r);
+    if (!bad && r->has_impulse) bad |= write_impulse(w, g, r);
     H5Gclose(g);
     return bad ? -1 : 0;
 }
