@@ -11,7 +11,9 @@
  *     so the check can fail;
  *   - the recorded statistics are non-zero and no step is left unresolved;
  *   - the run loop path (sb_run_execute with bench/bhem/scenes/needles_impulse.json)
- *     converges and reports the statistics in its summary. */
+ *     converges and reports the statistics in its summary;
+ *   - cloth_sphere under the impulse model: the cloth's points against the
+ *     exact sphere. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -170,9 +172,88 @@ SB_TEST(run_loop_reports_the_stats)
     json_decref(o);
 }
 
+/* cloth_sphere (a cloth falling on a ball, friction 0.3) switched to the
+ * impulse model: the cloth's sample points against the exact sphere
+ * (sb_obstacle_toi).  After every response each sample point
+ * (contact.samples per patch side) is outside the ball by at least half the
+ * push-out, and the cloth's centre rests on top of the ball at the end. */
+SB_TEST(cloth_points_against_a_sphere)
+{
+    sb_context ctx;
+    sb_scene sc;
+    sb_context_init(&ctx);
+    char path[1024], err[1024];
+    snprintf(path, sizeof path, "%s/bench/scenes/cloth_sphere.json", sb_test_root());
+    CHECK_EQ_INT(sb_scene_load(path, &sc, err, sizeof err), 0);
+    sc.contact.model = SB_CONTACT_IMPULSE;
+    const sb_method_type *mt = &sb_method_bhem;
+    const sb_solver_type *st = sb_solver_find("lsnewton");
+    sb_paramset_add(&ctx.params, "run", sb_solve_params);
+    if (st->params) sb_paramset_add(&ctx.params, "solver", st->params);
+    sb_paramset_add(&ctx.params, "method", mt->params);
+    void *ms = calloc(1, mt->state_size), *ss = calloc(1, st->state_size);
+    sb_method_config cfg = { 4, 1, &ctx.params, &ctx, 0 };
+    sb_problem *p = NULL;
+    int rc = mt->create(ms, &sc, &cfg);
+    if (!rc) rc = sb_problem_create(&ctx, mt, ms, &sc, &p);
+    if (!rc) rc = st->alloc(ss, p, &ctx.params);
+    CHECK_MSG(rc == 0, "set-up: %s", ctx.err);
+    if (rc) goto done;
+    const int F = sb_problem_finest(p), n = sb_problem_n(p, F), ps = 4 * sc.contact.samples + 1, np = ps * ps;
+    double *x = malloc(n * sizeof(double)), *xn = malloc(n * sizeof(double)), *v = calloc(n, sizeof(double));
+    double *stp = malloc(2 * np * sizeof(double)), *pos = malloc(3 * np * sizeof(double));
+    for (int j = 0; j < ps; j++)
+        for (int i = 0; i < ps; i++) {
+            stp[2 * (i + ps * j)] = (double)i / (ps - 1);
+            stp[2 * (i + ps * j) + 1] = (double)j / (ps - 1);
+        }
+    const sb_obstacle_spec *ball = &sc.obstacles[0];
+    sb_impulse_stats is;
+    memset(&is, 0, sizeof is);
+    mt->initial(ms, F, x);
+    int converged = 0;
+    double dmin = INFINITY;
+    for (int step = 1; step <= 20; step++) {
+        sb_step_info si;
+        sb_run_step_info(&sc, step, &si);
+        sb_copy(n, x, xn);
+        CHECK_EQ_INT(sb_problem_begin_step(p, &si, xn, v, x), 0);
+        sb_step_outcome o;
+        if (!sb_reason_converged(sb_solve_step_ex(st, ss, p, &ctx.params, step, x, &o))) break;
+        converged++;
+        CHECK_EQ_INT(mt->impulse_response(ms, &sc, sc.time.dt, si.t, xn, x, &is), 0);
+        CHECK_EQ_INT(mt->eval_points(ms, F, x, np, stp, pos), 0);
+        for (int k = 0; k < np; k++) {
+            const double *q = pos + 3 * k;
+            const double d = sqrt((q[0] - ball->center[0]) * (q[0] - ball->center[0]) + (q[1] - ball->center[1]) * (q[1] - ball->center[1]) +
+                                  (q[2] - ball->center[2]) * (q[2] - ball->center[2])) - ball->radius;
+            dmin = fmin(dmin, d);
+        }
+        for (int i = 0; i < n; i++) v[i] = (x[i] - xn[i]) / sc.time.dt;
+    }
+    const double *c = pos + 3 * (np / 2);   /* the centre (s, t) = (1/2, 1/2) */
+    printf("    cloth_sphere, impulse: %d/20 steps, smallest sample-point distance %.3g m, centre z %.4f m; "
+           "impulses %ld, hits %ld, unresolved %ld\n", converged, dmin, c[2], is.proximity_impulses, is.ccd_hits,
+           is.unresolved_steps);
+    CHECK_EQ_INT(converged, 20);
+    CHECK_MSG(dmin >= 0.5e-4, "a sample point %.3g m from the ball", dmin);
+    CHECK(is.ccd_hits > 0);
+    CHECK_EQ_INT(is.unresolved_steps, 0);
+    CHECK_NEAR(c[2], ball->center[2] + ball->radius, 2e-3);   /* on top of the ball */
+    free(x); free(xn); free(v); free(stp); free(pos);
+done:
+    if (p) st->free(ss);
+    sb_problem_free(p);
+    mt->destroy(ms);
+    free(ms); free(ss);
+    sb_scene_free(&sc);
+    sb_context_free(&ctx);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = { SB_CASE(no_needle_through_the_cloth), SB_CASE(without_the_response_the_check_fails),
-                                          SB_CASE(run_loop_reports_the_stats), SB_END };
+                                          SB_CASE(run_loop_reports_the_stats),
+                                          SB_CASE(cloth_points_against_a_sphere), SB_END };
     return sb_test_main(argc, argv, cases);
 }
