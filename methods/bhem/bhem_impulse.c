@@ -15,7 +15,9 @@
  *   - spheres, planes, boxes and capsules: the cloth's midsurface sampled
  *     uniformly (contact.samples points per patch side, as the barrier's
  *     sample points) against the collider's exact shape, point by point
- *     (sb_obstacle_toi; §6.2 "the midsurface is uniformly sampled").
+ *     (sb_obstacle_toi; §6.2 "the midsurface is uniformly sampled"), and
+ *     against the triangles of meshes (sb_ccd_point_triangle: vertices
+ *     alone let a coarse mesh's faces pass through the cloth).
  *   Obstacles move rigidly: an obstacle point goes linearly from its pose at
  *   t_n to its pose at t_{n+1} (exact for translations, the chord of a
  *   rotation — assumption); a cloth point is followed in the obstacle's rest
@@ -199,12 +201,13 @@ static int impulse_setup(bhem_state *S, const sb_scene *sc, struct bhem_impulse 
     const bhem_level *L = &S->lv[S->n_levels - 1];
     struct bhem_impulse *I = calloc(1, sizeof *I);
     if (!I) return SB_ERR_NOMEM;
-    int cap = 0, rc = SB_OK, analytic = 0;
+    int cap = 0, rc = SB_OK, analytic = 0;   /* analytic: the cloth's sample points are needed */
     for (int o = 0; o < sc->n_obstacles && !rc; o++) {
         const sb_obstacle_spec *ob = &sc->obstacles[o];
-        if (ob->kind == SB_OBST_MESH)
+        if (ob->kind == SB_OBST_MESH) {
             for (int v = 0; v < ob->nv && !rc; v++) rc = add_op(I, &cap, o, ob->verts + 3 * v);
-        else {
+            analytic = 1;   /* the cloth's points against its triangles too */
+        } else {
             analytic = 1;
             if (ob->kind == SB_OBST_CAPSULE) rc = sample_capsule(I, &cap, o, ob);
         }
@@ -369,6 +372,57 @@ static void sweep_boxes(const bhem_level *L, struct bhem_impulse *I, const doubl
     }
 }
 
+/* A cloth point X0 -> X1 against the triangles of mesh obstacle o (all
+ * moving linearly between the poses): the first time of impact by the
+ * point–triangle CCD of Provot / Bridson et al. (sb_ccd_point_triangle);
+ * normal of the triangle at that time, oriented towards the side the point
+ * came from; the contact point carried to t_{n+1} with the triangle's mean
+ * vertex motion.  Updates *best (time), *bo, n, c, rel when earlier. */
+static void mesh_toi(const sb_obstacle_spec *ob, const sb_pose *P0, const sb_pose *P1, const double X0[3],
+                     const double X1[3], sb_impulse_stats *st, double *best, int *bo, int o, double n[3], double c[3],
+                     double rel[3])
+{
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) { lo[k] = fmin(X0[k], X1[k]); hi[k] = fmax(X0[k], X1[k]); }
+    for (int f = 0; f < ob->nt; f++) {
+        double v0[3][3], v1[3][3], tlo[3], thi[3];
+        for (int a = 0; a < 3; a++) {
+            sb_pose_apply(P0, ob->verts + 3 * ob->tris[3 * f + a], v0[a]);
+            sb_pose_apply(P1, ob->verts + 3 * ob->tris[3 * f + a], v1[a]);
+        }
+        for (int k = 0; k < 3; k++) {
+            tlo[k] = fmin(fmin(fmin(v0[0][k], v0[1][k]), fmin(v0[2][k], v1[0][k])), fmin(v1[1][k], v1[2][k]));
+            thi[k] = fmax(fmax(fmax(v0[0][k], v0[1][k]), fmax(v0[2][k], v1[0][k])), fmax(v1[1][k], v1[2][k]));
+        }
+        if (hi[0] < tlo[0] || hi[1] < tlo[1] || hi[2] < tlo[2] || lo[0] > thi[0] || lo[1] > thi[1] || lo[2] > thi[2])
+            continue;
+        st->ccd_tests++;
+        const double t = sb_ccd_point_triangle(X0, X1, v0[0], v1[0], v0[1], v1[1], v0[2], v1[2]);
+        if (!(t <= 1.0) || t >= *best) continue;
+        double a[3], b[3], cc[3], e1[3], e2[3], nn[3], mv[3], w[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = v0[0][k] + t * (v1[0][k] - v0[0][k]);
+            b[k] = v0[1][k] + t * (v1[1][k] - v0[1][k]);
+            cc[k] = v0[2][k] + t * (v1[2][k] - v0[2][k]);
+            e1[k] = b[k] - a[k];
+            e2[k] = cc[k] - a[k];
+            mv[k] = ((v1[0][k] - v0[0][k]) + (v1[1][k] - v0[1][k]) + (v1[2][k] - v0[2][k])) / 3.0;
+            w[k] = (X1[k] - X0[k]) - mv[k];   /* the point's motion relative to the triangle */
+        }
+        cross3(e1, e2, nn);
+        const double l = sqrt(dot3(nn, nn));
+        if (!(l > 0)) continue;
+        const double sg = dot3(nn, w) > 0 ? -1.0 : 1.0;   /* towards the side the point came from */
+        *best = t;
+        *bo = o;
+        for (int k = 0; k < 3; k++) {
+            n[k] = sg * nn[k] / l;
+            c[k] = X0[k] + t * (X1[k] - X0[k]) + (1.0 - t) * mv[k];
+            rel[k] = mv[k];
+        }
+    }
+}
+
 /* One detection pass along x0 -> x1: the earliest collision of every
  * obstacle point and every cloth sample point becomes a normal row.
  * Returns the number of collisions found (< 0: error). */
@@ -441,7 +495,10 @@ static int detect(const bhem_state *S, const sb_scene *sc, struct bhem_impulse *
         int bo = -1;
         for (int o = 0; o < sc->n_obstacles; o++) {
             const sb_obstacle_spec *ob = &sc->obstacles[o];
-            if (ob->kind == SB_OBST_MESH) continue;
+            if (ob->kind == SB_OBST_MESH) {
+                mesh_toi(ob, &pose0[o], &pose1[o], X0, X1, st, &best, &bo, o, bn, bc, brel);
+                continue;
+            }
             double y0[3], y1[3], d[3], t;
             sb_pose_inverse(&pose0[o], X0, y0);
             sb_pose_inverse(&pose1[o], X1, y1);
