@@ -132,6 +132,8 @@ typedef struct bhem_state {
     int threads;
     sb_elem_scratch *tw;
     struct sb_assembler *assembler;
+    /* contact.model = "impulse" (bhem_impulse.c): built at the first call */
+    struct bhem_impulse *imp;
 } bhem_state;
 
 /* error helper: stores the message in the context (if any) and returns status */
@@ -187,6 +189,15 @@ int  bhem_project(const bhem_state *S, int lc, const double *xf, double *xc);
 struct sb_surface;
 /* The patches of x on `level` as Bézier patches, with the reference (sb_surface.h). */
 int  bhem_surface(void *state, int level, const double *x, struct sb_surface *out);
+/* Patch e of x as a Bézier patch (SB_BEZ_N doubles; u = theta1, v = theta2). */
+void bhem_patch_bezier(const bhem_level *L, int e, const double *x, double *P);
+
+/* ---- impulse-based collision response (bhem_impulse.c, BHEM §5.2, §6.2) -- */
+struct bhem_impulse;
+struct sb_impulse_stats;
+int  bhem_impulse_response(void *state, const sb_scene *scene, double dt, double t1, const double *x0, double *x1,
+                           struct sb_impulse_stats *st);
+void bhem_impulse_free(struct bhem_impulse *I);
 
 /* ---- creation (bhem_method.c) ------------------------------------------- */
 extern const sb_param_def bhem_params[];

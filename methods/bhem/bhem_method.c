@@ -38,6 +38,8 @@ static void bhem_destroy(void *state)
     for (int t = 0; S->tw && t < S->threads; t++) sb_elem_scratch_free(&S->tw[t]);
     free(S->tw);
     S->tw = NULL;
+    bhem_impulse_free(S->imp);
+    S->imp = NULL;
     sb_assembler_free(S->assembler);
     S->assembler = NULL;
 }
@@ -297,4 +299,5 @@ const sb_method_type sb_method_bhem = {
     .describe = bhem_describe,
     .surface = bhem_surface,
     .contact_points = bhem_contact_points,
+    .impulse_response = bhem_impulse_response,
 };

@@ -11,7 +11,7 @@
 /* the 4 x 4 generalized coordinates of patch e (local I = 4 corner + kind,
  * corner = p + 2q; derivatives w.r.t. the patch coordinate theta, bhem.h)
  * as Bézier control points */
-static void patch_bezier(const bhem_level *L, int e, const double *x, double *P)
+void bhem_patch_bezier(const bhem_level *L, int e, const double *x, double *P)
 {
     double qe[BHEM_NED], H[4][4][3];
     bhem_gather(L, e, x, qe);
@@ -28,8 +28,8 @@ int bhem_surface(void *state, int level, const double *x, sb_surface *out)
     const bhem_level *L = &S->lv[level];
     if (sb_surface_alloc_patches(out, L->n_elems, 1)) return SB_ERR_NOMEM;
     for (int e = 0; e < L->n_elems; e++) {
-        patch_bezier(L, e, x, out->patch + (size_t)e * SB_BEZ_N);
-        patch_bezier(L, e, L->x_ref, out->patch_ref + (size_t)e * SB_BEZ_N);
+        bhem_patch_bezier(L, e, x, out->patch + (size_t)e * SB_BEZ_N);
+        bhem_patch_bezier(L, e, L->x_ref, out->patch_ref + (size_t)e * SB_BEZ_N);
         const int c = L->elem_cell[e], i = c % L->n1, j = c / L->n1;
         double *b = out->patch_st + 4 * e;
         b[0] = i * L->hs;
