@@ -298,6 +298,7 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         }
     }
     sb_render_options o = rq->opt;
+    int left_out = 0;   /* obstacles beyond SB_RENDER_MAX_OBSTACLES */
     if (!rc) {
         /* labels: what, which state, how it ended */
         if (!o.title[0])
@@ -314,7 +315,8 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
                      sum.steps_planned, state, sum.dofs);
         }
         double *mesh_verts = NULL;
-        if (sb_render_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o, &mesh_verts) < 0) {
+        left_out = sb_render_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o, &mesh_verts);
+        if (left_out < 0) {
             snprintf(err, errlen, "%s: out of memory placing the scene's mesh obstacles", path);
             rc = SB_ERR_NOMEM;
         } else {
@@ -339,9 +341,10 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         const char *val[] = { o.title, path, desc, param, software };
         if (sb_image_write_png(&img, rq->out, 5, key, val, err, errlen)) rc = SB_ERR_IO;
         if (!rc && info)
-            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s%s", rq->out, o.width, o.height,
+            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s%s%s", rq->out, o.width, o.height,
                      o.spp, surf.what, surf.n_patches ? sb_isect_names[o.isect] : "triangle",
                      st ? st->seconds : 0.0,
+                     left_out > 0 ? "; only the scene's first 16 obstacles drawn" : "",
                      sum.status == SB_STATUS_UNFINISHED && rq->step < 0
                          ? "; a checkpoint of an unfinished run: the state after its last saved step, labelled CHECKPOINT"
                          : "");
