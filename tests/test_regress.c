@@ -236,6 +236,25 @@ SB_TEST(regress_command_end_to_end)
     char report[400];
     snprintf(report, sizeof report, "%s/out/report.md", tmpdir);
     CHECK(access(report, R_OK) == 0);
+    /* the picture of the scene's final state, drawn from its record and
+       linked under "Final states" with a caption naming the case */
+    char png[400];
+    snprintf(png, sizeof png, "%s/out/final-trampoline.png", tmpdir);
+    f = fopen(png, "rb");
+    CHECK_MSG(f != NULL, "%s not drawn", png);
+    if (f) {
+        unsigned char sig[8];
+        CHECK(fread(sig, 1, 8, f) == 8 && !memcmp(sig, "\x89PNG\r\n\x1a\n", 8));
+        fclose(f);
+    }
+    f = fopen(report, "r");
+    if (f) {
+        size_t n = fread(out, 1, sizeof out - 1, f);
+        out[n] = 0;
+        fclose(f);
+        CHECK_MSG(strstr(out, "## Final states") && strstr(out, "](final-trampoline.png)") &&
+                  strstr(out, "`trampoline/bhem-lsnewton-r8.h5`, final state"), "%s", out);
+    }
 }
 
 int main(int argc, char **argv)

@@ -170,6 +170,30 @@ for d in sorted((d for d in rmtr if d), key=lambda d: (d["scene"], d["solver"], 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from render_thumbs import thumbnails  # noqa: E402
 
+RMTR_PICS = (("trampoline", "lsnewton", 16, "final state"), ("drooping", "lsnewton", 8, "final state"),
+             ("drape", "lsnewton", 8, "final state"),
+             ("reentrant_corner", "lsnewton", 10, "where it stopped (step 1, not converged)"))
+
+
+def rmtr_pictures(images, reldir):
+    """Markdown showing the committed pictures of the RMTR-paper scenes
+    (results/bhem/images/rmtr_SCENE_SOLVER_rRES.png, drawn by
+    `bash bench/bhem/run_bench.sh BIN rmtr-pictures` from a rerun of that
+    run, since these records are not committed); none when no picture exists."""
+    items = [("%s, %s %d²: %s (run rmtr_%s_%s_r%d, rerun by run_bench.sh)" % (sc, so, r, what, sc, so, r),
+              os.path.join(images, "rmtr_%s_%s_r%d.h5" % (sc, so, r)), (), "rmtr_%s_%s_r%d" % (sc, so, r))
+             for sc, so, r, what in RMTR_PICS]
+    rows = thumbnails(None, items, images, reldir)   # no records here: links the pictures that exist
+    if not rows:
+        return []
+    return ["", "The final state of one run per scene (its finest converged `lsnewton` run; the re-entrant "
+            "corner converges at none, so its smallest run, stopped at step 1), drawn by `shellbench render` "
+            "(240x180, 8 samples per pixel) from the same run made again by `bench/bhem/run_bench.sh BIN "
+            "rmtr-pictures`; the labels say how each run ended.", ""] + rows
+
+
+out.extend(rmtr_pictures(os.path.join(os.path.dirname(RUNS.rstrip("/")), "images"), "bhem/images"))
+
 BIN = os.environ.get("SB_BIN", "build/shellbench")
 PICS = [("clamped plate, 16×16", "plate_clamped_r16"), ("Scordelis–Lo roof, full load, 16×16", "scordelis_full_r16"),
         ("heavy cantilever Γ = 5, 32×1", "cantilever_G5_r32"), ("full roll-up, 16×1", "rollup_full_r16"),

@@ -7,7 +7,9 @@
 # and keeps, per run, the HDF5 record and the JSON summary under
 # results/bhem/runs/.  The report (results/bhem_report.md) is then generated
 # from those files by bench/bhem/report.py — never by re-running.
-# "quick" skips the 30x30 paper scenes and the RMTR-scene sweep.
+# "quick" skips the 30x30 paper scenes and the RMTR-scene sweep;
+# "rmtr-scenes" runs only that sweep (and its pictures); "rmtr-pictures" only
+# draws the missing pictures of the RMTR-paper scenes (below).
 set -u
 BIN=${1:-build/shellbench}
 MODE=${2:-full}
@@ -41,6 +43,38 @@ run() {
     --summary json --set method.kernel=$KERNEL "$@" > "$OUT/$tag.json" 2> "$OUT/$tag.log"
   echo "   exit $?" >&2
 }
+
+# picture TAG SCENE SOLVER RES [--set ...]: the final state of run TAG as a
+# small PNG, results/bhem/images/TAG.png (240x180, 8 samples per pixel,
+# committed; the report shows it).  Drawn from the run's record when it is
+# there, else (the RMTR-scene records are not committed) from the same run
+# made again into a temporary record.  A picture that exists is kept.
+picture() {
+  local tag=$1 scene=$2 solver=$3 res=$4; shift 4
+  local png=results/bhem/images/$tag.png rec=$OUT/$tag.h5 tmp=
+  [ -s "$png" ] && return 0
+  mkdir -p results/bhem/images
+  if [ ! -s "$rec" ]; then
+    tmp=$(mktemp -d)
+    rec=$tmp/$tag.h5
+    echo "== $tag (rerun for its picture)" >&2
+    "$BIN" run --scene "$scene" --method bhem --solver "$solver" --res "$res" --out "$rec" --quiet \
+      --set method.kernel=$KERNEL "$@" > /dev/null 2>&1
+  fi
+  "$BIN" render "$rec" --size 240x180 --spp 8 --out "$png" --quiet || echo "$tag: not drawn" >&2
+  [ -n "$tmp" ] && rm -rf "$tmp"
+  return 0
+}
+
+# one picture per RMTR-paper scene: its finest converged lsnewton run (the
+# re-entrant corner converges at none: its smallest run, stopped at step 1)
+rmtr_pictures() {
+  picture rmtr_trampoline_lsnewton_r16 trampoline lsnewton 16 --set run.max_iter=300
+  picture rmtr_drooping_lsnewton_r8 drooping lsnewton 8 --set run.max_iter=300
+  picture rmtr_drape_lsnewton_r8 drape lsnewton 8 --set run.max_iter=300
+  picture rmtr_reentrant_corner_lsnewton_r10 reentrant_corner lsnewton 10 --set run.max_iter=300
+}
+if [ "$MODE" = rmtr-pictures ]; then rmtr_pictures; exit 0; fi
 
 # MODE rmtr-scenes: only the four RMTR-paper scenes (last section)
 if [ "$MODE" != rmtr-scenes ]; then
@@ -87,3 +121,4 @@ for solver in lsnewton tr; do            # notch at 0.3: resolutions divisible b
     run rmtr_reentrant_corner_${solver}_r$r reentrant_corner $solver $r --set run.max_iter=300
   done
 done
+rmtr_pictures

@@ -88,6 +88,39 @@ if selfrows:
       "the step ends never entered the barrier (rmtr at res 8 ends leaning, its crown never reaching "
       "the bottom within the 30 steps).  Measured here, not optimized further.")
 P()
+
+
+def pictures(rows, outdir, reldir):
+    """Markdown showing the committed picture of every (scene, method) among
+    rows: the final state of its lsnewton run at resolution 8, rerun by
+    bench/contact/run.sh into a temporary record and drawn
+    (results/contact/images/TAG.png); rows without a picture get none."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from render_thumbs import thumbnails
+    out = []
+    for sc in sorted({d["scene"] for d in rows}):
+        items = []
+        for m in sorted({d["method"] for d in rows if d["scene"] == sc}):
+            tag = "%s-%s-lsnewton-r8" % (sc, m)
+            items.append(("%s / %s, lsnewton r8: final state (run %s, drawn from a rerun)" % (sc, m, tag),
+                          os.path.join(outdir, tag + ".h5"), (), tag))
+        cells = thumbnails(None, items, outdir, reldir)   # no records: links the pictures that exist
+        if cells:
+            out += ["**%s**" % sc, ""] + cells
+    return out
+
+
+PIC = pictures(rows, os.path.join(DIR, "images"), os.path.join(os.path.basename(os.path.normpath(DIR)), "images"))
+if PIC:
+    P("## Pictures")
+    P()
+    P("The final state of each scene with each method (solver lsnewton, resolution 8), drawn by "
+      "`shellbench render` (240x180, 8 samples per pixel; obstacles at their final pose).  The summaries "
+      "above keep no record, so `bench/contact/run.sh` made the same run again into a temporary record "
+      "to draw it; the pictures are committed in `%s/images/`." % DIR)
+    P()
+    for line in PIC:
+        P(line)
 P("## Summary")
 P()
 P("The barrier with `lsnewton` and `tr` (every method):")

@@ -9,7 +9,9 @@
 # from those files by bench/contact/report.py, never by re-running.  A
 # summary that exists is skipped (delete it to redo the run).
 #
-#   bash bench/contact/run.sh [SHELLBENCH]
+#   bash bench/contact/run.sh [SHELLBENCH] [pictures]
+#
+# `pictures`: only the missing pictures (no summaries, no report).
 set -u
 BIN=${1:-build/shellbench}
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
@@ -18,6 +20,7 @@ OUT=results/contact/runs
 mkdir -p "$OUT"
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 for scene in cloth_sphere drape_box needles; do
+  [ "${2:-}" = pictures ] && break
   for method in bhem rmtr linear_fem; do
     for solver in lsnewton tr; do
       for res in 8 16; do
@@ -82,5 +85,27 @@ PY
     done
   done
 done
+# pictures: the final state of each scene with each method (lsnewton, the
+# scene's resolution 8) as a small PNG, results/contact/images/TAG.png
+# (240x180 at 8 samples per pixel, committed; the report shows them).  The
+# summaries above keep no record (--out none), so the same run is made again
+# into a temporary record and drawn; a picture that exists is kept.
+mkdir -p results/contact/images
+for scene in cloth_sphere drape_box needles; do
+  for method in bhem rmtr linear_fem; do
+    tag="$scene-$method-lsnewton-r8"
+    png="results/contact/images/$tag.png"
+    [ -s "$png" ] && continue
+    rec=$(mktemp -d)/"$tag.h5"
+    echo "== $tag (picture)" >&2
+    if "$BIN" run --scene "$scene" --method "$method" --solver lsnewton --res 8 --out "$rec" --quiet \
+         > /dev/null 2> "results/contact/images/$tag.log" &&
+       "$BIN" render "$rec" --size 240x180 --spp 8 --out "$png" --quiet 2>> "results/contact/images/$tag.log"; then
+      rm -f "results/contact/images/$tag.log"
+    fi
+    rm -rf "$(dirname "$rec")"
+  done
+done
+[ "${2:-}" = pictures ] && exit 0
 python3 bench/contact/report.py results/contact > results/contact_report.md
 echo "results/contact_report.md"

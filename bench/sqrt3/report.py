@@ -157,6 +157,24 @@ def cloth_sphere():
         except (OSError, subprocess.CalledProcessError):
             out += ["", "(gnuplot not available: no figure)"]
     return out
+def pictures(runs):
+    """Markdown showing the committed picture of every run present in runs
+    that has one (results/sqrt3/images/TAG.png: its last step, drawn by
+    `picture` in bench/sqrt3/run.sh from a rerun, the records not being
+    committed); nothing when none exists."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from render_thumbs import thumbnails
+    images = os.path.join(DIR, "images")
+    items = [("%s: step %d of %d (run %s, drawn from a rerun)" % (name, runs[tag]["steps"], runs[tag]["steps"], tag),
+              os.path.join(images, tag + ".h5"), (), tag)
+             for tag, name in RUNS if runs.get(tag)]
+    rows = thumbnails(None, items, images, os.path.join(os.path.basename(os.path.normpath(DIR)), "images"))
+    if not rows:
+        return []
+    return ["", "**Pictures**: the curtain at the last step of each run (the PCG run takes the same steps as the "
+            "CHOLMOD one and is not drawn), by `shellbench render --step LAST` (240x180, 8 samples per pixel): the "
+            "recorded surface of that step, since an adaptive record's final state does not rebuild from the base "
+            "mesh.  The records are not committed, so `bench/sqrt3/run.sh` made each run again to draw it.", ""] + rows
 
 
 def main():
@@ -252,6 +270,7 @@ def main():
             out += ["", "![vertices against time](sqrt3/fig8.png)"]
         except (OSError, subprocess.CalledProcessError):
             out += ["", "(gnuplot not available: no figure)"]
+    out += pictures(runs)
     p = runs["curtain-adaptive-pcg"]
     if p and a:
         out += ["", "**Linear solver**: the adaptive run with the paper's preconditioned CG (3 x 3 block Jacobi, "

@@ -201,6 +201,8 @@ int sb_cli_regress(int argc, char **argv)
         sb_regress_set_free(&now);
         return rc;
     }
+    char records[1024];   /* where the runs' records are (the pictures are drawn from them) */
+    snprintf(records, sizeof records, "%s", st->records);
     int regressions = sb_regress_judge(&now, have_base ? &base : NULL, &ru);
     /* a new baseline is being made: the verdicts against the old one are for information */
     if (!rc && confirm && have_base && !update) rc = confirm_changes(st, &o, &now, &base, &ru, &regressions);
@@ -220,6 +222,7 @@ int sb_cli_regress(int argc, char **argv)
         FILE *f = fopen(report, "w");
         if (f) {
             sb_regress_markdown(f, &now, have_base ? &base : NULL, &ru, baseline);
+            sb_regress_pictures(f, &now, records, outdir, stderr);
             if (fclose(f)) f = NULL;
         }
         if (!f) fprintf(stderr, "shellbench regress: cannot write %s: %s\n", report, strerror(errno)), rc = 3;

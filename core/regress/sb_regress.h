@@ -171,6 +171,13 @@ void sb_regress_markdown(FILE *out, const sb_regress_set *now, const sb_regress_
 int sb_regress_history_plots(const char *history, const sb_regress_set *now, const char *dir, const char *gnuplot,
                              FILE *err);
 
+/* Pictures (sb_regress_pictures.c): for each scene one representative case
+ * (its first converged case) drawn from RECORDS/rep1/ID into
+ * dir/final-SCENE.png, and a "Final states" section into md linking them
+ * (relative to dir).  0, or -1 when a picture could not be drawn (warnings
+ * into err; the others are still shown). */
+int sb_regress_pictures(FILE *md, const sb_regress_set *now, const char *records, const char *dir, FILE *err);
+
 /* ---- the command (core/cli/sb_cli_regress.c) ---------------------------- */
 int sb_cli_regress(int argc, char **argv);
 

@@ -94,7 +94,7 @@ int sb_image_write_png(const sb_image *im, const char *path, int n_text, const c
                 prev[c] = b;
             }
     }
-    int rc = compress2(z, &zn, raw, (uLong)raw_n, 6);
+    int rc = compress2(z, &zn, raw, (uLong)raw_n, 9);
     free(raw);
     if (rc != Z_OK) {
         free(z);

@@ -194,6 +194,21 @@ static double key_visibility(shade_ctx *S, const double p[3], const double n[3],
 static void albedo_of(shade_ctx *S, const sb_hit *h, int back, float a[3])
 {
     if (h->kind == SB_HIT_OBSTACLE) {
+        const sb_world *w = S->w;
+        const sb_obstacle *ob = &w->obstacles[h->prim];
+        if (ob->kind == SB_OBSTACLE_PLANE) {
+            /* a plane obstacle: a light green checkerboard of the ground's
+             * grid spacing with a dark rim, so that it reads as a bounded
+             * patch of an infinite plane, not as the ground */
+            double q[3];
+            for (int c = 0; c < 3; c++) q[c] = h->p[c] - ob->c[c];
+            const double x = dot3(q, w->plane_u[h->prim]), y = dot3(q, w->plane_v[h->prim]);
+            const int rim = fabs(x) > 0.97 * ob->extent || fabs(y) > 0.97 * ob->extent;
+            const int odd = ((long)floor(x / w->grid) + (long)floor(y / w->grid)) & 1;
+            const double g = rim ? 0.35 : odd ? 0.62 : 0.74;
+            a[0] = lin(0.85 * g); a[1] = lin(g); a[2] = lin(0.80 * g);
+            return;
+        }
         a[0] = lin(0.60); a[1] = lin(0.58); a[2] = lin(0.55);
         return;
     }

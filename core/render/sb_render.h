@@ -16,14 +16,34 @@
 typedef enum { SB_COLOR_NONE = 0, SB_COLOR_CURVATURE, SB_COLOR_STRAIN, SB_COLOR_SOFTENING, SB_COLOR_COUNT } sb_color_kind;
 extern const char *const sb_color_names[];   /* "none", "curvature", "strain", "softening", NULL */
 
-/* An obstacle drawn with the surface (and shadowing it): the record path
- * (sb_render_record.c) maps a scene's spheres and unrotated boxes to these
- * (docs/contact.md). */
-typedef enum { SB_OBSTACLE_SPHERE = 0, SB_OBSTACLE_BOX } sb_obstacle_kind;
+/* An obstacle drawn with the surface (and shadowing it), in world
+ * coordinates at the pose of the drawn step: the record path
+ * (sb_render_scene_obstacles) maps every obstacle of a scene
+ * (docs/contact.md) to one of these.
+ *   sphere:  centre c, radius r;
+ *   box:     [lo, hi] in its own frame, world x = m + R (y - m) with m the
+ *            box centre (lo + hi) / 2; R is used only when rotated = 1;
+ *   capsule: the points within r of the segment a-b;
+ *   plane:   the plane through c with unit normal n (free side), drawn as a
+ *            bounded square patch (half side `extent`, 0 = 1.3 x the
+ *            surface's bounding radius) centred at the foot of the
+ *            perpendicular from the surface's centre;
+ *   mesh:    nt triangles tris over nv world-space vertices verts (borrowed:
+ *            the caller keeps them alive while the world exists). */
+typedef enum { SB_OBSTACLE_SPHERE = 0, SB_OBSTACLE_BOX, SB_OBSTACLE_CAPSULE, SB_OBSTACLE_PLANE,
+               SB_OBSTACLE_MESH } sb_obstacle_kind;
 typedef struct sb_obstacle {
     sb_obstacle_kind kind;
-    double c[3], r;          /* sphere */
+    double c[3], r;          /* sphere; plane: c a point; capsule: r */
     double lo[3], hi[3];     /* box */
+    int rotated;             /* box: R applies */
+    double R[9];             /* box: rotation, row-major */
+    double a[3], b[3];       /* capsule axis ends */
+    double n[3];             /* plane normal */
+    double extent;           /* plane: half side of the drawn square (0: automatic) */
+    int nv, nt;              /* mesh */
+    const double *verts;
+    const int *tris;
 } sb_obstacle;
 #define SB_RENDER_MAX_OBSTACLES 16
 
@@ -84,6 +104,16 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
                       sb_render_stats *st, char *err, size_t errlen);
 
 /* ---- records ---------------------------------------------------------- */
+
+struct sb_scene;
+/* Append the obstacles of scene sc at their pose of `step` (motion ramps,
+ * sb_obstacle_motion_factor) to o (up to SB_RENDER_MAX_OBSTACLES).  Mesh
+ * obstacles need their vertices moved: *mesh_verts receives one malloc'd
+ * block holding them (free it after rendering; NULL when there are none).
+ * Returns the number of obstacles left out (over the limit), or -1 when out
+ * of memory. */
+int sb_render_scene_obstacles(const struct sb_scene *sc, int step, sb_render_options *o, double **mesh_verts);
+
 
 /* Which state of a record to draw: step -1 = the final state (exact, from
  * /final/x and the method's surface); step k >= 0 = the recorded surface of

@@ -49,29 +49,63 @@ static void rebuilt_free(rebuilt *b)
     memset(b, 0, sizeof *b);
 }
 
-/* The scene's spheres and boxes (docs/contact.md) at their pose of `step`,
- * drawn with the surface; a rotated box, capsules, planes and meshes are not
- * drawn (the renderer has spheres and axis-aligned boxes only). */
-static void add_scene_obstacles(const sb_scene *sc, int step, sb_render_options *o)
+/* Every obstacle of the scene (docs/contact.md) at its pose of `step`:
+ * x_world = c + R (y - c) + f t (sb_pose_at, the motion factor f of the
+ * step's ramp) applied to the rest-frame geometry. */
+int sb_render_scene_obstacles(const sb_scene *sc, int step, sb_render_options *o, double **mesh_verts)
 {
-    for (int i = 0; i < sc->n_obstacles && o->n_obstacles < SB_RENDER_MAX_OBSTACLES; i++) {
+    *mesh_verts = NULL;
+    size_t nmv = 0;
+    int left_out = 0;
+    for (int i = 0; i < sc->n_obstacles; i++)
+        if (sc->obstacles[i].kind == SB_OBST_MESH) nmv += (size_t)sc->obstacles[i].nv;
+    if (nmv && !(*mesh_verts = malloc(nmv * 3 * sizeof(double)))) return -1;
+    double *mv = *mesh_verts;
+    for (int i = 0; i < sc->n_obstacles; i++) {
+        if (o->n_obstacles >= SB_RENDER_MAX_OBSTACLES) { left_out++; continue; }
         const sb_obstacle_spec *ob = &sc->obstacles[i];
         sb_pose P;
         sb_pose_at(ob, sb_obstacle_motion_factor(sc, ob, step), &P);
-        sb_obstacle *r = &o->obstacles[o->n_obstacles];
-        if (ob->kind == SB_OBST_SPHERE) {
+        sb_obstacle *r = &o->obstacles[o->n_obstacles++];
+        memset(r, 0, sizeof *r);
+        switch (ob->kind) {
+        case SB_OBST_SPHERE:
             r->kind = SB_OBSTACLE_SPHERE;
             sb_pose_apply(&P, ob->center, r->c);
             r->r = ob->radius;
-            o->n_obstacles++;
-        } else if (ob->kind == SB_OBST_BOX && ob->rot_angle == 0.0) {
+            break;
+        case SB_OBST_BOX: {
             double c[3];
             sb_pose_apply(&P, ob->center, c);
             r->kind = SB_OBSTACLE_BOX;
             for (int k = 0; k < 3; k++) { r->lo[k] = c[k] - ob->half[k]; r->hi[k] = c[k] + ob->half[k]; }
-            o->n_obstacles++;
+            r->rotated = ob->rot_angle != 0.0;
+            memcpy(r->R, P.R, sizeof r->R);
+            break;
+        }
+        case SB_OBST_CAPSULE:
+            r->kind = SB_OBSTACLE_CAPSULE;
+            sb_pose_apply(&P, ob->a, r->a);
+            sb_pose_apply(&P, ob->b, r->b);
+            r->r = ob->radius;
+            break;
+        case SB_OBST_PLANE:
+            r->kind = SB_OBSTACLE_PLANE;
+            sb_pose_apply(&P, ob->point, r->c);
+            sb_pose_rotate(&P, ob->normal, r->n);
+            break;
+        case SB_OBST_MESH:
+            r->kind = SB_OBSTACLE_MESH;
+            for (int v = 0; v < ob->nv; v++) sb_pose_apply(&P, ob->verts + 3 * v, mv + 3 * v);
+            r->verts = mv;
+            r->nv = ob->nv;
+            r->tris = ob->tris;
+            r->nt = ob->nt;
+            mv += 3 * ob->nv;
+            break;
         }
     }
+    return left_out;
 }
 
 /* scene and (when with_method) the method of the record su */
@@ -309,6 +343,7 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         }
     }
     sb_render_options o = rq->opt;
+    int left_out = 0;   /* obstacles beyond SB_RENDER_MAX_OBSTACLES */
     if (!rc) {
         /* labels: what, which state, how it ended */
         if (!o.title[0])
@@ -328,8 +363,15 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
                      rq->step >= 0 ? "step" : sum.status == SB_STATUS_UNFINISHED ? "saved, step" : "final, step", step,
                      sum.steps_planned, state, size);
         }
-        add_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o);
-        rc = sb_render_surface(&surf, have_mat ? &mat : NULL, &o, &img, st, err, errlen);
+        double *mesh_verts = NULL;
+        left_out = sb_render_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o, &mesh_verts);
+        if (left_out < 0) {
+            snprintf(err, errlen, "%s: out of memory placing the scene's mesh obstacles", path);
+            rc = SB_ERR_NOMEM;
+        } else {
+            rc = sb_render_surface(&surf, have_mat ? &mat : NULL, &o, &img, st, err, errlen);
+        }
+        free(mesh_verts);
         if (rc && !strstr(err, path)) {
             char tmp[1024];
             snprintf(tmp, sizeof tmp, "%s", err);
@@ -348,9 +390,10 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         const char *val[] = { o.title, path, desc, param, software };
         if (sb_image_write_png(&img, rq->out, 5, key, val, err, errlen)) rc = SB_ERR_IO;
         if (!rc && info)
-            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s%s", rq->out, o.width, o.height,
+            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s%s%s", rq->out, o.width, o.height,
                      o.spp, surf.what, surf.n_patches ? sb_isect_names[o.isect] : "triangle",
                      st ? st->seconds : 0.0,
+                     left_out > 0 ? "; only the scene's first 16 obstacles drawn" : "",
                      sum.status == SB_STATUS_UNFINISHED && rq->step < 0
                          ? "; a checkpoint of an unfinished run: the state after its last saved step, labelled CHECKPOINT"
                          : "");

@@ -35,6 +35,96 @@ static int vertex_normals(const sb_surface *s, double *vn)
     return 0;
 }
 
+static void cross_unit(const double a[3], const double b[3], double c[3])
+{
+    cross3(a, b, c);
+    const double l = norm3(c);
+    if (l > 0) for (int k = 0; k < 3; k++) c[k] /= l;
+}
+
+/* Copy the obstacles, resolve each plane's drawn square (centred at the foot
+ * of the perpendicular from the surface's centre, in-plane axes u, v) and
+ * put the mesh obstacles' triangles into a BVH.  0 or -1 (out of memory). */
+static int setup_obstacles(sb_world *w, const sb_render_options *o)
+{
+    w->n_obstacles = o->n_obstacles < SB_RENDER_MAX_OBSTACLES ? o->n_obstacles : SB_RENDER_MAX_OBSTACLES;
+    int nmt = 0;
+    for (int i = 0; i < w->n_obstacles; i++) {
+        sb_obstacle *ob = &w->obstacles[i];
+        *ob = o->obstacles[i];
+        if (ob->kind == SB_OBSTACLE_MESH) nmt += ob->nt;
+        if (ob->kind != SB_OBSTACLE_PLANE) continue;
+        double *n = ob->n, *u = w->plane_u[i], *v = w->plane_v[i];
+        const double ln = norm3(n);
+        if (ln > 0) for (int c = 0; c < 3; c++) n[c] /= ln;
+        const double h = (w->centre[0] - ob->c[0]) * n[0] + (w->centre[1] - ob->c[1]) * n[1] + (w->centre[2] - ob->c[2]) * n[2];
+        for (int c = 0; c < 3; c++) ob->c[c] = w->centre[c] - h * n[c];
+        /* u: across the coordinate axis least aligned with n */
+        int k = 0;
+        for (int c = 1; c < 3; c++) if (fabs(n[c]) < fabs(n[k])) k = c;
+        double e[3] = { 0, 0, 0 };
+        e[k] = 1;
+        cross_unit(n, e, u);
+        cross_unit(n, u, v);
+        if (!(ob->extent > 0)) ob->extent = 1.3 * w->radius;
+    }
+    if (!nmt) return 0;
+    w->mtri_obst = malloc((size_t)nmt * sizeof(int));
+    w->mtri_tri = malloc((size_t)nmt * sizeof(int));
+    w->mlo = malloc((size_t)nmt * 3 * sizeof(double));
+    w->mhi = malloc((size_t)nmt * 3 * sizeof(double));
+    if (!w->mtri_obst || !w->mtri_tri || !w->mlo || !w->mhi) return -1;
+    for (int i = 0; i < w->n_obstacles; i++) {
+        const sb_obstacle *ob = &w->obstacles[i];
+        if (ob->kind != SB_OBSTACLE_MESH) continue;
+        for (int t = 0; t < ob->nt; t++) {
+            const int j = w->n_mtri++;
+            w->mtri_obst[j] = i;
+            w->mtri_tri[j] = t;
+            for (int c = 0; c < 3; c++) { w->mlo[3 * j + c] = INFINITY; w->mhi[3 * j + c] = -INFINITY; }
+            for (int k = 0; k < 3; k++)
+                for (int c = 0; c < 3; c++) {
+                    const double x = ob->verts[3 * ob->tris[3 * t + k] + c];
+                    w->mlo[3 * j + c] = fmin(w->mlo[3 * j + c], x);
+                    w->mhi[3 * j + c] = fmax(w->mhi[3 * j + c], x);
+                }
+        }
+    }
+    return sb_bvh_build(&w->mbvh, w->n_mtri, w->mlo, w->mhi, 4) ? -1 : 0;
+}
+
+/* the lowest point of the surface (z0) and the obstacles: the ground goes under it */
+static double obstacles_zmin(const sb_world *w, double z0)
+{
+    double z = z0;
+    for (int i = 0; i < w->n_obstacles; i++) {
+        const sb_obstacle *ob = &w->obstacles[i];
+        switch (ob->kind) {
+        case SB_OBSTACLE_SPHERE: z = fmin(z, ob->c[2] - ob->r); break;
+        case SB_OBSTACLE_CAPSULE: z = fmin(z, fmin(ob->a[2], ob->b[2]) - ob->r); break;
+        case SB_OBSTACLE_BOX:
+            for (int k = 0; k < 8; k++) {   /* corners */
+                double y[3], m[3], zz;
+                for (int c = 0; c < 3; c++) {
+                    y[c] = (k >> c) & 1 ? ob->hi[c] : ob->lo[c];
+                    m[c] = 0.5 * (ob->lo[c] + ob->hi[c]);
+                }
+                zz = ob->rotated ? m[2] + ob->R[6] * (y[0] - m[0]) + ob->R[7] * (y[1] - m[1]) + ob->R[8] * (y[2] - m[2]) : y[2];
+                z = fmin(z, zz);
+            }
+            break;
+        case SB_OBSTACLE_PLANE:
+            z = fmin(z, ob->c[2] - ob->extent * (fabs(w->plane_u[i][2]) + fabs(w->plane_v[i][2])));
+            break;
+        case SB_OBSTACLE_MESH:
+            for (int t = 0; t < ob->nt; t++)
+                for (int k = 0; k < 3; k++) z = fmin(z, ob->verts[3 * ob->tris[3 * t + k] + 2]);
+            break;
+        }
+    }
+    return z;
+}
+
 int sb_world_build(sb_world *w, const sb_surface *s, const sb_material *mat, const sb_render_options *o,
                    char *err, size_t errlen)
 {
@@ -79,14 +169,9 @@ int sb_world_build(sb_world *w, const sb_surface *s, const sb_material *mat, con
         if (!(w->vcurv = malloc((size_t)s->n_verts * sizeof(double)))) goto nomem;
         if (sb_field_vertex_curvature(s, w->vnormal, w->vcurv)) goto nomem;
     }
-    w->n_obstacles = o->n_obstacles;
-    w->obstacles = o->obstacles;
     w->ground = o->ground;
-    double zmin = w->lo[2];
-    for (int i = 0; i < w->n_obstacles; i++) {
-        const sb_obstacle *ob = &w->obstacles[i];
-        zmin = fmin(zmin, ob->kind == SB_OBSTACLE_SPHERE ? ob->c[2] - ob->r : ob->lo[2]);
-    }
+    if (setup_obstacles(w, o)) goto nomem;
+    const double zmin = obstacles_zmin(w, w->lo[2]);
     w->ground_z = zmin - 0.03 * diag;
     /* grid lines at a round spacing, about 8 cells over the diagonal */
     w->grid = pow(10.0, floor(log10(diag / 8.0)));
@@ -106,6 +191,11 @@ void sb_world_free(sb_world *w)
     free(w->phi);
     free(w->vnormal);
     free(w->vcurv);
+    sb_bvh_free(&w->mbvh);
+    free(w->mtri_obst);
+    free(w->mtri_tri);
+    free(w->mlo);
+    free(w->mhi);
     sb_bezier_ws_free(w->ws);
     if (w->shell) sb_shell_work_free(w->shell);
     memset(w, 0, sizeof *w);
@@ -144,18 +234,21 @@ static int hit_prim(void *ctx, int prim, const sb_ray *r, double *tmax)
     return 1;
 }
 
-static int hit_sphere(const sb_obstacle *ob, const sb_ray *r, double tmax, double *t)
+/* BVH leaf test of one mesh-obstacle triangle */
+static int hit_mtri(void *ctx, int prim, const sb_ray *r, double *tmax)
 {
-    double oc[3] = { r->o[0] - ob->c[0], r->o[1] - ob->c[1], r->o[2] - ob->c[2] };
-    const double b = oc[0] * r->d[0] + oc[1] * r->d[1] + oc[2] * r->d[2];
-    const double c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - ob->r * ob->r;
-    const double disc = b * b - c;
-    if (disc < 0) return 0;
-    const double sq = sqrt(disc);
-    double t0 = -b - sq;
-    if (!(t0 > r->tmin)) t0 = -b + sq;
-    if (!(t0 > r->tmin && t0 < tmax)) return 0;
-    *t = t0;
+    sb_world *w = ctx;
+    const sb_obstacle *ob = &w->obstacles[w->mtri_obst[prim]];
+    const int *T = ob->tris + 3 * w->mtri_tri[prim];
+    double tt, b1, b2;
+    w->tri_tests++;
+    if (!sb_ray_triangle(r, ob->verts + 3 * T[0], ob->verts + 3 * T[1], ob->verts + 3 * T[2], *tmax, &tt, &b1, &b2))
+        return 0;
+    *tmax = tt;
+    w->cur->kind = SB_HIT_OBSTACLE;
+    w->cur->prim = w->mtri_obst[prim];
+    w->cur->tri = w->mtri_tri[prim];
+    w->cur->t = tt;
     return 1;
 }
 
@@ -196,17 +289,14 @@ static void finish_hit(sb_world *w, const sb_ray *r, sb_hit *h)
         if (l > 1e-300) for (int c = 0; c < 3; c++) h->n[c] /= l;
     } else if (h->kind == SB_HIT_OBSTACLE) {
         const sb_obstacle *ob = &w->obstacles[h->prim];
-        if (ob->kind == SB_OBSTACLE_SPHERE) {
-            for (int c = 0; c < 3; c++) h->n[c] = (h->p[c] - ob->c[c]) / ob->r;
-        } else {
-            /* the face whose plane the point is nearest */
-            double best = INFINITY;
-            for (int c = 0; c < 3; c++) {
-                const double dl = fabs(h->p[c] - ob->lo[c]), dh = fabs(h->p[c] - ob->hi[c]);
-                if (dl < best) { best = dl; h->n[0] = h->n[1] = h->n[2] = 0; h->n[c] = -1; }
-                if (dh < best) { best = dh; h->n[0] = h->n[1] = h->n[2] = 0; h->n[c] = 1; }
-            }
-        }
+        if (ob->kind == SB_OBSTACLE_MESH) {
+            /* flat: the face normal */
+            const int *T = ob->tris + 3 * h->tri;
+            const double *a = ob->verts + 3 * T[0], *b = ob->verts + 3 * T[1], *cc = ob->verts + 3 * T[2];
+            double e1[3], e2[3];
+            for (int c = 0; c < 3; c++) { e1[c] = b[c] - a[c]; e2[c] = cc[c] - a[c]; }
+            cross_unit(e1, e2, h->n);
+        }   /* analytic obstacles: the normal came with the hit */
     } else {
         h->n[0] = h->n[1] = 0;
         h->n[2] = 1;
@@ -221,17 +311,20 @@ int sb_world_intersect(sb_world *w, const sb_ray *r, double tmax, int any, sb_hi
     int rc = sb_bvh_intersect(&w->bvh, r, &tm, any, hit_prim, w);
     if (rc < 0) return -1;
     if (rc > 0 && any) return 1;
+    if (w->n_mtri) {
+        rc = sb_bvh_intersect(&w->mbvh, r, &tm, any, hit_mtri, w);
+        if (rc < 0) return -1;
+        if (rc > 0 && any) return 1;
+    }
     for (int i = 0; i < w->n_obstacles; i++) {
-        const sb_obstacle *ob = &w->obstacles[i];
-        double t, t1;
-        int hit = ob->kind == SB_OBSTACLE_SPHERE ? hit_sphere(ob, r, tm, &t) : sb_ray_box(r, ob->lo, ob->hi, tm, &t, &t1);
-        if (hit && ob->kind == SB_OBSTACLE_BOX && !(t > r->tmin)) hit = 0;   /* origin inside the box */
-        if (!hit) continue;
+        double t, n[3];
+        if (!sb_ray_obstacle(&w->obstacles[i], w->plane_u[i], w->plane_v[i], r, tm, &t, n)) continue;
         if (any) return 1;
         tm = t;
         h->kind = SB_HIT_OBSTACLE;
         h->prim = i;
         h->t = t;
+        memcpy(h->n, n, sizeof n);
     }
     if (!any && w->ground && r->d[2] < 0 && r->o[2] > w->ground_z) {
         const double t = (w->ground_z - r->o[2]) / r->d[2];

@@ -10,9 +10,16 @@
 
 enum { SB_HIT_NONE = 0, SB_HIT_PATCH, SB_HIT_TRIANGLE, SB_HIT_OBSTACLE, SB_HIT_GROUND };
 
+/* Ray against one analytic obstacle (sphere, box, capsule, plane square):
+ * 1 and the entry t in (r->tmin, tmax) with the outward unit normal n there,
+ * else 0.  A ray starting inside a solid does not hit it. */
+int sb_ray_obstacle(const sb_obstacle *ob, const double pu[3], const double pv[3], const sb_ray *r, double tmax,
+                    double *t, double n[3]);
+
 typedef struct sb_hit {
     int kind;
     int prim;            /* patch or triangle index, obstacle index */
+    int tri;             /* mesh obstacle: its triangle */
     double t;
     double u, v;         /* patch parameters, or triangle barycentrics of vertices 1 and 2 */
     double p[3];         /* hit point */
@@ -31,7 +38,14 @@ typedef struct sb_world {
     sb_bezier_ws *ws;
     sb_shell_work *shell;
     int n_obstacles;
-    const sb_obstacle *obstacles;
+    sb_obstacle obstacles[SB_RENDER_MAX_OBSTACLES];   /* copies; planes with their drawn square resolved */
+    double plane_u[SB_RENDER_MAX_OBSTACLES][3];      /* planes: in-plane unit axes of the square */
+    double plane_v[SB_RENDER_MAX_OBSTACLES][3];
+    /* mesh obstacles: their triangles in a BVH of their own */
+    sb_bvh mbvh;
+    int n_mtri;
+    int *mtri_obst, *mtri_tri;   /* obstacle index and triangle index of each */
+    double *mlo, *mhi;
     int ground;
     double ground_z, grid;       /* ground height and its grid spacing */
     double lo[3], hi[3], centre[3], radius;
