@@ -65,7 +65,7 @@ double sb_closest_segments(const double p1[3], const double q1[3], const double 
  * when the four points stay coplanar throughout (cubic identically zero),
  * the first time an end point of one edge crosses the other edge in the
  * plane, or 0 when they already intersect at t = 0. */
-double sb_ccd_edge_edge(const double a0[3], const double a1[3], const double b0[3], const double b1[3],
+double sb_bridson_ccd_edge_edge(const double a0[3], const double a1[3], const double b0[3], const double b1[3],
                         const double c0[3], const double c1[3], const double d0[3], const double d1[3]);
 
 /* ---- rigid impact zones (sb_bridson_zone.c) ----------------------------- */

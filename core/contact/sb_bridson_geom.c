@@ -199,7 +199,7 @@ static double coplanar_ee(const double *const P[8], double L, double tol)
     return best;
 }
 
-double sb_ccd_edge_edge(const double a0[3], const double a1[3], const double b0[3], const double b1[3],
+double sb_bridson_ccd_edge_edge(const double a0[3], const double a1[3], const double b0[3], const double b1[3],
                         const double c0[3], const double c1[3], const double d0[3], const double d1[3])
 {
     /* f(t) = ((b - a) x (d - c)) . (c - a), all relative to a:
