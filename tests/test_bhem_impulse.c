@@ -170,7 +170,11 @@ SB_TEST(run_loop_reports_the_stats)
     CHECK(json_integer_value(json_object_get(im, "ccd_hits")) > 0);
     CHECK(json_integer_value(json_object_get(im, "proximity_impulses")) > 0);
     CHECK_EQ_INT(json_integer_value(json_object_get(im, "unresolved_steps")), 0);
-    CHECK(json_object_get(o, "contact") == NULL);   /* no barrier sample points */
+    /* no barrier sample points: the contact object holds the impulse model's counts only */
+    json_t *co = json_object_get(o, "contact");
+    CHECK(co && json_object_get(co, "points") == NULL);
+    CHECK(co && json_is_string(json_object_get(co, "model")) &&
+          !strcmp(json_string_value(json_object_get(co, "model")), "impulse"));
     json_decref(o);
 }
 
