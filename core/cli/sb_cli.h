@@ -41,5 +41,8 @@ void sb_cli_version(FILE *f);
 int  sb_cli_list(int argc, char **argv);     /* sb_cli_list.c */
 int  sb_cli_sweep(int argc, char **argv);    /* sb_cli_sweep.c */
 extern const char sb_cli_regress_help[];     /* sb_cli_regress.c */
+int  sb_cli_digest(int argc, char **argv);   /* sb_cli_digest.c */
+extern const char sb_cli_digest_help[];
+
 
 #endif

@@ -19,6 +19,7 @@ static const char overview[] =
     "  reference SCENE [...]                         compute and store a scene's reference record\n"
     "  render FILE.h5 [--out FILE.png] [...]         a ray-traced picture of a record (docs/render.md)\n"
     "  regress [--update-baseline] [...]             nightly regression against a baseline (docs/regression.md)\n"
+    "  digest [--drop-state] RECORD.h5...            rewrite records as what reports read (docs/reproducibility.md)\n"
     "  help [COMMAND], --version\n"
     "exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error,\n"
     "            3 internal error, 4 stopped by --stop-after-steps (resumable),\n"
@@ -131,6 +132,10 @@ int sb_cli_help(const char *cmd, FILE *f)
             fputs(topics[i].text, f);
             return 0;
         }
+    if (!strcmp(cmd, "digest")) {   /* beside the command (core/cli/sb_cli_digest.c) */
+        fputs(sb_cli_digest_help, f);
+        return 0;
+    }
     if (!strcmp(cmd, "regress")) {   /* beside the command (core/cli/sb_cli_regress.c) */
         fputs(sb_cli_regress_help, f);
         return 0;

@@ -315,6 +315,16 @@ void sb_resume_point_free(sb_resume_point *rp);
 
 int  sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen);
 
+/* Rewrite the finished record at path in place as a digest: without /steps,
+ * /final/displacement, sample_ref and triangles (and /final/x with
+ * drop_state), marked by the root attribute "digest", sealed
+ * (sb_record_digest.c).  *already = 1 (and nothing written) for a digest;
+ * SB_ERR_INPUT for a checkpoint or anything unreadable as a record. */
+int  sb_record_digest(const char *path, int drop_state, int *already, char *err, size_t errlen);
+/* 1 when the record keeps its final state /final/x (what render and inspect
+ * rebuild from), 0 for a digest made with drop_state, < 0 when unreadable */
+int  sb_record_keeps_state(const char *path, char *err, size_t errlen);
+
 /* A scene's `reference: {type: file}` (sb_reference_check.c, docs/trust.md):
  * SB_OK when the scene has none, or when the file is a readable record of a
  * finished, converged run of the same scene (physics compared section by

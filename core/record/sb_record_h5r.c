@@ -86,7 +86,19 @@ int sb_h5r_dset(sb_h5r *r, hid_t loc, const char *name, int rank, hid_t mtype, s
                      hsize_t *dims, void **out)
 {
     *out = NULL;
-    if (H5Lexists(loc, name, H5P_DEFAULT) <= 0) return sb_h5r_fail(r, SB_ERR_INPUT, "missing dataset", name);
+    if (H5Lexists(loc, name, H5P_DEFAULT) <= 0) {
+        /* a digest (sb_record_digest.c) dropped it on purpose: say so */
+        hid_t f = H5Iget_file_id(loc);
+        const int digest = f >= 0 && H5Aexists(f, "digest") > 0;
+        if (f >= 0) H5Fclose(f);
+        if (digest) {
+            snprintf(r->err, r->errlen, "cannot read %s from %s: the record is a digest (`shellbench digest`), which "
+                     "keeps what reports read but not the run's states; run the scene again to draw or inspect it",
+                     name, r->path);
+            return SB_ERR_INPUT;
+        }
+        return sb_h5r_fail(r, SB_ERR_INPUT, "missing dataset", name);
+    }
     hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
     if (d < 0) return sb_h5r_fail(r, SB_ERR_IO, "cannot open dataset", name);
     hid_t sp = H5Dget_space(d);

@@ -317,3 +317,13 @@ void sb_record_setup_free(sb_record_setup *s)
     s->x = NULL;
     s->n_x = 0;
 }
+
+int sb_record_keeps_state(const char *path, char *err, size_t errlen)
+{
+    sb_h5r r = { path, err, errlen, NULL, NULL };
+    hid_t f;
+    int rc = sb_h5r_open(&r, &f);
+    if (!rc) rc = H5Lexists(f, "/final", H5P_DEFAULT) > 0 && H5Lexists(f, "/final/x", H5P_DEFAULT) > 0;
+    sb_h5r_close(&r, f);
+    return rc;
+}

@@ -143,3 +143,41 @@ int sb_image_write_png(const sb_image *im, const char *path, int n_text, const c
     }
     return 0;
 }
+
+/* The text of tEXt chunk `key` of the PNG at path (as sb_image_write_png
+ * writes them), and the image size: 0, or -1 when the file is not a PNG,
+ * cannot be read, or has no such chunk.  Reads chunk headers and skips the
+ * image data. */
+int sb_image_png_text(const char *path, const char *key, char *val, size_t len, int *w, int *h)
+{
+    static const unsigned char sig[8] = { 137, 'P', 'N', 'G', 13, 10, 26, 10 };
+    FILE *f = fopen(path, "rb");
+    if (!f) return -1;
+    unsigned char head[8];
+    int found = -1;
+    const size_t klen = strlen(key);
+    if (fread(head, 1, 8, f) == 8 && !memcmp(head, sig, 8)) {
+        while (found < 0 && fread(head, 1, 8, f) == 8) {
+            const uint32_t n = (uint32_t)head[0] << 24 | (uint32_t)head[1] << 16 | (uint32_t)head[2] << 8 | head[3];
+            if (n > (1u << 30)) break;
+            if (!memcmp(head + 4, "IHDR", 4) || !memcmp(head + 4, "tEXt", 4)) {
+                unsigned char *d = malloc(n + 1);
+                if (!d || fread(d, 1, n, f) != n) { free(d); break; }
+                d[n] = 0;
+                if (!memcmp(head + 4, "IHDR", 4) && n >= 8) {
+                    *w = (int)((uint32_t)d[0] << 24 | (uint32_t)d[1] << 16 | (uint32_t)d[2] << 8 | d[3]);
+                    *h = (int)((uint32_t)d[4] << 24 | (uint32_t)d[5] << 16 | (uint32_t)d[6] << 8 | d[7]);
+                } else if (n > klen && !memcmp(d, key, klen) && d[klen] == 0) {
+                    snprintf(val, len, "%s", (const char *)d + klen + 1);
+                    found = 0;
+                }
+                free(d);
+                if (fseek(f, 4, SEEK_CUR)) break;   /* CRC */
+            } else if (fseek(f, (long)n + 4, SEEK_CUR)) {
+                break;
+            }
+        }
+    }
+    fclose(f);
+    return found;
+}

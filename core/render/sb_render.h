@@ -95,6 +95,9 @@ void sb_image_free(sb_image *im);
  * be 0).  Returns 0 or -1 with a message in err. */
 int  sb_image_write_png(const sb_image *im, const char *path, int n_text, const char *const *key,
                         const char *const *val, char *err, size_t errlen);
+/* tEXt chunk `key` of a PNG written by sb_image_write_png, and its size
+ * (w, h): 0, or -1 when absent or unreadable. */
+int  sb_image_png_text(const char *path, const char *key, char *val, size_t len, int *w, int *h);
 
 /* Render surface s (mat: the scene's material for strain / softening
  * colours, may be NULL for none/curvature).  Returns SB_OK; SB_ERR_INPUT

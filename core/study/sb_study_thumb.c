@@ -6,6 +6,7 @@
 #include "sb_study_fig.h"
 #include "sb_output.h"
 #include "sb_render.h"
+#include "sb_record.h"
 #include "sb_run.h"
 
 #include <errno.h>
@@ -71,6 +72,25 @@ int sb_study_thumbnail(const char *record, const char *png, char *err, size_t er
 {
     int rc = sb_study_output_ok(png, "picture", err, errlen);
     if (rc) return rc;
+    /* A digest without its final state (`shellbench digest --drop-state`,
+     * docs/reproducibility.md) cannot be drawn again: the picture drawn from
+     * it before it was digested stands, recognised by the record it names
+     * (its Source text) and its size. */
+    char msg[1024], source[4096];
+    const int state = sb_record_keeps_state(record, msg, sizeof msg);
+    if (state < 0) {
+        snprintf(err, errlen, "picture %s not drawn: %s", png, msg);
+        return -1;
+    }
+    if (state == 0) {
+        int w = 0, h = 0;
+        if (sb_image_png_text(png, "Source", source, sizeof source, &w, &h) == 0 && !strcmp(source, record) &&
+            w == SB_THUMB_W && h == SB_THUMB_H)
+            return 0;
+        snprintf(err, errlen, "picture %s not drawn: %s is a digest without its final state and %s is not a picture of "
+                 "it (run the scene again to draw it)", png, record, png);
+        return -1;
+    }
     sb_render_request rq;
     memset(&rq, 0, sizeof rq);
     sb_render_options_default(&rq.opt);
@@ -81,7 +101,6 @@ int sb_study_thumbnail(const char *record, const char *png, char *err, size_t er
     rq.opt.width = SB_THUMB_W;
     rq.opt.height = SB_THUMB_H;
     rq.opt.spp = SB_THUMB_SPP;
-    char msg[1024];
     if (sb_render_record(&rq, NULL, NULL, 0, msg, sizeof msg)) {
         snprintf(err, errlen, "picture %s not drawn: %s", png, msg);
         return -1;

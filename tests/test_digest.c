@@ -1,0 +1,124 @@
+/* test_digest.c — `shellbench digest` (core/record/sb_record_digest.c,
+ * docs/reproducibility.md "Committed records"): a digest reads as the same
+ * run in every report (the CSV report of a dynamic run byte for byte), is
+ * sealed and smaller, says what it dropped when render asks for it, and a
+ * study thumbnail of a digest without its state keeps the picture drawn from
+ * it before; checkpoints, non-records and bad options are refused. */
+#include "sb_test.h"
+#include "cli_sh.h"
+#include "sb_record.h"
+#include "sb_render.h"
+#include "sb_study_fig.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char tmpdir[256];
+
+static long size_of(const char *dir, const char *name)
+{
+    char p[512];
+    struct stat st;
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    return stat(p, &st) == 0 ? (long)st.st_size : -1;
+}
+
+/* a dynamic run (per-step surfaces kept) into tmpdir/NAME */
+static int make_record(const char *name, const char *extra)
+{
+    return sb_sh(NULL, 0, NULL, 0, "cd %s && %s run --scene tests/scenes/membrane_dynamic.json --method fixture_membrane "
+                 "--solver lsnewton --res 4 --out %s/%s --quiet %s", sb_test_root(), sb_test_bin(), tmpdir, name, extra);
+}
+
+SB_TEST(a_digest_reports_as_the_same_run)
+{
+    static char before[16384], after[16384], err[4096], out[4096];
+    CHECK_EQ_INT(make_record("a.h5", ""), 0);
+    CHECK_EQ_INT(make_record("b.h5", ""), 0);
+    CHECK_EQ_INT(sb_sh(before, sizeof before, NULL, 0, "cd %s && %s report --format csv a.h5", tmpdir, sb_test_bin()), 0);
+    const long full = size_of(tmpdir, "a.h5");
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s digest a.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strstr(out, "a.h5: ") != NULL);
+    CHECK_EQ_INT(sb_sh(after, sizeof after, NULL, 0, "cd %s && %s report --format csv a.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strcmp(before, after) == 0);
+    CHECK(size_of(tmpdir, "a.h5") < full);
+    /* keeps its state: render works; a second digest changes nothing */
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cd %s && %s render a.h5 --out a.png --size 40x30 --spp 1 --quiet", tmpdir,
+                       sb_test_bin()), 0);
+    const long once = size_of(tmpdir, "a.h5");
+    CHECK_EQ_INT(sb_sh(out, sizeof out, NULL, 0, "cd %s && %s digest a.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strstr(out, "already a digest") != NULL);
+    CHECK_EQ_INT(size_of(tmpdir, "a.h5"), once);
+    /* without its state: the same report, and render says why it cannot draw */
+    CHECK_EQ_INT(sb_sh(before, sizeof before, NULL, 0, "cd %s && %s report --format csv b.h5", tmpdir, sb_test_bin()), 0);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cd %s && %s digest --drop-state b.h5", tmpdir, sb_test_bin()), 0);
+    CHECK_EQ_INT(sb_sh(after, sizeof after, NULL, 0, "cd %s && %s report --format csv b.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strcmp(before, after) == 0);
+    CHECK(size_of(tmpdir, "b.h5") < once);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s render b.h5 --out b.png --quiet", tmpdir, sb_test_bin()), 2);
+    CHECK(strstr(err, "digest") && strstr(err, "/final/x"));
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s render b.h5 --step 1 --out b.png --quiet", tmpdir,
+                       sb_test_bin()), 2);
+    CHECK(strstr(err, "digest") != NULL);
+}
+
+SB_TEST(a_study_picture_of_a_digest_without_state_stands)
+{
+    char rec[512], png[512], err[2048];
+    CHECK_EQ_INT(make_record("c.h5", ""), 0);
+    snprintf(rec, sizeof rec, "%s/c.h5", tmpdir);
+    snprintf(png, sizeof png, "%s/thumb-c.png", tmpdir);
+    CHECK_EQ_INT(sb_study_thumbnail(rec, png, err, sizeof err), 0);
+    struct stat s0, s1;
+    CHECK(stat(png, &s0) == 0);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "%s digest --drop-state %s", sb_test_bin(), rec), 0);
+    CHECK_EQ_INT(sb_record_keeps_state(rec, err, sizeof err), 0);
+    sleep(1);
+    CHECK_EQ_INT(sb_study_thumbnail(rec, png, err, sizeof err), 0);   /* kept, not drawn again */
+    CHECK(stat(png, &s1) == 0 && s1.st_mtime == s0.st_mtime);
+    /* a picture of another record is not taken for it */
+    char other[512];
+    snprintf(other, sizeof other, "%s/thumb-other.png", tmpdir);
+    CHECK_EQ_INT(make_record("d.h5", ""), 0);
+    char rec_d[512];
+    snprintf(rec_d, sizeof rec_d, "%s/d.h5", tmpdir);
+    CHECK_EQ_INT(sb_study_thumbnail(rec_d, other, err, sizeof err), 0);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cp %s %s", other, png), 0);
+    CHECK(sb_study_thumbnail(rec, png, err, sizeof err) != 0);
+    CHECK(strstr(err, "digest") != NULL);
+}
+
+SB_TEST(checkpoints_non_records_and_bad_options_are_refused)
+{
+    char err[2048];
+    CHECK_EQ_INT(make_record("p.h5", "--stop-after-steps 1"), 4);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s digest p.h5.partial", tmpdir, sb_test_bin()), 2);
+    CHECK(strstr(err, "checkpoint") != NULL);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cd %s && echo hello > not.h5", tmpdir), 0);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s digest not.h5", tmpdir, sb_test_bin()), 2);
+    CHECK(strstr(err, "not.h5") != NULL);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s digest missing.h5", tmpdir, sb_test_bin()), 2);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "%s digest --keep", sb_test_bin()), 2);
+    CHECK(strstr(err, "--keep") != NULL);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "%s digest", sb_test_bin()), 2);
+    /* the checkpoint and the non-record are untouched */
+    CHECK(size_of(tmpdir, "not.h5") == 6);
+}
+
+int main(int argc, char **argv)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_test_digest_%d", (int)getpid());
+    mkdir(tmpdir, 0755);
+    static const sb_test_case cases[] = {
+        SB_CASE(a_digest_reports_as_the_same_run), SB_CASE(a_study_picture_of_a_digest_without_state_stands),
+        SB_CASE(checkpoints_non_records_and_bad_options_are_refused), SB_END,
+    };
+    int rc = sb_test_main(argc, argv, cases);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    if (system(cmd)) {}
+    return rc;
+}
