@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_sh.h"
 #include "run_json.h"
 #include "sb_bezier_ray.h"
 #include "sb_context.h"
@@ -288,11 +289,22 @@ SB_TEST(cloth_on_a_mesh_box)
     json_decref(o);
 }
 
+/* bhem's response handles obstacles only: a scene asking for self-contact
+ * under the impulse model is refused before any work, with a sentence */
+SB_TEST(self_contact_under_the_impulse_model_is_refused)
+{
+    static char err[2048];
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s run --scene tests/scenes/contact/fold_ground.json --method bhem "
+                       "--solver lsnewton --out none --quiet", sb_test_root(), sb_test_bin()), 2);
+    CHECK(strstr(err, "self-contact") && strstr(err, "bhem"));
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = { SB_CASE(no_needle_through_the_cloth), SB_CASE(without_the_response_the_check_fails),
                                           SB_CASE(run_loop_reports_the_stats),
                                           SB_CASE(cloth_points_against_a_sphere),
-                                          SB_CASE(cloth_on_a_mesh_box), SB_END };
+                                          SB_CASE(cloth_on_a_mesh_box),
+                                          SB_CASE(self_contact_under_the_impulse_model_is_refused), SB_END };
     return sb_test_main(argc, argv, cases);
 }

@@ -29,7 +29,8 @@ enum {
     SB_METHOD_HIERARCHY = 1u << 0,    /* provides prolong / restrict_adj / project */
     SB_METHOD_POTENTIAL = 1u << 1,    /* energy is a true potential (all solvers apply) */
     SB_METHOD_TEST_FIXTURE = 1u << 2, /* test fixture, not a real discretization */
-    SB_METHOD_RES_ST = 1u << 3        /* honours sb_method_config.res_t (--res NxM) */
+    SB_METHOD_RES_ST = 1u << 3,       /* honours sb_method_config.res_t (--res NxM) */
+    SB_METHOD_IMPULSE_SELF = 1u << 4  /* impulse_response also resolves self-collision (contact.self) */
 };
 
 typedef struct sb_method_config {

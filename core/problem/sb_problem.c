@@ -88,6 +88,10 @@ static int contact_create(sb_problem *p)
         if (!p->dynamic)
             return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for contact.model \"impulse\", which acts on "
                             "the velocities of a dynamic scene; a static scene has none (use the barrier)", sc->name);
+        if (sc->contact.self && !(p->mt->flags & SB_METHOD_IMPULSE_SELF))
+            return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for self-contact (contact.self) with "
+                            "contact.model \"impulse\", but method %s's impulse response handles obstacles only "
+                            "(use the barrier model for its self-contact)", sc->name, p->mt->name);
         return SB_OK;
     }
     if (!p->mt->contact_points)

@@ -290,7 +290,7 @@ const sb_method_type sb_method_adaptive_sqrt3 = {
                    "masses) on a sqrt3-adaptive mesh; lagged rotations: linearized solver only",
     .state_size = sizeof(a3_state),
     .params = a3_params,
-    .flags = SB_METHOD_RES_ST,
+    .flags = SB_METHOD_RES_ST | SB_METHOD_IMPULSE_SELF,
     .create = a3_create,
     .destroy = a3_destroy,
     .n_levels = a3_n_levels,
