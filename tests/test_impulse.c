@@ -13,6 +13,7 @@
 #include "sb_bridson.h"
 #include "sb_common.h"
 #include "sb_obstacle.h"
+#include "sb_self_geom.h"
 #include "sb_test.h"
 
 /* ---- edge–edge CCD ------------------------------------------------------- */
@@ -20,7 +21,7 @@
 static double ee(const double a0[3], const double a1[3], const double b0[3], const double b1[3], const double c0[3],
                  const double c1[3], const double d0[3], const double d1[3])
 {
-    return sb_bridson_ccd_edge_edge(a0, a1, b0, b1, c0, c1, d0, d1);
+    return sb_ccd_edge_edge(a0, a1, b0, b1, c0, c1, d0, d1);
 }
 
 SB_TEST(ccd_edge_edge_cases)

@@ -42,6 +42,7 @@
  * unresolved_steps. */
 #include "sb_bridson.h"
 #include "sb_bridson_hash.h"
+#include "sb_self_geom.h"
 #include "sb_obstacle.h"
 #include "sb_common.h"
 
@@ -403,7 +404,7 @@ static int ccd_ee(sys *S, int e1, int e2)
     double P[4][2][3];
     for (int j = 0; j < 4; j++) { at_time(S, idx[j], 0, P[j][0]); at_time(S, idx[j], 1, P[j][1]); }
     S->st->ccd_tests++;
-    const double tc = sb_bridson_ccd_edge_edge(P[0][0], P[0][1], P[1][0], P[1][1], P[2][0], P[2][1], P[3][0], P[3][1]);
+    const double tc = sb_ccd_edge_edge(P[0][0], P[0][1], P[1][0], P[1][1], P[2][0], P[2][1], P[3][0], P[3][1]);
     if (!(tc <= 1)) return 0;
     double x[4][3], s, t, n[3], u[3], q[3];
     for (int j = 0; j < 4; j++) at_time(S, idx[j], tc, x[j]);

@@ -57,16 +57,8 @@ double sb_closest_point_triangle(const double p[3], const double a[3], const dou
  * distance. */
 double sb_closest_segments(const double p1[3], const double q1[3], const double p2[3], const double q2[3],
                            double *s, double *t);
-/* Continuous collision of two edges (a b) and (c d), all four points
- * moving linearly over [0, 1]: the first time at which the closed segments
- * touch, or 2.  The coplanarity cubic ((b - a) x (d - c)) . (c - a) = 0
- * (Bridson §6.1; Provot 1997), each root in [0, 1] checked by the segments'
- * distance there (relative tolerance 1e-9 of the configuration's size);
- * when the four points stay coplanar throughout (cubic identically zero),
- * the first time an end point of one edge crosses the other edge in the
- * plane, or 0 when they already intersect at t = 0. */
-double sb_bridson_ccd_edge_edge(const double a0[3], const double a1[3], const double b0[3], const double b1[3],
-                        const double c0[3], const double c1[3], const double d0[3], const double d1[3]);
+/* Continuous collision of two edges: sb_ccd_edge_edge (sb_self_geom.h,
+ * sb_ccd_ee.c), shared with the barrier's self-contact filter. */
 
 /* ---- rigid impact zones (sb_bridson_zone.c) ----------------------------- */
 
