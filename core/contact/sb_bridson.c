@@ -41,7 +41,7 @@
  * motion).  At most 100 passes; a collision left then is counted in
  * unresolved_steps. */
 #include "sb_bridson.h"
-#include "sb_bridson_hash.h"
+#include "sb_hash.h"
 #include "sb_self_geom.h"
 #include "sb_obstacle.h"
 #include "sb_common.h"
@@ -58,7 +58,7 @@ typedef struct sys {
     int *vobj, *tri, *tobj, *edge, *eobj;
     double *tbox, *ebox;              /* swept boxes, 6 per primitive */
     int *tstamp, *estamp, mark;
-    sb_shash *th, *eh;                /* per object */
+    sb_hash *th, *eh;                /* per object */
     sb_idlist cand;
     int *ids;
     double h, dt, cell, delta;
@@ -229,8 +229,8 @@ static int sys_build(sys *S, const sb_bridson_mesh *m, const sb_scene *sc, doubl
     S->ebox = malloc((size_t)(6 * ne + 1) * sizeof(double));
     S->tstamp = calloc((size_t)nt + 1, sizeof(int));
     S->estamp = calloc((size_t)ne + 1, sizeof(int));
-    S->th = calloc((size_t)S->nobj, sizeof(sb_shash));
-    S->eh = calloc((size_t)S->nobj, sizeof(sb_shash));
+    S->th = calloc((size_t)S->nobj, sizeof(sb_hash));
+    S->eh = calloc((size_t)S->nobj, sizeof(sb_hash));
     S->ids = malloc((size_t)(nt + ne + 1) * sizeof(int));
     if (!S->eobj || !S->tbox || !S->ebox || !S->tstamp || !S->estamp || !S->th || !S->eh || !S->ids) return SB_ERR_NOMEM;
     for (int e = 0; e < ne; e++) S->eobj[e] = S->vobj[S->edge[2 * e]];
@@ -253,8 +253,8 @@ static void sys_free(sys *S)
 {
     free(S->x0); free(S->v); free(S->w); free(S->vobj); free(S->tri); free(S->tobj); free(S->edge); free(S->eobj);
     free(S->tbox); free(S->ebox); free(S->tstamp); free(S->estamp); free(S->ids); free(S->parent);
-    for (int b = 0; S->th && b < S->nobj; b++) sb_shash_free(&S->th[b]);
-    for (int b = 0; S->eh && b < S->nobj; b++) sb_shash_free(&S->eh[b]);
+    for (int b = 0; S->th && b < S->nobj; b++) sb_hash_free(&S->th[b]);
+    for (int b = 0; S->eh && b < S->nobj; b++) sb_hash_free(&S->eh[b]);
     free(S->th); free(S->eh); free(S->cand.v);
 }
 
@@ -279,11 +279,11 @@ static int hash_build(sys *S)
         int k = 0;
         for (int t = 0; t < S->nt; t++)
             if (S->tobj[t] == b) S->ids[k++] = t;
-        if (sb_shash_build(&S->th[b], k, S->ids, S->tbox, S->cell)) return SB_ERR_NOMEM;
+        if (sb_hash_build(&S->th[b], k, S->ids, S->tbox, S->cell)) return SB_ERR_NOMEM;
         k = 0;
         for (int e = 0; e < S->ne; e++)
             if (S->eobj[e] == b) S->ids[k++] = e;
-        if (sb_shash_build(&S->eh[b], k, S->ids, S->ebox, S->cell)) return SB_ERR_NOMEM;
+        if (sb_hash_build(&S->eh[b], k, S->ids, S->ebox, S->cell)) return SB_ERR_NOMEM;
     }
     return SB_OK;
 }
@@ -514,7 +514,7 @@ static int sweep(sys *S, int mode)
         swept_box(S, 1, &p, box);
         for (int b = 0; b < S->nobj; b++) {
             if (S->vobj[p] != 0 && b != 0) continue;
-            if (sb_shash_query(&S->th[b], box, S->tstamp, ++S->mark, &S->cand)) return SB_ERR_NOMEM;
+            if (sb_hash_query(&S->th[b], box, S->tstamp, ++S->mark, &S->cand)) return SB_ERR_NOMEM;
             for (int k = 0; k < S->cand.n; k++) {
                 const int t = S->cand.v[k];
                 if (!tri_ok(S, p, t)) continue;
@@ -527,7 +527,7 @@ static int sweep(sys *S, int mode)
     for (int e = 0; e < S->ne; e++) {
         if (S->eobj[e] != 0) continue;
         for (int b = 0; b < S->nobj; b++) {
-            if (sb_shash_query(&S->eh[b], S->ebox + 6 * e, S->estamp, ++S->mark, &S->cand)) return SB_ERR_NOMEM;
+            if (sb_hash_query(&S->eh[b], S->ebox + 6 * e, S->estamp, ++S->mark, &S->cand)) return SB_ERR_NOMEM;
             for (int k = 0; k < S->cand.n; k++) {
                 const int f = S->cand.v[k];
                 if (!edge_ok(S, e, f)) continue;

@@ -1,90 +1,161 @@
-/* sb_hash.c — uniform-grid spatial hash (Teschner et al. 2003; sb_hash.h). */
+/* sb_hash.c — the broad phase of the impulse pipeline (one spatial hash per
+ * object) and of barrier self-contact (Teschner, Heidelberger, Müller, Pomeranets & Gross 2003,
+ * "Optimized spatial hashing for collision detection of deformable
+ * objects"): primitives (triangles or edges) are entered into every grid
+ * cell their bounding box covers, cells hashed by
+ *   hash(i, j, k) = (i p1 xor j p2 xor k p3) mod n,  p1 = 73856093,
+ *   p2 = 19349663, p3 = 83492791                       (Teschner §4.1)
+ * with the cell size near the average edge length (Teschner §5: the best
+ * size) and a table of about twice as many entries as there are cell
+ * entries.  A box query visits the cells it covers and returns the
+ * primitives whose own boxes overlap it (bucket collisions are removed by
+ * that test, duplicates by a stamp per primitive).  Primitives that cover
+ * more than 64 cells (a large obstacle triangle) are kept in a list that
+ * every query scans. */
 #include "sb_hash.h"
-#include "sb_common.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Teschner et al. 2003 §4.1: hash(i, j, k) = (i p1 xor j p2 xor k p3) mod n */
-static int bucket(const sb_hash *h, long i, long j, long k)
+enum { BIG_CELLS = 64, QUERY_CELLS = 4096 };
+
+static unsigned cell_hash(long i, long j, long k, int size)
 {
-    const unsigned long v = ((unsigned long)i * 73856093UL) ^ ((unsigned long)j * 19349663UL) ^
-                            ((unsigned long)k * 83492791UL);
-    return (int)(v % (unsigned long)h->size);
+    unsigned long h = ((unsigned long)i * 73856093ul) ^ ((unsigned long)j * 19349663ul) ^ ((unsigned long)k * 83492791ul);
+    return (unsigned)(h % (unsigned long)size);
 }
 
-static void cell_range(const sb_hash *h, const double lo[3], const double hi[3], long c0[3], long c1[3])
+static void cell_range(const double *box, double cell, long lo[3], long hi[3], double *count)
 {
-    for (int a = 0; a < 3; a++) {
-        c0[a] = (long)floor(lo[a] / h->cell);
-        c1[a] = (long)floor(hi[a] / h->cell);
-        if (c1[a] - c0[a] > 64) c1[a] = c0[a] + 64;   /* a huge box: cut (never for sample primitives) */
+    *count = 1;
+    for (int c = 0; c < 3; c++) {
+        lo[c] = (long)floor(box[c] / cell);
+        hi[c] = (long)floor(box[3 + c] / cell);
+        *count *= (double)(hi[c] - lo[c] + 1);
     }
 }
 
-int sb_hash_build(sb_hash *h, int n, const double *lo, const double *hi, double cell)
+void sb_hash_free(sb_hash *H)
 {
-    memset(h, 0, sizeof *h);
-    h->cell = cell;
-    h->n = n;
-    long total = 0;
-    for (int i = 0; i < n; i++) {
-        long c0[3], c1[3];
-        cell_range(h, lo + 3 * i, hi + 3 * i, c0, c1);
-        total += (c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1);
+    free(H->start); free(H->item); free(H->big); free(H->ids);
+    memset(H, 0, sizeof *H);
+}
+
+int sb_hash_build(sb_hash *H, int n, const int *ids, const double *boxes, double cell)
+{
+    sb_hash_free(H);
+    H->cell = cell;
+    H->n = n;
+    H->boxes = boxes;
+    H->ids = malloc((size_t)(n ? n : 1) * sizeof *H->ids);
+    if (!H->ids) return -1;
+    if (n) memcpy(H->ids, ids, (size_t)n * sizeof *ids);
+    long entries = 0;
+    for (int k = 0; k < n; k++) {
+        long lo[3], hi[3];
+        double cnt;
+        cell_range(boxes + 6 * ids[k], cell, lo, hi, &cnt);
+        if (cnt > BIG_CELLS) H->nbig++;
+        else entries += (long)cnt;
     }
-    h->size = (int)(2 * total + 1);
-    h->start = calloc((size_t)h->size + 1, sizeof *h->start);
-    h->id = malloc((size_t)(total ? total : 1) * sizeof *h->id);
-    h->mark = malloc((size_t)(n ? n : 1) * sizeof *h->mark);
-    if (!h->start || !h->id || !h->mark) { sb_hash_free(h); return SB_ERR_NOMEM; }
-    for (int i = 0; i < n; i++) h->mark[i] = -1;
+    H->size = (int)(2 * entries + 1);
+    H->start = calloc((size_t)H->size + 1, sizeof *H->start);
+    H->item = malloc((size_t)(entries ? entries : 1) * sizeof *H->item);
+    H->big = malloc((size_t)(H->nbig ? H->nbig : 1) * sizeof *H->big);
+    if (!H->start || !H->item || !H->big) return -1;
+    /* counting sort of the (cell hash, primitive) entries */
+    H->nbig = 0;
     for (int pass = 0; pass < 2; pass++) {
-        for (int i = 0; i < n; i++) {
-            long c0[3], c1[3];
-            cell_range(h, lo + 3 * i, hi + 3 * i, c0, c1);
-            for (long a = c0[0]; a <= c1[0]; a++)
-                for (long b = c0[1]; b <= c1[1]; b++)
-                    for (long c = c0[2]; c <= c1[2]; c++) {
-                        const int k = bucket(h, a, b, c);
-                        if (pass == 0) h->start[k + 1]++;
-                        else h->id[h->start[k]++] = i;
+        for (int k = 0; k < n; k++) {
+            long lo[3], hi[3];
+            double cnt;
+            cell_range(boxes + 6 * ids[k], cell, lo, hi, &cnt);
+            if (cnt > BIG_CELLS) {
+                if (pass == 0) H->big[H->nbig++] = ids[k];
+                continue;
+            }
+            for (long i = lo[0]; i <= hi[0]; i++)
+                for (long j = lo[1]; j <= hi[1]; j++)
+                    for (long l = lo[2]; l <= hi[2]; l++) {
+                        unsigned b = cell_hash(i, j, l, H->size);
+                        if (pass == 0) H->start[b + 1]++;
+                        else H->item[H->start[b]++] = ids[k];
                     }
         }
         if (pass == 0)
-            for (int k = 0; k < h->size; k++) h->start[k + 1] += h->start[k];
+            for (int b = 0; b < H->size; b++) H->start[b + 1] += H->start[b];
     }
-    /* the second pass advanced start[k] to the end of bucket k: shift back */
-    for (int k = h->size; k > 0; k--) h->start[k] = h->start[k - 1];
-    h->start[0] = 0;
-    return SB_OK;
+    for (int b = H->size; b > 0; b--) H->start[b] = H->start[b - 1];   /* undo the fill's shift */
+    H->start[0] = 0;
+    return 0;
 }
 
-void sb_hash_free(sb_hash *h)
+static int overlap(const double *a, const double *b)
 {
-    free(h->start);
-    free(h->id);
-    free(h->mark);
-    memset(h, 0, sizeof *h);
+    for (int c = 0; c < 3; c++)
+        if (a[c] > b[3 + c] || b[c] > a[3 + c]) return 0;
+    return 1;
 }
 
-int sb_hash_query(sb_hash *h, const double lo[3], const double hi[3], int (*fn)(void *data, int i), void *data)
+static int push(sb_idlist *L, int id)
 {
-    long c0[3], c1[3];
-    cell_range(h, lo, hi, c0, c1);
-    const int stamp = h->stamp++;
-    for (long a = c0[0]; a <= c1[0]; a++)
-        for (long b = c0[1]; b <= c1[1]; b++)
-            for (long c = c0[2]; c <= c1[2]; c++) {
-                const int k = bucket(h, a, b, c);
-                for (int q = h->start[k]; q < h->start[k + 1]; q++) {
-                    const int i = h->id[q];
-                    if (h->mark[i] == stamp) continue;
-                    h->mark[i] = stamp;
-                    int r = fn(data, i);
-                    if (r) return r;
+    if (L->n == L->cap) {
+        int cap = L->cap ? 2 * L->cap : 64;
+        int *v = realloc(L->v, (size_t)cap * sizeof *v);
+        if (!v) return -1;
+        L->v = v;
+        L->cap = cap;
+    }
+    L->v[L->n++] = id;
+    return 0;
+}
+
+int sb_hash_query(const sb_hash *H, const double *box, int *stamp, int mark, sb_idlist *out)
+{
+    out->n = 0;
+    long lo[3], hi[3];
+    double cnt;
+    cell_range(box, H->cell, lo, hi, &cnt);
+    for (int k = 0; k < H->nbig; k++) {
+        int id = H->big[k];
+        if (stamp[id] != mark && overlap(box, H->boxes + 6 * id)) {
+            stamp[id] = mark;
+            if (push(out, id)) return -1;
+        }
+    }
+    if (cnt > QUERY_CELLS) {   /* a huge query box: every primitive */
+        for (int k = 0; k < H->n; k++) {
+            int id = H->ids[k];
+            if (stamp[id] != mark && overlap(box, H->boxes + 6 * id)) {
+                stamp[id] = mark;
+                if (push(out, id)) return -1;
+            }
+        }
+        return 0;
+    }
+    for (long i = lo[0]; i <= hi[0]; i++)
+        for (long j = lo[1]; j <= hi[1]; j++)
+            for (long l = lo[2]; l <= hi[2]; l++) {
+                unsigned b = cell_hash(i, j, l, H->size);
+                for (int e = H->start[b]; e < H->start[b + 1]; e++) {
+                    int id = H->item[e];
+                    if (stamp[id] != mark && overlap(box, H->boxes + 6 * id)) {
+                        stamp[id] = mark;
+                        if (push(out, id)) return -1;
+                    }
                 }
             }
+    return 0;
+}
+
+int sb_hash_visit(const sb_hash *H, const double *box, int *stamp, int mark, sb_idlist *scratch,
+                  int (*fn)(void *data, int id), void *data)
+{
+    if (sb_hash_query(H, box, stamp, mark, scratch)) return -1;
+    for (int k = 0; k < scratch->n; k++) {
+        const int r = fn(data, scratch->v[k]);
+        if (r) return r;
+    }
     return 0;
 }

@@ -1,26 +1,33 @@
-/* sb_hash.h — uniform-grid spatial hash of axis-aligned boxes (Teschner,
- * Heidelberger, Müller, Pomeranets & Gross 2003, "Optimized Spatial Hashing
- * for Collision Detection of Deformable Objects", §3-4: cells of a uniform
- * grid mapped to a hash table by (i p1 xor j p2 xor k p3) mod size).  Boxes
- * of one set are entered into every cell they overlap; a query box visits
- * the boxes of the cells it overlaps, each once.  No global state. */
+/* sb_hash.h — spatial hashing of primitives' bounding boxes
+ * (Teschner et al. 2003), the broad phase of sb_bridson.c. */
 #ifndef SB_HASH_H
 #define SB_HASH_H
 
 typedef struct sb_hash {
-    double cell;          /* cell edge length */
-    int size;             /* buckets */
-    int *start;           /* size + 1: entries of bucket b are start[b] .. start[b+1]-1 */
-    int *id;              /* entries: box index */
-    int *mark;            /* per box: the last query that visited it */
-    int n, stamp;
+    double cell;              /* grid cell size */
+    int size;                 /* hash table entries */
+    int *start;               /* size + 1 offsets into item */
+    int *item;                /* primitive ids by bucket */
+    int nbig, *big;           /* primitives covering too many cells: always candidates */
+    int n, *ids;              /* the primitives entered */
+    const double *boxes;      /* 6 per primitive id (lo xyz, hi xyz); not owned */
 } sb_hash;
 
-/* Enter n boxes (lo, hi: 3n each) with the given cell size; SB_OK or SB_ERR_NOMEM. */
-int  sb_hash_build(sb_hash *h, int n, const double *lo, const double *hi, double cell);
-void sb_hash_free(sb_hash *h);
-/* Call fn(data, i) once for every box i whose cells overlap the query box;
- * returns the first nonzero value of fn (and stops), else 0. */
-int  sb_hash_query(sb_hash *h, const double lo[3], const double hi[3], int (*fn)(void *data, int i), void *data);
+typedef struct sb_idlist { int n, cap; int *v; } sb_idlist;
+
+/* Enter primitives ids[0..n) with boxes (6 per id, indexed by id). 0 or -1
+ * (out of memory). */
+int  sb_hash_build(sb_hash *H, int n, const int *ids, const double *boxes, double cell);
+void sb_hash_free(sb_hash *H);
+/* The primitives whose boxes overlap box into out (reset first); stamp[id]
+ * == mark marks those already returned (the caller changes mark per query).
+ * 0 or -1 (out of memory). */
+int  sb_hash_query(const sb_hash *H, const double *box, int *stamp, int mark, sb_idlist *out);
+
+/* sb_hash_query, then fn(data, id) for each primitive found (scratch holds
+ * the list); the first nonzero value of fn is returned, -1 when out of
+ * memory, else 0. */
+int  sb_hash_visit(const sb_hash *H, const double *box, int *stamp, int mark, sb_idlist *scratch,
+                   int (*fn)(void *data, int id), void *data);
 
 #endif

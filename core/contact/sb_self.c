@@ -116,22 +116,27 @@ static int search(sb_self *s, const double *X, double radius, int keep, double *
     mean = s->ne ? mean / s->ne : radius;
     const double cell = fmax(mean, radius);
     const int nb = s->nt > s->ne ? s->nt : s->ne;
-    double *lo = malloc((size_t)3 * nb * sizeof *lo), *hi = malloc((size_t)3 * nb * sizeof *hi);
-    if (!lo || !hi) { free(lo); free(hi); return SB_ERR_NOMEM; }
+    double *box = malloc((size_t)6 * (nb ? nb : 1) * sizeof *box);
+    int *ids = malloc((size_t)(nb ? nb : 1) * sizeof *ids), *stamp = calloc((size_t)(nb ? nb : 1), sizeof *stamp);
+    sb_idlist L = { 0, 0, NULL };
     cand_ctx C = { s, X, 0, INFINITY, keep };
     sb_hash h;
-    int rc = SB_OK;
+    memset(&h, 0, sizeof h);
+    int rc = box && ids && stamp ? SB_OK : SB_ERR_NOMEM, mark = 0;
+    if (rc) goto out;
+    for (int i = 0; i < nb; i++) ids[i] = i;
     /* points against triangles (boxes grown by the radius) */
     for (int t = 0; t < s->nt; t++)
         for (int a = 0; a < 3; a++) {
             const int *v = s->P->tri + 3 * t;
-            lo[3 * t + a] = fmin(X[3 * v[0] + a], fmin(X[3 * v[1] + a], X[3 * v[2] + a])) - radius;
-            hi[3 * t + a] = fmax(X[3 * v[0] + a], fmax(X[3 * v[1] + a], X[3 * v[2] + a])) + radius;
+            box[6 * t + a] = fmin(X[3 * v[0] + a], fmin(X[3 * v[1] + a], X[3 * v[2] + a])) - radius;
+            box[6 * t + 3 + a] = fmax(X[3 * v[0] + a], fmax(X[3 * v[1] + a], X[3 * v[2] + a])) + radius;
         }
-    if ((rc = sb_hash_build(&h, s->nt, lo, hi, cell))) goto out;
+    if (sb_hash_build(&h, s->nt, ids, box, cell)) rc = SB_ERR_NOMEM;
     for (int p = 0; p < s->np && !rc; p++) {
+        const double q[6] = { X[3 * p], X[3 * p + 1], X[3 * p + 2], X[3 * p], X[3 * p + 1], X[3 * p + 2] };
         C.q = p;
-        if (sb_hash_query(&h, X + 3 * p, X + 3 * p, cand_pt, &C)) rc = SB_ERR_NOMEM;
+        if (sb_hash_visit(&h, q, stamp, ++mark, &L, cand_pt, &C)) rc = SB_ERR_NOMEM;
     }
     sb_hash_free(&h);
     if (rc) goto out;
@@ -139,20 +144,22 @@ static int search(sb_self *s, const double *X, double radius, int keep, double *
     for (int e = 0; e < s->ne; e++)
         for (int a = 0; a < 3; a++) {
             const int *v = s->edge + 2 * e;
-            lo[3 * e + a] = fmin(X[3 * v[0] + a], X[3 * v[1] + a]) - radius;
-            hi[3 * e + a] = fmax(X[3 * v[0] + a], X[3 * v[1] + a]) + radius;
+            box[6 * e + a] = fmin(X[3 * v[0] + a], X[3 * v[1] + a]) - radius;
+            box[6 * e + 3 + a] = fmax(X[3 * v[0] + a], X[3 * v[1] + a]) + radius;
         }
-    if ((rc = sb_hash_build(&h, s->ne, lo, hi, cell))) goto out;
+    if (sb_hash_build(&h, s->ne, ids, box, cell)) rc = SB_ERR_NOMEM;
     for (int e = 0; e < s->ne && !rc; e++) {
-        double l[3], u[3];
-        for (int a = 0; a < 3; a++) { l[a] = lo[3 * e + a] + radius; u[a] = hi[3 * e + a] - radius; }
+        double q[6];
+        for (int a = 0; a < 3; a++) { q[a] = box[6 * e + a] + radius; q[3 + a] = box[6 * e + 3 + a] - radius; }
         C.q = e;
-        if (sb_hash_query(&h, l, u, cand_ee, &C)) rc = SB_ERR_NOMEM;
+        if (sb_hash_visit(&h, q, stamp, ++mark, &L, cand_ee, &C)) rc = SB_ERR_NOMEM;
     }
     sb_hash_free(&h);
 out:
-    free(lo);
-    free(hi);
+    free(box);
+    free(ids);
+    free(stamp);
+    free(L.v);
     if (dmin) *dmin = C.dmin;
     return rc;
 }
@@ -498,35 +505,42 @@ int sb_self_measure(sb_self *s, const double *x, sb_self_report *r)
         r->active += d < s->dhat;
     }
     /* every edge against every triangle, hashed (no candidate set) */
-    double *lo = malloc((size_t)3 * s->nt * sizeof *lo), *hi = malloc((size_t)3 * s->nt * sizeof *hi);
-    if (!lo || !hi) { free(lo); free(hi); return SB_ERR_NOMEM; }
+    double *box = malloc((size_t)6 * (s->nt ? s->nt : 1) * sizeof *box);
+    int *ids = malloc((size_t)(s->nt ? s->nt : 1) * sizeof *ids), *stamp = calloc((size_t)(s->nt ? s->nt : 1), sizeof *stamp);
+    sb_idlist L = { 0, 0, NULL };
+    int rc = box && ids && stamp ? SB_OK : SB_ERR_NOMEM;
     double mean = 0;
     for (int e = 0; e < s->ne; e++) mean += sqrt(s->rest2[e]);
     mean /= s->ne;
-    for (int t = 0; t < s->nt; t++)
+    for (int t = 0; t < s->nt && !rc; t++) {
+        ids[t] = t;
         for (int a = 0; a < 3; a++) {
             const int *v = s->P->tri + 3 * t;
-            lo[3 * t + a] = fmin(s->xp[3 * v[0] + a], fmin(s->xp[3 * v[1] + a], s->xp[3 * v[2] + a]));
-            hi[3 * t + a] = fmax(s->xp[3 * v[0] + a], fmax(s->xp[3 * v[1] + a], s->xp[3 * v[2] + a]));
+            box[6 * t + a] = fmin(s->xp[3 * v[0] + a], fmin(s->xp[3 * v[1] + a], s->xp[3 * v[2] + a]));
+            box[6 * t + 3 + a] = fmax(s->xp[3 * v[0] + a], fmax(s->xp[3 * v[1] + a], s->xp[3 * v[2] + a]));
         }
+    }
     sb_hash h;
-    int rc = sb_hash_build(&h, s->nt, lo, hi, mean > 0 ? mean : 1.0);
+    memset(&h, 0, sizeof h);
+    if (!rc && sb_hash_build(&h, s->nt, ids, box, mean > 0 ? mean : 1.0)) rc = SB_ERR_NOMEM;
     if (!rc) {
         cross_ctx C = { s, 0, 0 };
-        for (int e = 0; e < s->ne; e++) {
+        for (int e = 0; e < s->ne && !rc; e++) {
             const int *a = s->edge + 2 * e;
-            double l[3], u[3];
+            double q[6];
             for (int k = 0; k < 3; k++) {
-                l[k] = fmin(s->xp[3 * a[0] + k], s->xp[3 * a[1] + k]);
-                u[k] = fmax(s->xp[3 * a[0] + k], s->xp[3 * a[1] + k]);
+                q[k] = fmin(s->xp[3 * a[0] + k], s->xp[3 * a[1] + k]);
+                q[3 + k] = fmax(s->xp[3 * a[0] + k], s->xp[3 * a[1] + k]);
             }
             C.e = e;
-            sb_hash_query(&h, l, u, cross_tri, &C);
+            if (sb_hash_visit(&h, q, stamp, e + 1, &L, cross_tri, &C) < 0) rc = SB_ERR_NOMEM;
         }
         r->crossings = C.count;
-        sb_hash_free(&h);
     }
-    free(lo);
-    free(hi);
+    sb_hash_free(&h);
+    free(box);
+    free(ids);
+    free(stamp);
+    free(L.v);
     return rc;
 }
