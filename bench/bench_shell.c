@@ -194,14 +194,33 @@ static double cpu_mhz(char *model, size_t len)
 
 static volatile double sink;
 
-/* element energies (and derivatives) of one kernel for about `t` CPU seconds in
- * total, in rounds alternating with the other kernel: returns CPU seconds
- * per element of each */
-typedef struct pair_out { double ref, fast; } pair_out;
+/* element energies (and derivatives) of the reference kernel and the fast
+ * kernel at each batch of bws (one per vector width), for about `t` CPU
+ * seconds in total, in rounds alternating between them: CPU seconds per
+ * element of each (o[0] the reference, o[1 + i] the fast kernel on bws[i]) */
+#define NKER 3
+typedef struct pair_out { double ref, fast, wide; } pair_out;
 
-static pair_out time_pair(const sb_material *m, belem *E, int mode, double t, sb_shell_work *w, sb_shell_batch *bw)
+static double run_one(int which, const sb_material *m, belem *E, double *gp, double *hp, sb_hess_kind kind,
+                      sb_shell_work *w, sb_shell_batch *const *bws, long reps)
 {
-    const int n = 3 * E->k;
+    double s = 0;
+    for (long i = 0; i < reps; i++) {
+        if (which == 0) {
+            double e = 0;
+            for (int p = 0; p < E->nq; p++) e += sb_shell_energy(m, &E->r[p], &E->b[p], E->q, gp, hp, kind, w);
+            s += e;
+        } else {
+            s += sb_shell_element(m, E->nq, E->r, E->b, E->q, gp, hp, kind, bws[which - 1]);
+        }
+    }
+    return s;
+}
+
+static pair_out time_pair(const sb_material *m, belem *E, int mode, double t, sb_shell_work *w,
+                          sb_shell_batch *const *bws, int nb)
+{
+    const int n = 3 * E->k, nk = 1 + nb;
     static double g[3 * SB_SHELL_MAX_BASIS], H[9 * SB_SHELL_MAX_BASIS * SB_SHELL_MAX_BASIS];
     memset(g, 0, sizeof(double) * n);
     memset(H, 0, sizeof(double) * n * n);
@@ -209,43 +228,30 @@ static pair_out time_pair(const sb_material *m, belem *E, int mode, double t, sb
     double *gp = mode >= MODE_EG ? g : NULL, *hp = mode >= MODE_EGH ? H : NULL;
     /* batches long enough (~0.2 ms) that reading the thread clock (a system
      * call) costs nothing measurable */
-    long br = 1, bf = 1;
-    for (;;) {
-        const double t0 = cpu_now();
-        for (long i = 0; i < br; i++)
-            for (int p = 0; p < E->nq; p++) sink += sb_shell_energy(m, &E->r[p], &E->b[p], E->q, gp, hp, kind, w);
-        if (cpu_now() - t0 > 2e-4 || br > (1L << 30)) break;
-        br *= 2;
-    }
-    for (;;) {
-        const double t0 = cpu_now();
-        for (long i = 0; i < bf; i++) sink += sb_shell_element(m, E->nq, E->r, E->b, E->q, gp, hp, kind, bw);
-        if (cpu_now() - t0 > 2e-4 || bf > (1L << 30)) break;
-        bf *= 2;
+    long reps[NKER];
+    for (int j = 0; j < nk; j++) {
+        reps[j] = 1;
+        for (;;) {
+            const double t0 = cpu_now();
+            sink += run_one(j, m, E, gp, hp, kind, w, bws, reps[j]);
+            if (cpu_now() - t0 > 2e-4 || reps[j] > (1L << 30)) break;
+            reps[j] *= 2;
+        }
     }
     const int rounds = 8;
-    double tr = 0, tf = 0;
-    long nr = 0, nf = 0;
-    for (int round = 0; round < rounds; round++) {
-        double t0 = cpu_now(), t1;
-        do {
-            for (long i = 0; i < br; i++) {
-                double e = 0;
-                for (int p = 0; p < E->nq; p++) e += sb_shell_energy(m, &E->r[p], &E->b[p], E->q, gp, hp, kind, w);
-                sink += e;
-            }
-            nr += br;
-        } while ((t1 = cpu_now()) - t0 < t / (2 * rounds));
-        tr += t1 - t0;
-        t0 = cpu_now();
-        do {
-            for (long i = 0; i < bf; i++) sink += sb_shell_element(m, E->nq, E->r, E->b, E->q, gp, hp, kind, bw);
-            nf += bf;
-        } while ((t1 = cpu_now()) - t0 < t / (2 * rounds));
-        tf += t1 - t0;
-    }
+    double tt[NKER] = { 0 };
+    long nn[NKER] = { 0 };
+    for (int round = 0; round < rounds; round++)
+        for (int j = 0; j < nk; j++) {
+            double t0 = cpu_now(), t1;
+            do {
+                sink += run_one(j, m, E, gp, hp, kind, w, bws, reps[j]);
+                nn[j] += reps[j];
+            } while ((t1 = cpu_now()) - t0 < t / (nk * rounds));
+            tt[j] += t1 - t0;
+        }
     sink += g[0] + H[1];
-    pair_out o = { tr / nr, tf / nf };
+    pair_out o = { tt[0] / nn[0], tt[1] / nn[1], nb > 1 ? tt[2] / nn[2] : tt[1] / nn[1] };
     return o;
 }
 
@@ -290,10 +296,21 @@ int main(int argc, char **argv)
 
     belem *E = malloc(sizeof *E);
     sb_shell_work *w = sb_shell_work_new();
-    sb_shell_batch *bw = sb_shell_batch_new(SB_SHELL_MAX_BASIS, NQMAX);
-    if (!E || !w || !bw) return 1;
-    printf("| material | k | points | evaluation | reference points/s | fast points/s | fast / reference | "
-           "fast GFLOP/s |\n|---|--:|--:|---|--:|--:|--:|--:|\n");
+    /* bws[0]: the products at the build's base width (SSE2 in the default
+     * build); bws[1]: at the widest this CPU runs (the default of every
+     * run), when wider: the same bits (sb_elem_tile.c), another speed */
+    sb_shell_batch *bws[2] = { sb_shell_batch_new(SB_SHELL_MAX_BASIS, NQMAX), sb_shell_batch_new(SB_SHELL_MAX_BASIS, NQMAX) };
+    if (!E || !w || !bws[0] || !bws[1]) return 1;
+    sb_shell_batch_set_isa(bws[0], SB_ISA_BASE);
+    const sb_shell_isa best = sb_shell_isa_best();
+    const int nb = best == SB_ISA_BASE ? 1 : 2;
+    sb_shell_batch *bw = bws[nb - 1];
+    const char *bn = sb_shell_isa_name(SB_ISA_BASE), *wn = sb_shell_isa_name(best);
+    printf("fast kernel products: %s (this CPU's widest; the run default)%s%s%s\n\n", wn,
+           nb > 1 ? ", also timed at " : "", nb > 1 ? bn : "", nb > 1 ? " (the portable baseline)" : "");
+    printf("| material | k | points | evaluation | reference points/s | fast %s points/s | fast %s / reference |", bn, bn);
+    if (nb > 1) printf(" fast %s points/s | fast %s / reference | %s / %s |", wn, wn, wn, bn);
+    printf(" fast GFLOP/s |\n|---|--:|--:|---|--:|--:|--:|%s--:|\n", nb > 1 ? "--:|--:|--:|" : "");
     const int ks[3] = { 16, 16, 40 }, ngs[3] = { 3, 4, 3 };
     for (int ic = 0; ic < 3; ic++)
         for (int mat = 0; mat < 2; mat++) {
@@ -302,11 +319,12 @@ int main(int argc, char **argv)
             setup(E, ks[ic], ngs[ic], 0.004);
             for (int mode = 0; mode < MODE_COUNT; mode++) {
                 if (ic == 1 && mode != MODE_EGH) continue;   /* the bhem patch: the Hessian only */
-                const pair_out o = time_pair(&m, E, mode, tcase, w, bw);
-                const double rr = E->nq / o.ref, rf = E->nq / o.fast;
-                printf("| %s | %d | %d | %s | %.3e | %.3e | %.2f | %.2f |\n", mat ? "denim" : "stvk", E->k, E->nq,
-                       mode_name[mode], rr, rf, o.ref / o.fast,
-                       rf * fast_flops(mode, E->k, E->nq, m.n_thick, mat) * 1e-9);
+                const pair_out o = time_pair(&m, E, mode, tcase, w, bws, nb);
+                const double rr = E->nq / o.ref, rf = E->nq / o.fast, rw = E->nq / o.wide;
+                printf("| %s | %d | %d | %s | %.3e | %.3e | %.2f |", mat ? "denim" : "stvk", E->k, E->nq,
+                       mode_name[mode], rr, rf, o.ref / o.fast);
+                if (nb > 1) printf(" %.3e | %.2f | %.2f |", rw, o.ref / o.wide, o.fast / o.wide);
+                printf(" %.2f |\n", rw * fast_flops(mode, E->k, E->nq, m.n_thick, mat) * 1e-9);
                 fflush(stdout);
             }
         }
@@ -315,11 +333,11 @@ int main(int argc, char **argv)
         sb_material m;
         material(&m, 0);
         setup(E, 16, 3, 0.004);
-        const pair_out o = time_pair(&m, E, MODE_EGH, tcase, w, bw);
-        printf("\nreference kernel, stvk k = 16, + Hessian: %.2f GFLOP/s (%.0f flop/point counted); fast: %.2f GFLOP/s "
-               "(%.0f flop/point)\n",
-               E->nq / o.ref * kernel_flops(MODE_EGH, 16, 2, 0) * 1e-9, kernel_flops(MODE_EGH, 16, 2, 0),
-               E->nq / o.fast * fast_flops(MODE_EGH, 16, 9, 2, 0) * 1e-9, fast_flops(MODE_EGH, 16, 9, 2, 0));
+        const pair_out o = time_pair(&m, E, MODE_EGH, tcase, w, bws, nb);
+        printf("\nreference kernel, stvk k = 16, + Hessian: %.2f GFLOP/s (%.0f flop/point counted); fast (%s): %.2f "
+               "GFLOP/s (%.0f flop/point)\n",
+               E->nq / o.ref * kernel_flops(MODE_EGH, 16, 2, 0) * 1e-9, kernel_flops(MODE_EGH, 16, 2, 0), wn,
+               E->nq / o.wide * fast_flops(MODE_EGH, 16, 9, 2, 0) * 1e-9, fast_flops(MODE_EGH, 16, 9, 2, 0));
     }
 
     /* the section law alone (per quadrature point, with tangent) */
@@ -425,7 +443,8 @@ int main(int argc, char **argv)
     }
     printf("load average after: %.1f\n", loadavg());
     sb_shell_work_free(w);
-    sb_shell_batch_free(bw);
+    sb_shell_batch_free(bws[0]);
+    sb_shell_batch_free(bws[1]);
     free(E);
     return sink == 12345.6789 ? 3 : 0;
 }

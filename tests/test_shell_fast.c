@@ -37,7 +37,7 @@ static double maxabs(size_t n, const double *a)
     return m;
 }
 
-enum { B_BSPLINE, B_HERMITE, B_RANDOM40, B_RANDOMMAX, B_COUNT };
+enum { B_BSPLINE, B_HERMITE, B_RANDOM40, B_RANDOMMAX, B_COUNT, B_RANDOM18 = B_COUNT };
 static const char *bname[B_COUNT] = { "bspline", "hermite", "random40", "random64" };
 
 typedef struct fcase {
@@ -83,6 +83,7 @@ static void make_case(fcase *c, int basis, int denim, double thickness, unsigned
         case B_BSPLINE: tb_bspline(&c->tb[p], u, v); break;
         case B_HERMITE: tb_hermite(&c->tb[p], u, v); break;
         case B_RANDOM40: tb_random(&c->tb[p], 40, s); break;
+        case B_RANDOM18: tb_random(&c->tb[p], 18, s); break;   /* k not a multiple of the padding */
         default: tb_random(&c->tb[p], SB_SHELL_MAX_BASIS, s); break;
         }
         c->b[p] = tb_view(&c->tb[p]);
@@ -105,7 +106,7 @@ static void make_case(fcase *c, int basis, int denim, double thickness, unsigned
 
 static void deform(const fcase *c, int basis, double amp, unsigned long long *s, double *q)
 {
-    const double a = basis >= B_RANDOM40 ? 0.3 * amp : amp;
+    const double a = basis >= B_RANDOM40 ? 0.3 * amp : amp;   /* B_RANDOM18 too */
     double R[9], ax[3] = { tb_rand(s, -1, 1), tb_rand(s, -1, 1), tb_rand(s, -1, 1) }, t0[3] = { 0, 0, 0 };
     const double nrm = sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
     for (int i = 0; i < 3; i++) ax[i] /= nrm;
@@ -423,6 +424,76 @@ SB_TEST(psd_strain_space)
     sb_shell_batch_free(bw);
 }
 
+/* The products at every vector width this CPU runs (sb_elem_tile.c:
+ * SSE2, AVX2, AVX-512) give the same bits: energy, gradient and Hessian of
+ * kinds EXACT, PSEUDO and PSD, and sb_shell_element_psd's difference path
+ * (its Gram product), for k = 16, 18 (padded), 40 and 64. */
+SB_TEST(vector_widths_same_bits)
+{
+    const size_t nmax = 3 * SB_SHELL_MAX_BASIS;
+    double *g0 = malloc(sizeof(double) * nmax), *g1 = malloc(sizeof(double) * nmax);
+    double *H0 = malloc(sizeof(double) * nmax * nmax), *H1 = malloc(sizeof(double) * nmax * nmax);
+    double *Kx = calloc(nmax * nmax, sizeof(double)), *work = malloc(sizeof(double) * sb_psd_work_size((int)nmax));
+    sb_shell_batch *b0 = sb_shell_batch_new(SB_SHELL_MAX_BASIS, 9), *b1 = sb_shell_batch_new(SB_SHELL_MAX_BASIS, 9);
+    CHECK(sb_shell_batch_set_isa(b0, SB_ISA_BASE) == SB_OK && sb_shell_batch_isa(b0) == SB_ISA_BASE);
+    CHECK(sb_shell_batch_set_isa(b0, (sb_shell_isa)7) == SB_ERR_INPUT);
+    CHECK(sb_shell_batch_isa(b1) == sb_shell_isa_best());
+    int tested = 0;
+    for (int isa = SB_ISA_AVX2; isa < SB_ISA_COUNT; isa++) {
+        if (!sb_shell_isa_supported((sb_shell_isa)isa)) {
+            CHECK(sb_shell_batch_set_isa(b1, (sb_shell_isa)isa) == SB_ERR_UNSUPPORTED);
+            printf("# %s: not run by this CPU or not in this build, not compared\n", sb_shell_isa_name((sb_shell_isa)isa));
+            continue;
+        }
+        CHECK(sb_shell_batch_set_isa(b1, (sb_shell_isa)isa) == SB_OK);
+        unsigned long long s = 77;
+        const int bases[5] = { B_BSPLINE, B_HERMITE, B_RANDOM18, B_RANDOM40, B_RANDOMMAX };
+        for (int ib = 0; ib < 5; ib++)
+            for (int denim = 0; denim < 2; denim++) {
+                fcase c;
+                make_case(&c, bases[ib], denim, denim ? 0.05 : 0.3, &s);
+                const int n = 3 * c.k;
+                double q[3 * SB_SHELL_MAX_BASIS];
+                deform(&c, bases[ib], denim ? 0.03 : 0.08, &s, q);
+                if (bases[ib] == B_BSPLINE) /* compressed: indefinite, so element_psd takes its difference path */
+                    for (int i = 0; i < n; i++) q[i] = c.Xq[i] * (i % 3 == 2 ? 1.0 : 0.93);
+                for (int kind = 0; kind < 4; kind++) {
+                    memset(g0, 0, sizeof(double) * n);
+                    memset(g1, 0, sizeof(double) * n);
+                    memset(H0, 0, sizeof(double) * n * n);
+                    memset(H1, 0, sizeof(double) * n * n);
+                    double e0, e1;
+                    int p0 = -1, p1 = -1;
+                    if (kind < 3) {
+                        const sb_hess_kind hk = kind == 0 ? SB_HESS_EXACT : kind == 1 ? SB_HESS_PSEUDO : SB_HESS_PSD;
+                        e0 = sb_shell_element(&c.m, c.nq, c.r, c.b, q, g0, H0, hk, b0);
+                        e1 = sb_shell_element(&c.m, c.nq, c.r, c.b, q, g1, H1, hk, b1);
+                    } else {
+                        e0 = sb_shell_element_psd(&c.m, c.nq, c.r, c.b, q, g0, H0, Kx, 0, b0, work, &p0);
+                        e1 = sb_shell_element_psd(&c.m, c.nq, c.r, c.b, q, g1, H1, Kx, 0, b1, work, &p1);
+                        CHECK_EQ_INT(p0, p1);
+                        if (bases[ib] == B_BSPLINE) CHECK_EQ_INT(p1, 1);
+                    }
+                    CHECK_MSG(memcmp(&e0, &e1, sizeof e0) == 0 && memcmp(g0, g1, sizeof(double) * n) == 0 &&
+                                  memcmp(H0, H1, sizeof(double) * n * n) == 0,
+                              "%s, %s k = %d, %s, kind %d: not the same bits as %s", sb_shell_isa_name((sb_shell_isa)isa),
+                              bases[ib] == B_RANDOM18 ? "random18" : bname[bases[ib]], c.k, denim ? "denim" : "stvk",
+                              kind, sb_shell_isa_name(SB_ISA_BASE));
+                    tested++;
+                }
+            }
+    }
+    printf("# %d element evaluations compared bit for bit against %s\n", tested, sb_shell_isa_name(SB_ISA_BASE));
+    free(g0);
+    free(g1);
+    free(H0);
+    free(H1);
+    free(Kx);
+    free(work);
+    sb_shell_batch_free(b0);
+    sb_shell_batch_free(b1);
+}
+
 SB_TEST(fast_bad_input)
 {
     unsigned long long s = 3;
@@ -462,6 +533,7 @@ static const sb_test_case cases[] = {
     SB_CASE(vmath_accuracy),
     SB_CASE(psd_check_basic),
     SB_CASE(psd_strain_space),
+    SB_CASE(vector_widths_same_bits),
     SB_CASE(fast_bad_input),
     SB_END
 };

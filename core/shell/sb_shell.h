@@ -96,6 +96,21 @@ sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax);
 void sb_shell_batch_free(sb_shell_batch *w);
 double sb_shell_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
                         const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
+
+/* The vector width of the batch's products (sb_elem_tile.c): the widest
+ * the CPU runs is chosen by sb_shell_batch_new.  All widths give the same
+ * bits (one lane per output entry, the same operations in the same order,
+ * no fused multiply-add; tests/test_shell_isa.c), so the choice changes
+ * speed only.  SB_ISA_BASE is the build's own (SSE2 in the default build,
+ * whatever -march=native gives in `make NATIVE=1`, which has no others). */
+typedef enum { SB_ISA_BASE = 0, SB_ISA_AVX2 = 1, SB_ISA_AVX512 = 2 } sb_shell_isa;
+#define SB_ISA_COUNT 3
+const char *sb_shell_isa_name(sb_shell_isa isa);   /* "sse2"/"native", "avx2", "avx512" */
+int sb_shell_isa_supported(sb_shell_isa isa);      /* built in and run by this CPU? */
+sb_shell_isa sb_shell_isa_best(void);
+sb_shell_isa sb_shell_batch_isa(const sb_shell_batch *w);
+/* SB_OK, or SB_ERR_UNSUPPORTED when this build or CPU lacks isa */
+int sb_shell_batch_set_isa(sb_shell_batch *w, sb_shell_isa isa);
 /* The same, but hess is OVERWRITTEN (all 3k x 3k entries; grad is still
  * accumulated): for an element matrix with no other terms, which then need
  * not be zeroed first.  Bit-identical to sb_shell_element on a zeroed hess. */

@@ -10,22 +10,17 @@
 
 #include <stddef.h>
 
-/* register tile: MR rows x NV vectors of SB_VL columns (8 accumulators) */
-#if SB_VL <= 4
-#define MR 4
-#define NV 2
-#else
-#define MR 8
-#define NV 1
-#endif
-#define NR (NV * SB_VL)
-#define KPAD (MR > NR ? MR : NR)   /* both are powers of two: a multiple of each */
+/* rows of the batch are padded with zeros to a multiple of KPAD doubles,
+ * which every register tile of sb_elem_tile.c divides (4 x 4 with SSE2,
+ * 4 x 8 with AVX2, 8 x 8 with AVX-512) */
+#define KPAD 8
 #define SB_SHELL_MAX_QP 64
 
 struct sb_shell_batch {
     int kmax, nqmax, kpmax;
+    sb_shell_isa isa;   /* the products' vector width (sb_shell_isa.c) */
     double *Wt;   /* 5 nq x kp: basis derivative rows, zero padded */
-    double *Wb;   /* SB_VL == 2: Wt with every entry twice, the tiles' broadcast operand */
+    double *Wb;   /* isa SSE2: Wt with every entry twice, the tiles' broadcast operand */
     double *Z;    /* 6 x 5 nq x kp: K^cd W per point */
     double *Hc;   /* 6 x kp x kp: H^cd */
     double *Gt;   /* 5 nq x 3: local gradient de/dy per point */
@@ -35,7 +30,7 @@ struct sb_shell_batch {
     int store;    /* sb_shell_element_into: the scatter overwrites hess */
     double *kd;   /* nq x KD: per point the PSD difference (see point()) */
     double *G;    /* 6 nq x 3 kp: the PSD difference's rank-1 terms, one row per clamped eigenvalue */
-    double *Gb;   /* SB_VL == 2: G with every entry twice (the tiles' broadcast operand) */
+    double *Gb;   /* isa SSE2: G with every entry twice (the tiles' broadcast operand) */
     double *C3;   /* 3 kp x 3 kp: their Gram matrix G^T G (on and above the diagonal tiles) */
 };
 /* per point: 5 blocks of 3 x 3 (0..44), h (45..47); where the section
@@ -79,11 +74,21 @@ static const int pc[6] = { 0, 1, 2, 0, 0, 1 }, pd[6] = { 0, 1, 2, 1, 2, 2 };
  * with w->keep, what sb_shell_element_psd needs is kept per point */
 double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
                        double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
-/* H^cd = Wt^T Z^cd for the 6 component pairs, inner dimension R rows */
+/* H^cd = Wt^T Z^cd for the 6 component pairs, inner dimension R rows, at
+ * the batch's isa */
 void sb_elem_products(int R, int kp, sb_shell_batch *w);
-/* C (n x n) = G^T G on and above its diagonal tiles (G, Gb: R x n, n a
- * multiple of KPAD) */
-void sb_elem_gram(int R, int n, const double *G, const double *Gb, double *C);
+/* w->C3 (n x n) = G^T G on and above its diagonal tiles (w->G, w->Gb: R x n,
+ * n a multiple of KPAD) */
+void sb_elem_gram(int R, int n, sb_shell_batch *w);
+/* does the batch's isa read the pre-broadcast copies Wb and Gb? */
+int sb_elem_wants_broadcast(const sb_shell_batch *w);
+/* the variants of sb_elem_tile.c */
+void sb_elem_products_base(int R, int kp, sb_shell_batch *w);
+void sb_elem_gram_base(int R, int n, const double *G, const double *Gb, double *C);
+void sb_elem_products_avx2(int R, int kp, sb_shell_batch *w);
+void sb_elem_gram_avx2(int R, int n, const double *G, const double *Gb, double *C);
+void sb_elem_products_avx512(int R, int kp, sb_shell_batch *w);
+void sb_elem_gram_avx512(int R, int n, const double *G, const double *Gb, double *C);
 /* hess (3k x 3k) += sign * the products, exactly symmetric */
 void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
 /* D = dA blockdiag(T, T)^T C6 blockdiag(T, T); K = J^T D J (blocks s <= t) */

@@ -65,6 +65,7 @@ sb_shell_batch *sb_shell_batch_new(int kmax, int nqmax)
     w->kmax = kmax;
     w->nqmax = nqmax;
     w->kpmax = sb_elem_round_up(kmax, KPAD);
+    w->isa = sb_shell_isa_best();
     const size_t kp = (size_t)w->kpmax, r = 5 * (size_t)nqmax;
     w->Wt = alloc64(r * kp);
     w->Wb = alloc64(2 * r * kp);
@@ -443,75 +444,6 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
     return e;
 }
 
-/* ---- the batched product H^cd = Wt^T Z^cd -------------------------------------- */
-
-/* One MR x NR tile of C = A^T B (A, B: R x kp, row-major), written to C
- * (row stride kp) at (I0, J0).  The loop over the inner dimension keeps the
- * MR x NV vector accumulators in registers.  With SSE2 (no broadcast load)
- * A is read from its pre-broadcast copy Ab (each entry twice), so that a
- * broadcast is one aligned load, folded into the multiply. */
-static inline void tile(int R, int kp, const double *A, const double *Ab, const double *B, int I0, int J0,
-                        double *C)
-{
-    sb_vd acc[MR][NV];
-#pragma GCC unroll 8
-    for (int i = 0; i < MR; i++)
-#pragma GCC unroll 8
-        for (int v = 0; v < NV; v++) acc[i][v] = sb_vbcast(0.0);
-#if SB_VL == 2
-    (void)A;
-    const sb_vd *ab = (const sb_vd *)(Ab + 2 * I0);   /* 16-byte aligned: kp and I0 are even */
-    const int astep = kp;                            /* in vectors */
-#else
-    (void)Ab;
-    const double *a = A + I0;
-    const int astep = kp;
-#endif
-    const double *b = B + J0;
-    for (int rr = 0; rr < R; rr++, b += kp) {
-        sb_vd bv[NV];
-#pragma GCC unroll 8
-        for (int v = 0; v < NV; v++) bv[v] = sb_vload(b + v * SB_VL);
-#pragma GCC unroll 8
-        for (int i = 0; i < MR; i++) {
-#if SB_VL == 2
-            const sb_vd av = ab[i];
-#else
-            const sb_vd av = sb_vbcast(a[i]);
-#endif
-#pragma GCC unroll 8
-            for (int v = 0; v < NV; v++) acc[i][v] += av * bv[v];
-        }
-#if SB_VL == 2
-        ab += astep;
-#else
-        a += astep;
-#endif
-    }
-#pragma GCC unroll 8
-    for (int i = 0; i < MR; i++)
-#pragma GCC unroll 8
-        for (int v = 0; v < NV; v++) sb_vstore(C + (size_t)(I0 + i) * kp + J0 + v * SB_VL, acc[i][v]);
-}
-
-void sb_elem_products(int R, int kp, sb_shell_batch *w)
-{
-    const size_t zstride = (size_t)5 * w->nqmax * kp;
-    for (int pr = 0; pr < 6; pr++) {
-        const double *Zp = w->Z + pr * zstride;
-        double *Hp = w->Hc + (size_t)pr * kp * kp;
-        const int sym = pc[pr] == pd[pr];
-        for (int I0 = 0; I0 < kp; I0 += MR)
-            for (int J0 = sym ? I0 / NR * NR : 0; J0 < kp; J0 += NR) tile(R, kp, w->Wt, w->Wb, Zp, I0, J0, Hp);
-    }
-}
-
-void sb_elem_gram(int R, int n, const double *G, const double *Gb, double *C)
-{
-    for (int I0 = 0; I0 < n; I0 += MR)
-        for (int J0 = I0 / NR * NR; J0 < n; J0 += NR) tile(R, n, G, Gb, G, I0, J0, C);
-}
-
 /* ---- the element ------------------------------------------------------------------ */
 
 /* H (3k x 3k) += sign * the element matrix of the products in w->Hc: entry
@@ -605,15 +537,10 @@ double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, cons
             double *row = w->Wt + (size_t)(5 * p + s) * kp;
             memcpy(row, src[s], sizeof(double) * k);
             for (int I = k; I < kp; I++) row[I] = 0.0;
-#if SB_VL == 2
-            if (hess) {
+            if (hess && sb_elem_wants_broadcast(w)) {
                 double *rb = w->Wb + (size_t)2 * (5 * p + s) * kp;
-                for (int I = 0; I < kp; I++) {   /* one 2-wide store per entry */
-                    sb_vd v2 = { row[I], row[I] };
-                    sb_vstore(rb + 2 * I, v2);
-                }
+                for (int I = 0; I < kp; I++) sb_store_pair(rb + 2 * I, row[I]);
             }
-#endif
         }
         e += point(m, &r[p], p, kp, need_g, need_h, kind, w);
     }

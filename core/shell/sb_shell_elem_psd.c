@@ -143,15 +143,11 @@ static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, d
             /* bending component i = 0, 1, 2 is x,11, x,22, x,12 (sb_shell.c bslot) */
             u[2][I] = I < k ? h[0] * b[p].N11[I] + h[1] * b[p].N22[I] + h[2] * b[p].N12[I] : 0.0;
         }
-#if SB_VL == 2
-        for (int s = 0; s < 3; s++) {
-            double *rb = w->Wb + (size_t)2 * (row + s) * kp;
-            for (int I = 0; I < kp; I++) {
-                sb_vd v2 = { u[s][I], u[s][I] };
-                sb_vstore(rb + 2 * I, v2);
+        if (sb_elem_wants_broadcast(w))
+            for (int s = 0; s < 3; s++) {
+                double *rb = w->Wb + (size_t)2 * (row + s) * kp;
+                for (int I = 0; I < kp; I++) sb_store_pair(rb + 2 * I, u[s][I]);
             }
-        }
-#endif
         /* the point's difference matrix, blocks on and above the block diagonal:
          * 3-slot (s, t): (0,0) B11, (0,1) B12, (0,2) M1, (1,1) B22, (1,2) -M2, (2,2) 0 */
         double Kd[9][9];
@@ -187,17 +183,14 @@ static void psd_difference(int nq, const sb_shell_basis *b, sb_shell_batch *w, d
                     g[3 * I + c] = src[0][I] * ul[c] + src[1][I] * ul[3 + c] + src[2][I] * ul[6 + c] +
                                    src[3][I] * ul[9 + c] + src[4][I] * ul[12 + c];
             for (int i = n3; i < n3p; i++) g[i] = 0.0;
-#if SB_VL == 2
-            double *gb = w->Gb + (size_t)2 * ng * n3p;
-            for (int i = 0; i < n3p; i++) {
-                sb_vd v2 = { g[i], g[i] };
-                sb_vstore(gb + 2 * i, v2);
+            if (sb_elem_wants_broadcast(w)) {
+                double *gb = w->Gb + (size_t)2 * ng * n3p;
+                for (int i = 0; i < n3p; i++) sb_store_pair(gb + 2 * i, g[i]);
             }
-#endif
         }
     }
     if (ng == 0) return;
-    sb_elem_gram(ng, n3p, w->G, w->Gb, w->C3);
+    sb_elem_gram(ng, n3p, w);
     for (int i = 0; i < n3; i++) {
         const double *ci = w->C3 + (size_t)i * n3p;
         double *hi = hess + (size_t)i * n3;

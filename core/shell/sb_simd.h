@@ -52,6 +52,14 @@ static inline sb_vd sb_vasdbl(sb_vi i)
     memcpy(&v, &i, sizeof v);
     return v;
 }
+/* p[0] = p[1] = x in one 2-wide store (the SSE2 tiles' pre-broadcast
+ * operands, sb_elem_tile.c) */
+typedef double sb_v2d __attribute__((vector_size(16)));
+static inline void sb_store_pair(double *p, double x)
+{
+    const sb_v2d v = { x, x };
+    memcpy(p, &v, sizeof v);
+}
 /* m ? a : b with m a comparison result (all bits set where true) */
 static inline sb_vd sb_vselect(sb_vi m, sb_vd a, sb_vd b)
 {

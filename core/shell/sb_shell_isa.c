@@ -1,0 +1,83 @@
+/* sb_shell_isa.c — which vector width the fast kernel's products run at
+ * (sb_elem_tile.c), chosen per batch from what the CPU runs.
+ *
+ * The default build is the portable x86-64 baseline (SSE2); its products
+ * are also compiled for AVX2 and AVX-512 (Makefile: SB_TILE_VARIANTS), and
+ * a batch uses the widest the CPU and the operating system support
+ * (__builtin_cpu_supports checks both).  The variants compute the same
+ * bits (sb_elem_tile.c, header), so records do not depend on the machine's
+ * vector width; only the speed does.  `make NATIVE=1` compiles everything
+ * for the build machine and has the base variant only. */
+#include "sb_shell_batch.h"
+
+const char *sb_shell_isa_name(sb_shell_isa isa)
+{
+    switch (isa) {
+#ifdef SB_TILE_VARIANTS
+    case SB_ISA_BASE: return "sse2";
+#else
+    case SB_ISA_BASE: return "native";
+#endif
+    case SB_ISA_AVX2: return "avx2";
+    case SB_ISA_AVX512: return "avx512";
+    }
+    return "?";
+}
+
+int sb_shell_isa_supported(sb_shell_isa isa)
+{
+    switch (isa) {
+    case SB_ISA_BASE: return 1;
+#ifdef SB_TILE_VARIANTS
+    case SB_ISA_AVX2: return __builtin_cpu_supports("avx2") ? 1 : 0;
+    case SB_ISA_AVX512: return __builtin_cpu_supports("avx512f") ? 1 : 0;
+#else
+    case SB_ISA_AVX2:
+    case SB_ISA_AVX512: return 0;
+#endif
+    }
+    return 0;
+}
+
+sb_shell_isa sb_shell_isa_best(void)
+{
+    if (sb_shell_isa_supported(SB_ISA_AVX512)) return SB_ISA_AVX512;
+    if (sb_shell_isa_supported(SB_ISA_AVX2)) return SB_ISA_AVX2;
+    return SB_ISA_BASE;
+}
+
+sb_shell_isa sb_shell_batch_isa(const sb_shell_batch *w) { return w ? w->isa : SB_ISA_BASE; }
+
+int sb_shell_batch_set_isa(sb_shell_batch *w, sb_shell_isa isa)
+{
+    if (!w || (unsigned)isa >= SB_ISA_COUNT) return SB_ERR_INPUT;
+    if (!sb_shell_isa_supported(isa)) return SB_ERR_UNSUPPORTED;
+    w->isa = isa;
+    return SB_OK;
+}
+
+/* the base variant of the default build is SSE2, whose tiles read A from
+ * its pre-broadcast copy */
+int sb_elem_wants_broadcast(const sb_shell_batch *w) { return SB_VL == 2 && w->isa == SB_ISA_BASE; }
+
+void sb_elem_products(int R, int kp, sb_shell_batch *w)
+{
+    switch (w->isa) {
+#ifdef SB_TILE_VARIANTS
+    case SB_ISA_AVX512: sb_elem_products_avx512(R, kp, w); return;
+    case SB_ISA_AVX2: sb_elem_products_avx2(R, kp, w); return;
+#endif
+    default: sb_elem_products_base(R, kp, w); return;
+    }
+}
+
+void sb_elem_gram(int R, int n, sb_shell_batch *w)
+{
+    switch (w->isa) {
+#ifdef SB_TILE_VARIANTS
+    case SB_ISA_AVX512: sb_elem_gram_avx512(R, n, w->G, w->Gb, w->C3); return;
+    case SB_ISA_AVX2: sb_elem_gram_avx2(R, n, w->G, w->Gb, w->C3); return;
+#endif
+    default: sb_elem_gram_base(R, n, w->G, w->Gb, w->C3); return;
+    }
+}
