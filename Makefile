@@ -54,21 +54,25 @@ LIB_C   := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c) methods/*/*.c tests/fixtu
 LIB_C   := $(filter-out core/cli/main.c,$(LIB_C))
 LIB_CXX := $(sort $(wildcard methods/*/*.cpp))
 LIB_OBJ := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
-# The fast kernel's products (core/shell/sb_elem_tile.c) are compiled again
-# for AVX2 and AVX-512, without fused multiply-add, and chosen at run time:
-# the same bits as the SSE2 baseline, faster where the CPU has the wider
-# vectors (docs/performance.md).  Not in `make NATIVE=1`, which compiles
-# everything for the build machine already.
+# The fast kernel's products and denim section law (core/shell/sb_elem_tile.c,
+# sb_section_denim.c) are compiled again for AVX2 and AVX-512, without fused
+# multiply-add, and chosen at run time: the same bits as the SSE2 baseline,
+# faster where the CPU has the wider vectors (docs/performance.md).  Not in
+# `make NATIVE=1`, which compiles everything for the build machine already.
 ifneq ($(NATIVE),1)
-TILE_VARIANTS := avx2 avx512
-TILE_OBJ := $(TILE_VARIANTS:%=$(BUILD)/core/shell/sb_elem_tile.%.o)
-LIB_OBJ  += $(TILE_OBJ)
-$(BUILD)/core/shell/sb_shell_isa.o: CFLAGS += -DSB_TILE_VARIANTS
-TILE_FLAGS_avx2   := -mavx2 -mno-fma
-TILE_FLAGS_avx512 := -mavx512f -mno-fma
-$(TILE_OBJ): $(BUILD)/core/shell/sb_elem_tile.%.o: core/shell/sb_elem_tile.c | $(DEPS_STAMP)
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) $(TILE_FLAGS_$*) -ffp-contract=off -DSB_TILE_SUFFIX=$* -c $< -o $@
+VEC_SRC   := sb_elem_tile sb_section_denim
+VEC_WIDTH := avx2 avx512
+VEC_FLAGS_avx2   := -mavx2 -mno-fma
+VEC_FLAGS_avx512 := -mavx512f -mno-fma
+VEC_OBJ := $(foreach s,$(VEC_SRC),$(VEC_WIDTH:%=$(BUILD)/core/shell/$(s).%.o))
+LIB_OBJ += $(VEC_OBJ)
+$(BUILD)/core/shell/sb_shell_isa.o: CFLAGS += -DSB_VEC_VARIANTS
+define VEC_RULE
+$(BUILD)/core/shell/$(1).$(2).o: core/shell/$(1).c | $(DEPS_STAMP)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$(CFLAGS) $$(VEC_FLAGS_$(2)) -ffp-contract=off -DSB_VEC_SUFFIX=$(2) -c $$< -o $$@
+endef
+$(foreach s,$(VEC_SRC),$(foreach v,$(VEC_WIDTH),$(eval $(call VEC_RULE,$(s),$(v)))))
 endif
 LIB     := $(BUILD)/libshellbench.a
 BIN     := $(BUILD)/shellbench

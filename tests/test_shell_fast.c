@@ -8,6 +8,7 @@
 #include "sb_test.h"
 #include "test_shell_bases.h"
 #include "sb_vmath.h"
+#include "sb_shell_batch.h"   /* sb_section_fast_isa: the section at a given vector width */
 
 #include <float.h>
 #include <stdlib.h>
@@ -424,6 +425,50 @@ SB_TEST(psd_strain_space)
     sb_shell_batch_free(bw);
 }
 
+/* The denim section law at every vector width this CPU runs gives the same
+ * bits as at SSE2 (sb_section_denim.c: one lane per thickness point, sums in
+ * the 2-lane order), for every rule size 1..8 (odd ones have a padding
+ * lane), both continuations beyond the fit (beyond = NaN included), with
+ * and without derivatives. */
+SB_TEST(section_widths_same_bits)
+{
+    unsigned long long s = 4242;
+    int compared = 0, nans = 0;
+    for (int isa = SB_ISA_AVX2; isa < SB_ISA_COUNT; isa++) {
+        if (!sb_shell_isa_supported((sb_shell_isa)isa)) continue;
+        for (int beyond = 0; beyond < 2; beyond++)
+            for (int nt = 1; nt <= 8; nt++) {
+                sb_material_spec sp;
+                sb_material_spec_denim(&sp);
+                sp.denim.beyond_fit = beyond;
+                sb_material m;
+                if (sb_material_init(&m, &sp, nt) != SB_OK) continue;
+                for (int it = 0; it < 400; it++) {
+                    const double sc = it % 3 == 0 ? 0.01 : it % 3 == 1 ? 0.1 : 0.4;
+                    double A[3], B[3], a0[3], b0[3], c0[36], a1[3], b1[3], c1[36];
+                    for (int i = 0; i < 3; i++) {
+                        A[i] = tb_rand(&s, -sc, sc);
+                        B[i] = tb_rand(&s, -sc, sc) * 0.3 / sp.thickness;
+                    }
+                    const int with = it % 4;   /* 0: energy only, 1: + sA sB, 2-3: + C */
+                    const double e0 = sb_section_fast_isa(SB_ISA_BASE, &m, A, B, with ? a0 : NULL, with ? b0 : NULL,
+                                                          with > 1 ? c0 : NULL);
+                    const double e1 = sb_section_fast_isa((sb_shell_isa)isa, &m, A, B, with ? a1 : NULL,
+                                                          with ? b1 : NULL, with > 1 ? c1 : NULL);
+                    nans += isnan(e0);
+                    int same = memcmp(&e0, &e1, sizeof e0) == 0;
+                    if (with) same = same && memcmp(a0, a1, sizeof a0) == 0 && memcmp(b0, b1, sizeof b0) == 0;
+                    if (with > 1) same = same && memcmp(c0, c1, sizeof c0) == 0;
+                    CHECK_MSG(same, "%s, n_thick %d, beyond_fit %d, case %d: not the same bits as %s",
+                              sb_shell_isa_name((sb_shell_isa)isa), nt, beyond, it, sb_shell_isa_name(SB_ISA_BASE));
+                    if (!same) return;
+                    compared++;
+                }
+            }
+    }
+    printf("# %d section evaluations compared bit for bit (%d of them NaN: outside the fit)\n", compared, nans);
+}
+
 /* The products at every vector width this CPU runs (sb_elem_tile.c:
  * SSE2, AVX2, AVX-512) give the same bits: energy, gradient and Hessian of
  * kinds EXACT, PSEUDO and PSD, and sb_shell_element_psd's difference path
@@ -533,6 +578,7 @@ static const sb_test_case cases[] = {
     SB_CASE(vmath_accuracy),
     SB_CASE(psd_check_basic),
     SB_CASE(psd_strain_space),
+    SB_CASE(section_widths_same_bits),
     SB_CASE(vector_widths_same_bits),
     SB_CASE(fast_bad_input),
     SB_END

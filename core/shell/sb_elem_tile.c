@@ -19,13 +19,6 @@
  * bit for bit on exact, pseudo and PSD element Hessians). */
 #include "sb_shell_batch.h"
 
-#ifndef SB_TILE_SUFFIX
-#define SB_TILE_SUFFIX base
-#endif
-#define SB_TILE_CAT_(a, b) a##_##b
-#define SB_TILE_CAT(a, b) SB_TILE_CAT_(a, b)
-#define SB_TILE_FN(name) SB_TILE_CAT(name, SB_TILE_SUFFIX)
-
 /* register tile: MR rows x NV vectors of SB_VL columns (8 accumulators of
  * SSE2 or AVX2, 8 of AVX-512 with 8 rows) */
 #if SB_VL <= 4
@@ -90,9 +83,52 @@ static inline void tile(int R, int kp, const double *A, const double *Ab, const 
         for (int v = 0; v < NV; v++) sb_vstore(C + (size_t)(I0 + i) * kp + J0 + v * SB_VL, acc[i][v]);
 }
 
+/* Z^cd rows of one point: Z[s][J] = sum_t K[3s+c][3t+d] W_t^J for the 6
+ * component pairs, the blocks of K below the block diagonal read from above
+ * it (K symmetric).  Each entry is ((((k0 w0 + k1 w1) + k2 w2) + k3 w3) +
+ * k4 w4) in one lane at every width.  SSE2: the 150 coefficients are
+ * broadcast once into kb, then each vector of columns J loads the 5 basis
+ * rows once for all 30 output rows; wider vectors broadcast each
+ * coefficient from memory inside the multiply instead (the same values). */
+void SB_VEC_FN(sb_elem_zrows)(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride)
+{
+#if SB_VL == 2
+    sb_vd kb[30][5];
+#else
+    double kb[30][5];
+#endif
+    for (int pr = 0; pr < 6; pr++) {
+        const int cc = pc[pr], d = pd[pr];
+#pragma GCC unroll 5
+        for (int s = 0; s < 5; s++)
+#pragma GCC unroll 5
+            for (int t = 0; t < 5; t++) {
+                const double kst = s <= t ? K[3 * s + cc][3 * t + d] : K[3 * t + d][3 * s + cc];
+#if SB_VL == 2
+                kb[5 * pr + s][t] = sb_vbcast(kst);
+#else
+                kb[5 * pr + s][t] = kst;
+#endif
+            }
+    }
+    for (int J = 0; J < kp; J += SB_VL) {
+        const sb_vd w0 = sb_vload(Wp + J), w1 = sb_vload(Wp + kp + J), w2 = sb_vload(Wp + 2 * kp + J),
+                    w3 = sb_vload(Wp + 3 * kp + J), w4 = sb_vload(Wp + 4 * kp + J);
+        for (int pr = 0; pr < 6; pr++) {
+            double *Zp = Z0 + pr * zstride + J;
+#pragma GCC unroll 5
+            for (int s = 0; s < 5; s++) {
+                const int row = 5 * pr + s;
+                sb_vstore(Zp + (size_t)s * kp, kb[row][0] * w0 + kb[row][1] * w1 + kb[row][2] * w2 +
+                                                   kb[row][3] * w3 + kb[row][4] * w4);
+            }
+        }
+    }
+}
+
 /* H^cd = Wt^T Z^cd for the 6 component pairs; the diagonal pairs only on
  * and above their diagonal tiles (H^cc is symmetric) */
-void SB_TILE_FN(sb_elem_products)(int R, int kp, sb_shell_batch *w)
+void SB_VEC_FN(sb_elem_products)(int R, int kp, sb_shell_batch *w)
 {
     const size_t zstride = (size_t)5 * w->nqmax * kp;
     for (int pr = 0; pr < 6; pr++) {
@@ -105,7 +141,7 @@ void SB_TILE_FN(sb_elem_products)(int R, int kp, sb_shell_batch *w)
 }
 
 /* C = G^T G on and above its diagonal tiles */
-void SB_TILE_FN(sb_elem_gram)(int R, int n, const double *G, const double *Gb, double *C)
+void SB_VEC_FN(sb_elem_gram)(int R, int n, const double *G, const double *Gb, double *C)
 {
     for (int I0 = 0; I0 < n; I0 += MR)
         for (int J0 = I0 / NR * NR; J0 < n; J0 += NR) tile(R, n, G, Gb, G, I0, J0, C);

@@ -80,9 +80,25 @@ void sb_elem_products(int R, int kp, sb_shell_batch *w);
 /* w->C3 (n x n) = G^T G on and above its diagonal tiles (w->G, w->Gb: R x n,
  * n a multiple of KPAD) */
 void sb_elem_gram(int R, int n, sb_shell_batch *w);
+/* the Z^cd rows of one point from its 15 x 15 K (blocks s <= t) and basis
+ * rows Wp (5 x kp), at the batch's isa */
+void sb_elem_zrows(const sb_shell_batch *w, double K[15][15], const double *Wp, int kp, double *Z0);
 /* does the batch's isa read the pre-broadcast copies Wb and Gb? */
 int sb_elem_wants_broadcast(const sb_shell_batch *w);
-/* the variants of sb_elem_tile.c */
+/* the section law of the fast kernel at a given vector width (the same bits
+ * at every width; sb_section_fast.c, sb_section_denim.c) */
+double sb_section_fast_isa(sb_shell_isa isa, const sb_material *m, const double A[3], const double B[3],
+                           double sA[3], double sB[3], double C[36]);
+double sb_section_denim_isa(sb_shell_isa isa, const sb_material *m, const double A[3], const double B[3],
+                            double sA[3], double sB[3], double C[36]);
+/* the variants of sb_elem_tile.c and sb_section_denim.c */
+#define SB_SECTION_DENIM_ARGS const sb_material *m, const double A[3], const double B[3], double sA[3], double sB[3], double C[36]
+double sb_section_denim_base(SB_SECTION_DENIM_ARGS);
+double sb_section_denim_avx2(SB_SECTION_DENIM_ARGS);
+double sb_section_denim_avx512(SB_SECTION_DENIM_ARGS);
+void sb_elem_zrows_base(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
+void sb_elem_zrows_avx2(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
+void sb_elem_zrows_avx512(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
 void sb_elem_products_base(int R, int kp, sb_shell_batch *w);
 void sb_elem_gram_base(int R, int n, const double *G, const double *Gb, double *C);
 void sb_elem_products_avx2(int R, int kp, sb_shell_batch *w);

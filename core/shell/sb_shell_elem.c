@@ -252,7 +252,7 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
     /* 3. through the thickness (BHEM paper Eq. 6a, 7) */
     double sA[3], sB[3], C6[36];
     const double dA = r->dA;
-    const double e = dA * sb_shell_section_fast(m, TA, TB, need_g ? sA : NULL, need_g ? sB : NULL,
+    const double e = dA * sb_section_fast_isa(w->isa, m, TA, TB, need_g ? sA : NULL, need_g ? sB : NULL,
                                                 need_h ? C6 : NULL);
     if (!need_g) return e;
 
@@ -414,33 +414,8 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
         }
     }
 
-    /* Z^cd rows of the point: Z[s][J] = sum_t K[3s+c][3t+d] W_t^J, the
-     * blocks below the block diagonal read from above it (K symmetric).
-     * The 150 coefficients are broadcast once into kb; then each vector of
-     * columns J loads the 5 basis rows once for all 30 output rows. */
-    sb_vd kb[30][5];
-    for (int pr = 0; pr < 6; pr++) {
-        const int cc = pc[pr], d = pd[pr];
-#pragma GCC unroll 5
-        for (int s = 0; s < 5; s++)
-#pragma GCC unroll 5
-            for (int t = 0; t < 5; t++)
-                kb[5 * pr + s][t] = sb_vbcast(s <= t ? K[3 * s + cc][3 * t + d] : K[3 * t + d][3 * s + cc]);
-    }
-    const size_t zstride = (size_t)5 * w->nqmax * kp;
-    double *Z0 = w->Z + (size_t)5 * p * kp;
-    for (int J = 0; J < kp; J += SB_VL) {
-        const sb_vd w0 = sb_vload(Wp + J), w1 = sb_vload(Wp + kp + J), w2 = sb_vload(Wp + 2 * kp + J),
-                    w3 = sb_vload(Wp + 3 * kp + J), w4 = sb_vload(Wp + 4 * kp + J);
-        for (int pr = 0; pr < 6; pr++) {
-            double *Zp = Z0 + pr * zstride + J;
-#pragma GCC unroll 5
-            for (int s = 0; s < 5; s++) {
-                const sb_vd *k5 = kb[5 * pr + s];
-                sb_vstore(Zp + (size_t)s * kp, k5[0] * w0 + k5[1] * w1 + k5[2] * w2 + k5[3] * w3 + k5[4] * w4);
-            }
-        }
-    }
+    /* Z^cd rows of the point (sb_elem_tile.c, at the batch's vector width) */
+    sb_elem_zrows(w, K, Wp, kp, w->Z + (size_t)5 * p * kp);
     return e;
 }
 

@@ -1,8 +1,9 @@
-/* sb_shell_isa.c — which vector width the fast kernel's products run at
- * (sb_elem_tile.c), chosen per batch from what the CPU runs.
+/* sb_shell_isa.c — which vector width the fast kernel's products and denim
+ * section law run at (sb_elem_tile.c, sb_section_denim.c), chosen per batch
+ * from what the CPU runs.
  *
  * The default build is the portable x86-64 baseline (SSE2); its products
- * are also compiled for AVX2 and AVX-512 (Makefile: SB_TILE_VARIANTS), and
+ * and the denim section law (sb_section_denim.c) are also compiled for AVX2 and AVX-512 (Makefile: SB_VEC_VARIANTS), and
  * a batch uses the widest the CPU and the operating system support
  * (__builtin_cpu_supports checks both).  The variants compute the same
  * bits (sb_elem_tile.c, header), so records do not depend on the machine's
@@ -13,7 +14,7 @@
 const char *sb_shell_isa_name(sb_shell_isa isa)
 {
     switch (isa) {
-#ifdef SB_TILE_VARIANTS
+#ifdef SB_VEC_VARIANTS
     case SB_ISA_BASE: return "sse2";
 #else
     case SB_ISA_BASE: return "native";
@@ -28,7 +29,7 @@ int sb_shell_isa_supported(sb_shell_isa isa)
 {
     switch (isa) {
     case SB_ISA_BASE: return 1;
-#ifdef SB_TILE_VARIANTS
+#ifdef SB_VEC_VARIANTS
     case SB_ISA_AVX2: return __builtin_cpu_supports("avx2") ? 1 : 0;
     case SB_ISA_AVX512: return __builtin_cpu_supports("avx512f") ? 1 : 0;
 #else
@@ -60,10 +61,22 @@ int sb_shell_batch_set_isa(sb_shell_batch *w, sb_shell_isa isa)
  * its pre-broadcast copy */
 int sb_elem_wants_broadcast(const sb_shell_batch *w) { return SB_VL == 2 && w->isa == SB_ISA_BASE; }
 
+void sb_elem_zrows(const sb_shell_batch *w, double K[15][15], const double *Wp, int kp, double *Z0)
+{
+    const size_t zstride = (size_t)5 * w->nqmax * kp;
+    switch (w->isa) {
+#ifdef SB_VEC_VARIANTS
+    case SB_ISA_AVX512: sb_elem_zrows_avx512(K, Wp, kp, Z0, zstride); return;
+    case SB_ISA_AVX2: sb_elem_zrows_avx2(K, Wp, kp, Z0, zstride); return;
+#endif
+    default: sb_elem_zrows_base(K, Wp, kp, Z0, zstride); return;
+    }
+}
+
 void sb_elem_products(int R, int kp, sb_shell_batch *w)
 {
     switch (w->isa) {
-#ifdef SB_TILE_VARIANTS
+#ifdef SB_VEC_VARIANTS
     case SB_ISA_AVX512: sb_elem_products_avx512(R, kp, w); return;
     case SB_ISA_AVX2: sb_elem_products_avx2(R, kp, w); return;
 #endif
@@ -74,10 +87,22 @@ void sb_elem_products(int R, int kp, sb_shell_batch *w)
 void sb_elem_gram(int R, int n, sb_shell_batch *w)
 {
     switch (w->isa) {
-#ifdef SB_TILE_VARIANTS
+#ifdef SB_VEC_VARIANTS
     case SB_ISA_AVX512: sb_elem_gram_avx512(R, n, w->G, w->Gb, w->C3); return;
     case SB_ISA_AVX2: sb_elem_gram_avx2(R, n, w->G, w->Gb, w->C3); return;
 #endif
     default: sb_elem_gram_base(R, n, w->G, w->Gb, w->C3); return;
+    }
+}
+
+double sb_section_denim_isa(sb_shell_isa isa, const sb_material *m, const double A[3], const double B[3],
+                            double sA[3], double sB[3], double C[36])
+{
+    switch (isa) {
+#ifdef SB_VEC_VARIANTS
+    case SB_ISA_AVX512: return sb_section_denim_avx512(m, A, B, sA, sB, C);
+    case SB_ISA_AVX2: return sb_section_denim_avx2(m, A, B, sA, sB, C);
+#endif
+    default: return sb_section_denim_base(m, A, B, sA, sB, C);
     }
 }

@@ -22,6 +22,17 @@
 #endif
 
 typedef double sb_vd __attribute__((vector_size(8 * SB_VL)));
+
+/* Files compiled once per vector width (Makefile VEC_SRC: sb_elem_tile.c,
+ * sb_section_denim.c) name their functions with the width's suffix:
+ * SB_VEC_FN(f) is f_base in the build's own compile, f_avx2 and f_avx512
+ * in the others (sb_shell_isa.c dispatches). */
+#ifndef SB_VEC_SUFFIX
+#define SB_VEC_SUFFIX base
+#endif
+#define SB_VEC_CAT_(a, b) a##_##b
+#define SB_VEC_CAT(a, b) SB_VEC_CAT_(a, b)
+#define SB_VEC_FN(name) SB_VEC_CAT(name, SB_VEC_SUFFIX)
 typedef int64_t sb_vi __attribute__((vector_size(8 * SB_VL)));
 typedef uint64_t sb_vu __attribute__((vector_size(8 * SB_VL)));
 
