@@ -54,13 +54,13 @@ LIB_C   := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c) methods/*/*.c tests/fixtu
 LIB_C   := $(filter-out core/cli/main.c,$(LIB_C))
 LIB_CXX := $(sort $(wildcard methods/*/*.cpp))
 LIB_OBJ := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
-# The fast kernel's products and denim section law (core/shell/sb_elem_tile.c,
-# sb_section_denim.c) are compiled again for AVX2 and AVX-512, without fused
+# The fast kernel's element pass, products and denim section law
+# (core/shell/sb_elem_point.c, sb_elem_tile.c, sb_section_denim.c) are compiled again for AVX2 and AVX-512, without fused
 # multiply-add, and chosen at run time: the same bits as the SSE2 baseline,
 # faster where the CPU has the wider vectors (docs/performance.md).  Not in
 # `make NATIVE=1`, which compiles everything for the build machine already.
 ifneq ($(NATIVE),1)
-VEC_SRC   := sb_elem_tile sb_section_denim
+VEC_SRC   := sb_elem_tile sb_section_denim sb_elem_point
 VEC_WIDTH := avx2 avx512
 VEC_FLAGS_avx2   := -mavx2 -mno-fma
 VEC_FLAGS_avx512 := -mavx512f -mno-fma

@@ -2,8 +2,9 @@
  * per degree of freedom for the rmtr and bhem methods at about 6,000 and
  * 25,000 dofs, beside the cost of one sparse Cholesky factorization of the
  * same matrix (CHOLMOD, symbolic analysis once): the reference kernel
- * (method.kernel=reference, per point) and the fast one, on 1, 2 and 3
- * threads (run.threads), all in this one run, so the ratios compare like
+ * (method.kernel=reference, per point) and the fast one at the portable
+ * SSE2 vector width and at the CPU's widest (run.vectors; the same bits),
+ * on 1, 2 and 3 threads (run.threads), all in this one run, so the ratios compare like
  * with like on a machine whatever else it runs (issue 30).
  *
  * Times: the fastest of several rounds (each round runs every configuration
@@ -16,6 +17,7 @@
 #include "sb_linsolve.h"
 #include "sb_method.h"
 #include "sb_solver.h"
+#include "sb_shell.h"
 #include "sb_sparse.h"
 #include "sb_stats.h"
 #include "sb_sysinfo.h"
@@ -39,7 +41,8 @@ typedef struct bcase {
     sb_matrix H;
 } bcase;
 
-static int open_case(bcase *c, const char *scene, const char *method, int res, const char *kernel, int threads)
+static int open_case(bcase *c, const char *scene, const char *method, int res, const char *kernel, int threads,
+                     const char *vectors)
 {
     char err[1024], set[64];
     memset(c, 0, sizeof *c);
@@ -54,6 +57,8 @@ static int open_case(bcase *c, const char *scene, const char *method, int res, c
     snprintf(set, sizeof set, "method.kernel=%s", kernel);
     sb_paramset_set(&c->ps, set, err, sizeof err);
     snprintf(set, sizeof set, "run.threads=%d", threads);
+    if (sb_paramset_set(&c->ps, set, err, sizeof err)) return -1;
+    snprintf(set, sizeof set, "run.vectors=%s", vectors);
     if (sb_paramset_set(&c->ps, set, err, sizeof err)) return -1;
     c->S = calloc(1, c->mt->state_size);
     sb_method_config cfg = { res, 1, &c->ps, NULL, 0 };
@@ -126,17 +131,21 @@ static double loadavg(void)
     return l;
 }
 
-#define NCONF 4
-static const char *const conf_kernel[NCONF] = { "reference", "fast", "fast", "fast" };
-static const int conf_threads[NCONF] = { 1, 1, 2, 3 };
+/* the reference kernel; the fast one at the portable SSE2 width and at the
+ * CPU's widest (run.vectors=auto, the default), on 1, 2 and 3 threads.
+ * Column 2 (fast, auto, 1 thread) is what a run uses by default. */
+#define NCONF 5
+static const char *const conf_kernel[NCONF] = { "reference", "fast", "fast", "fast", "fast" };
+static const char *const conf_vectors[NCONF] = { "auto", "sse2", "auto", "auto", "auto" };
+static const int conf_threads[NCONF] = { 1, 1, 1, 2, 3 };
 
-/* the four configurations side by side, in rounds (each round assembles
+/* the configurations side by side, in rounds (each round assembles
  * every configuration once), keeping each one's fastest */
 static void bench_method(const char *scene, const char *method, int res, int quick)
 {
     bcase c[NCONF];
     for (int k = 0; k < NCONF; k++)
-        if (open_case(&c[k], scene, method, res, conf_kernel[k], conf_threads[k])) {
+        if (open_case(&c[k], scene, method, res, conf_kernel[k], conf_threads[k], conf_vectors[k])) {
             printf("| %s | %d | cannot set up |\n", method, res);
             for (int j = 0; j <= k; j++) close_case(&c[j]);
             return;
@@ -154,24 +163,28 @@ static void bench_method(const char *scene, const char *method, int res, int qui
                 cpu[k][w] = fmin(cpu[k][w], tc);
             }
     const double us = 1e6 / n;
-    for (int k = 0; k < NCONF; k++)
-        printf("| %s | %d | %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", method, n, conf_kernel[k],
-               conf_threads[k], cpu[k][0] * us, cpu[k][1] * us, cpu[k][2] * us, cpu[0][2] / cpu[k][2],
-               wall[k][2] * us, wall[1][2] / wall[k][2]);
+    for (int k = 0; k < NCONF; k++) {
+        char kern[64];
+        snprintf(kern, sizeof kern, "%s%s%s", conf_kernel[k], k ? " " : "",
+                 k ? (strcmp(conf_vectors[k], "auto") ? conf_vectors[k] : sb_shell_isa_name(sb_shell_isa_best())) : "");
+        printf("| %s | %d | %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", method, n, kern, conf_threads[k],
+               cpu[k][0] * us, cpu[k][1] * us, cpu[k][2] * us, cpu[0][2] / cpu[k][2], wall[k][2] * us,
+               wall[2][2] / wall[k][2]);
+    }
     /* the factorization of this matrix at the reference state (PSD: no early
      * stop at a negative pivot), shifted to be definite */
     sb_context ctx;
     sb_context_init(&ctx);
-    c[1].mt->initial(c[1].S, 0, c[1].x);
+    c[2].mt->initial(c[2].S, 0, c[2].x);
     double f;
-    sb_matrix_zero(&c[1].H);
-    c[1].mt->energy(c[1].S, 0, c[1].x, &f, NULL, &c[1].H);
+    sb_matrix_zero(&c[2].H);
+    c[2].mt->energy(c[2].S, 0, c[2].x, &f, NULL, &c[2].H);
     sb_linsolve *ls = NULL;
     double t0 = clk(CLOCK_PROCESS_CPUTIME_ID);
-    int rc = sb_linsolve_create(&ctx, 0, &c[1].H, &ls);
+    int rc = sb_linsolve_create(&ctx, 0, &c[2].H, &ls);
     const double ta = clk(CLOCK_PROCESS_CPUTIME_ID) - t0;
     double tf = INFINITY, dmax = 0;
-    for (int i = 0; i < n; i++) dmax = fmax(dmax, c[1].H.val[c[1].pat->diag[i]]);
+    for (int i = 0; i < n; i++) dmax = fmax(dmax, c[2].H.val[c[2].pat->diag[i]]);
     for (int r = 0; !rc && r < rounds; r++) {
         t0 = clk(CLOCK_PROCESS_CPUTIME_ID);
         rc = sb_linsolve_factor(ls, 1e-6 * dmax);

@@ -355,23 +355,43 @@ SB_TEST(fast_kernel_threads_and_agreement)
 }
 
 /* whole runs: every count, the history of every iteration and the final
- * state are bit-identical for 1, 2 and 3 threads (records compared) */
+ * state are bit-identical for 1, 2 and 3 threads and for every vector width
+ * of the fast kernel this CPU runs (run.vectors; records compared) */
 SB_TEST(runs_identical_for_any_thread_count)
 {
     static const char *const runs[][3] = { { "trampoline_1step.json", "rmtr", "rmtr" },
-                                           { "drooping_1step.json", "rmtr", "tr" } };
+                                           { "drooping_1step.json", "rmtr", "tr" },
+                                           { "drooping_1step.json", "bhem", "lsnewton" } };
+    /* (threads, run.vectors): the first is the reference of the others */
+    static const struct { int threads; const char *vectors; } cfgs[] = {
+        { 1, "auto" }, { 2, "auto" }, { 3, "auto" }, { 1, "sse2" }, { 1, "avx2" }, { 2, "avx512" }
+    };
+    const int ncfg = (int)(sizeof cfgs / sizeof cfgs[0]);
     char dir[] = "/tmp/sb_test_assembly_XXXXXX";
     CHECK(mkdtemp(dir) != NULL);
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < 3; k++) {
         sb_record_summary first;
         sb_record_setup xfirst;
         char msg[1024];
-        for (int threads = 1; threads <= (sb_assemble_have_threads() ? 3 : 1); threads++) {
+        for (int ic = 0; ic < ncfg; ic++) {
+            const int threads = cfgs[ic].threads;
+            if (threads > 1 && !sb_assemble_have_threads()) continue;
+            sb_shell_isa isa;
+            char vset[64];
+            snprintf(vset, sizeof vset, "run.vectors=%s", cfgs[ic].vectors);
+            sb_paramset vps;
+            sb_paramset_init(&vps);
+            sb_paramset_add(&vps, "run", sb_solve_params);
+            CHECK_EQ_INT(sb_paramset_set(&vps, vset, msg, sizeof msg), SB_OK);
+            if (sb_shell_isa_from_params(&vps, &isa, msg, sizeof msg) != SB_OK) {
+                printf("# %s: %s (not compared)\n", vset, msg);
+                continue;
+            }
             char scene[1024], th[32], out[1100];
             snprintf(scene, sizeof scene, "%s/tests/scenes/%s", sb_test_root(), runs[k][0]);
             snprintf(th, sizeof th, "run.threads=%d", threads);
-            snprintf(out, sizeof out, "%s/run%d_%d.h5", dir, k, threads);
-            const char *sets[] = { th, "run.max_iter=60" };
+            snprintf(out, sizeof out, "%s/run%d_%d.h5", dir, k, ic);
+            const char *sets[] = { th, "run.max_iter=60", vset };
             sb_run_request req;
             memset(&req, 0, sizeof req);
             req.scene = scene;
@@ -381,11 +401,16 @@ SB_TEST(runs_identical_for_any_thread_count)
             req.levels = strcmp(runs[k][2], "rmtr") == 0 ? 2 : 1;
             req.out = out;
             req.quiet = 1;
-            req.n_sets = 2;
+            req.n_sets = 3;
             req.sets = sets;
             int ec;
             json_t *r = sb_test_run_json(&req, &ec);
-            CHECK_MSG(r != NULL && ec <= 1, "%s with %d threads: exit %d", runs[k][0], threads, ec);
+            CHECK_MSG(r != NULL && ec <= 1, "%s %s with %d threads, %s: exit %d", runs[k][0], runs[k][1], threads, vset, ec);
+            if (r && strcmp(cfgs[ic].vectors, "auto")) {   /* the record says which width ran */
+                const char *info = json_string_value(json_object_get(json_object_get(r, "summary"), "method_info"));
+                if (!info) info = json_string_value(json_object_get(r, "method_info"));
+                CHECK_MSG(info && strstr(info, sb_shell_isa_name(isa)), "%s: method_info %s", vset, info ? info : "?");
+            }
             json_decref(r);
             sb_record_summary rs;
             sb_record_setup xs;
@@ -395,7 +420,7 @@ SB_TEST(runs_identical_for_any_thread_count)
             char xdmf[1200];
             sb_record_xdmf_path(out, xdmf, sizeof xdmf);
             remove(xdmf);
-            if (threads == 1) {
+            if (ic == 0) {
                 first = rs;
                 xfirst = xs;
                 CHECK(rs.iterations > 5);
@@ -404,15 +429,15 @@ SB_TEST(runs_identical_for_any_thread_count)
             CHECK_MSG(rs.iterations == first.iterations && rs.steps == first.steps && rs.reason == first.reason &&
                           rs.work_assembly == first.work_assembly && rs.work_qp == first.work_qp &&
                           rs.n_hist == first.n_hist,
-                      "%s: %d threads: %d iterations, %g + %g work units against %d, %g + %g", runs[k][0], threads,
+                      "%s %s: %d threads, %s: %d iterations, %g + %g work units against %d, %g + %g", runs[k][0], runs[k][1], threads, vset,
                       rs.iterations, rs.work_assembly, rs.work_qp, first.iterations, first.work_assembly,
                       first.work_qp);
             if (rs.n_hist == first.n_hist)
                 CHECK_MSG(memcmp(rs.hist_gnorm, first.hist_gnorm, sizeof(double) * rs.n_hist) == 0 &&
                               memcmp(rs.hist_level, first.hist_level, sizeof(int) * rs.n_hist) == 0,
-                          "%s: %d threads: another history", runs[k][0], threads);
+                          "%s %s: %d threads, %s: another history", runs[k][0], runs[k][1], threads, vset);
             CHECK_MSG(xs.n_x == xfirst.n_x && memcmp(xs.x, xfirst.x, sizeof(double) * xs.n_x) == 0,
-                      "%s: %d threads: another final state", runs[k][0], threads);
+                      "%s %s: %d threads, %s: another final state", runs[k][0], runs[k][1], threads, vset);
             sb_record_summary_free(&rs);
             sb_record_setup_free(&xs);
         }
@@ -426,6 +451,23 @@ SB_TEST(runs_identical_for_any_thread_count)
  * refuses an out-of-range count */
 SB_TEST(threads_refused_when_unavailable)
 {
+    /* run.vectors: a width this CPU runs is accepted, another refused with a sentence */
+    for (int i = 1; sb_vector_choices[i]; i++) {
+        char set[64];
+        snprintf(set, sizeof set, "run.vectors=%s", sb_vector_choices[i]);
+        const char *sv[] = { set, NULL };
+        asm_case cv;
+        sb_paramset vps;
+        sb_paramset_init(&vps);
+        sb_paramset_add(&vps, "run", sb_solve_params);
+        char msg[256];
+        sb_shell_isa isa;
+        CHECK_EQ_INT(sb_paramset_set(&vps, set, msg, sizeof msg), SB_OK);
+        const int supported = sb_shell_isa_from_params(&vps, &isa, msg, sizeof msg) == SB_OK;
+        if (!supported) CHECK_MSG(strstr(msg, "run.vectors") != NULL, "%s", msg);
+        CHECK_MSG((case_open(&cv, "bench/scenes/plate_clamped.json", "bhem", 4, 1e-3, sv) == 0) == supported, "%s", set);
+        case_close(&cv);
+    }
     const char *sets2[] = { "run.threads=2", NULL };
     asm_case c;
     const int rc = case_open(&c, "bench/scenes/plate_clamped.json", "rmtr", 4, 1e-3, sets2);

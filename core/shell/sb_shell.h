@@ -10,6 +10,7 @@
 #define SB_SHELL_H
 
 #include "sb_material.h"
+#include "sb_params.h"
 
 #define SB_SHELL_MAX_BASIS 64    /* >= 2n+8 for valence n up to 28 */
 
@@ -111,6 +112,12 @@ sb_shell_isa sb_shell_isa_best(void);
 sb_shell_isa sb_shell_batch_isa(const sb_shell_batch *w);
 /* SB_OK, or SB_ERR_UNSUPPORTED when this build or CPU lacks isa */
 int sb_shell_batch_set_isa(sb_shell_batch *w, sb_shell_isa isa);
+/* run.vectors: "auto" (the widest this CPU runs), "sse2", "avx2", "avx512" */
+extern const char *const sb_vector_choices[];
+/* The width run.vectors asks for (auto when ps is NULL or has no run.vectors):
+ * SB_OK, or SB_ERR_INPUT with a sentence in msg when this CPU or build
+ * cannot run it. */
+int sb_shell_isa_from_params(const sb_paramset *ps, sb_shell_isa *isa, char *msg, size_t len);
 /* The same, but hess is OVERWRITTEN (all 3k x 3k entries; grad is still
  * accumulated): for an element matrix with no other terms, which then need
  * not be zeroed first.  Bit-identical to sb_shell_element on a zeroed hess. */
@@ -206,7 +213,8 @@ typedef struct sb_elem_scratch {
     double *qe, *Kx, *psd;
     sb_shell_basis *b;
 } sb_elem_scratch;
-int sb_elem_scratch_init(sb_elem_scratch *s, int kmax, int nqmax);
+/* isa: the vector width of its batch (sb_shell_isa_from_params) */
+int sb_elem_scratch_init(sb_elem_scratch *s, int kmax, int nqmax, sb_shell_isa isa);
 void sb_elem_scratch_free(sb_elem_scratch *s);
 
 #endif

@@ -80,9 +80,6 @@ void sb_elem_products(int R, int kp, sb_shell_batch *w);
 /* w->C3 (n x n) = G^T G on and above its diagonal tiles (w->G, w->Gb: R x n,
  * n a multiple of KPAD) */
 void sb_elem_gram(int R, int n, sb_shell_batch *w);
-/* the Z^cd rows of one point from its 15 x 15 K (blocks s <= t) and basis
- * rows Wp (5 x kp), at the batch's isa */
-void sb_elem_zrows(const sb_shell_batch *w, double K[15][15], const double *Wp, int kp, double *Z0);
 /* does the batch's isa read the pre-broadcast copies Wb and Gb? */
 int sb_elem_wants_broadcast(const sb_shell_batch *w);
 /* the section law of the fast kernel at a given vector width (the same bits
@@ -96,6 +93,15 @@ double sb_section_denim_isa(sb_shell_isa isa, const sb_material *m, const double
 double sb_section_denim_base(SB_SECTION_DENIM_ARGS);
 double sb_section_denim_avx2(SB_SECTION_DENIM_ARGS);
 double sb_section_denim_avx512(SB_SECTION_DENIM_ARGS);
+double sb_elem_element_base(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                            const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
+double sb_elem_element_avx2(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                            const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
+double sb_elem_element_avx512(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
+                              const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
+void sb_elem_scatter_base(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
+void sb_elem_scatter_avx2(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
+void sb_elem_scatter_avx512(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
 void sb_elem_zrows_base(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
 void sb_elem_zrows_avx2(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
 void sb_elem_zrows_avx512(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
@@ -107,9 +113,6 @@ void sb_elem_products_avx512(int R, int kp, sb_shell_batch *w);
 void sb_elem_gram_avx512(int R, int n, const double *G, const double *Gb, double *C);
 /* hess (3k x 3k) += sign * the products, exactly symmetric */
 void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
-/* D = dA blockdiag(T, T)^T C6 blockdiag(T, T); K = J^T D J (blocks s <= t) */
-void sb_elem_congruence6(const double *C6, const double *T, double dA, double D[6][6]);
-void sb_elem_jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[15][15]);
 /* C (n x n, n <= 6) positive definite?  And C <- its PSD part. */
 int sb_elem_pos_def(int n, const double *C);
 void sb_elem_psd_part(int n, double *C);

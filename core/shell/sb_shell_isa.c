@@ -11,6 +11,11 @@
  * for the build machine and has the base variant only. */
 #include "sb_shell_batch.h"
 
+#include <stdio.h>
+#include <string.h>
+
+const char *const sb_vector_choices[] = { "auto", "sse2", "avx2", "avx512", NULL };
+
 const char *sb_shell_isa_name(sb_shell_isa isa)
 {
     switch (isa) {
@@ -57,19 +62,50 @@ int sb_shell_batch_set_isa(sb_shell_batch *w, sb_shell_isa isa)
     return SB_OK;
 }
 
+int sb_shell_isa_from_params(const sb_paramset *ps, sb_shell_isa *isa, char *msg, size_t len)
+{
+    *isa = sb_shell_isa_best();
+    const char *v = ps ? sb_param_choice(ps, "run.vectors") : "";
+    if (!v[0] || strcmp(v, "auto") == 0) return SB_OK;
+#ifdef SB_VEC_VARIANTS
+    const sb_shell_isa want = strcmp(v, "sse2") == 0 ? SB_ISA_BASE : strcmp(v, "avx2") == 0 ? SB_ISA_AVX2 : SB_ISA_AVX512;
+    if (sb_shell_isa_supported(want)) {
+        *isa = want;
+        return SB_OK;
+    }
+    snprintf(msg, len, "run.vectors = %s: this CPU does not run %s (it runs up to %s; use auto)", v, v,
+             sb_shell_isa_name(sb_shell_isa_best()));
+#else
+    snprintf(msg, len, "run.vectors = %s: this build (make NATIVE=1) compiles the kernel for its own machine only; "
+             "use auto", v);
+#endif
+    return SB_ERR_INPUT;
+}
+
 /* the base variant of the default build is SSE2, whose tiles read A from
  * its pre-broadcast copy */
 int sb_elem_wants_broadcast(const sb_shell_batch *w) { return SB_VL == 2 && w->isa == SB_ISA_BASE; }
 
-void sb_elem_zrows(const sb_shell_batch *w, double K[15][15], const double *Wp, int kp, double *Z0)
+double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
+                       double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
 {
-    const size_t zstride = (size_t)5 * w->nqmax * kp;
+    switch (w ? w->isa : SB_ISA_BASE) {
+#ifdef SB_VEC_VARIANTS
+    case SB_ISA_AVX512: return sb_elem_element_avx512(m, nq, r, b, q, grad, hess, kind, w);
+    case SB_ISA_AVX2: return sb_elem_element_avx2(m, nq, r, b, q, grad, hess, kind, w);
+#endif
+    default: return sb_elem_element_base(m, nq, r, b, q, grad, hess, kind, w);
+    }
+}
+
+void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+{
     switch (w->isa) {
 #ifdef SB_VEC_VARIANTS
-    case SB_ISA_AVX512: sb_elem_zrows_avx512(K, Wp, kp, Z0, zstride); return;
-    case SB_ISA_AVX2: sb_elem_zrows_avx2(K, Wp, kp, Z0, zstride); return;
+    case SB_ISA_AVX512: sb_elem_scatter_avx512(k, kp, w, hess, sign); return;
+    case SB_ISA_AVX2: sb_elem_scatter_avx2(k, kp, w, hess, sign); return;
 #endif
-    default: sb_elem_zrows_base(K, Wp, kp, Z0, zstride); return;
+    default: sb_elem_scatter_base(k, kp, w, hess, sign); return;
     }
 }
 

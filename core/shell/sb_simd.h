@@ -66,6 +66,12 @@ static inline sb_vd sb_vasdbl(sb_vi i)
 /* p[0] = p[1] = x in one 2-wide store (the SSE2 tiles' pre-broadcast
  * operands, sb_elem_tile.c) */
 typedef double sb_v2d __attribute__((vector_size(16)));
+static inline sb_v2d sb_v2load(const double *p)
+{
+    sb_v2d v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
 static inline void sb_store_pair(double *p, double x)
 {
     const sb_v2d v = { x, x };

@@ -2,6 +2,7 @@
  * test convergence (RMTR paper Eq. 7.1, with optional relative terms). */
 #include "sb_solver.h"
 #include "sb_context.h"
+#include "sb_shell.h"   /* sb_vector_choices (run.vectors) */
 
 #include <math.h>
 #include <stdlib.h>
@@ -58,6 +59,9 @@ const sb_param_def sb_solve_params[] = {
     { "threads", SB_PARAM_INT, 1, 1, 64, NULL,
       "threads assembling energy, gradient and Hessian over elements (rmtr, bhem; OpenMP): the reduction is in "
       "element order, so every count and record is bit-identical for any number (docs/performance.md)" },
+    { "vectors", SB_PARAM_CHOICE, 0, 0, 0, sb_vector_choices,
+      "vector width of the fast shell kernel (rmtr, bhem): auto = the widest this CPU runs; every width gives "
+      "the same bits, only the speed differs (docs/performance.md)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 

@@ -54,6 +54,8 @@ static int read_params(bhem_state *S, const sb_method_config *cfg, int *cells_t)
     if (S->threads > 1 && !sb_assemble_have_threads())
         return bhem_fail(S, SB_ERR_INPUT, "run.threads = %d: this build has no OpenMP (build with make OPENMP=-fopenmp)",
                          S->threads);
+    char msg[256];
+    if (sb_shell_isa_from_params(cfg->params, &S->isa, msg, sizeof msg)) return bhem_fail(S, SB_ERR_INPUT, "%s", msg);
     if (!cfg->params) return SB_OK;
     if (strcmp(sb_param_choice(cfg->params, "method.kernel"), "reference") == 0) S->kernel = SB_KERNEL_REFERENCE;
     const char *h = sb_param_choice(cfg->params, "method.hessian");
@@ -156,7 +158,7 @@ static int bhem_create(void *state, const sb_scene *scene, const sb_method_confi
     S->tw = calloc((size_t)S->threads, sizeof *S->tw);
     if (!S->tw) { bhem_destroy(S); return SB_ERR_NOMEM; }
     for (int t = 0; t < S->threads; t++)
-        if (sb_elem_scratch_init(&S->tw[t], BHEM_NB, BHEM_NQP)) { bhem_destroy(S); return SB_ERR_NOMEM; }
+        if (sb_elem_scratch_init(&S->tw[t], BHEM_NB, BHEM_NQP, S->isa)) { bhem_destroy(S); return SB_ERR_NOMEM; }
     if (!(S->assembler = sb_assembler_new(S->threads, BHEM_NED, 2 * BHEM_NQP + 2))) { bhem_destroy(S); return SB_ERR_NOMEM; }
     if ((rc = bhem_detect_periodic(S))) { bhem_destroy(S); return rc; }
     for (int l = 0; l < levels && rc == SB_OK; l++) {
@@ -266,11 +268,12 @@ static void bhem_describe(const void *state, char *buf, size_t len)
 {
     const bhem_state *S = state;
     const bhem_level *L = &S->lv[S->n_levels - 1];
-    snprintf(buf, len, "%dx%d bicubic Hermite patches (%d active), %d dofs, %d level%s, %s Hessian%s%s%s%s",
+    snprintf(buf, len, "%dx%d bicubic Hermite patches (%d active), %d dofs, %d level%s, %s Hessian%s%s%s%s, %s kernel%s%s",
              L->n1, L->n2, L->n_elems, L->n_dofs, S->n_levels, S->n_levels > 1 ? "s" : "", hess_choices[S->hess],
              S->periodic_s ? ", periodic in s" : "", S->periodic_t ? ", periodic in t" : "",
              S->slit_s ? ", closed in s but slit (conditions on its seam edges)" : "",
-             S->slit_t ? ", closed in t but slit (conditions on its seam edges)" : "");
+             S->slit_t ? ", closed in t but slit (conditions on its seam edges)" : "", sb_kernel_names[S->kernel],
+             S->kernel == SB_KERNEL_FAST ? " at vectors " : "", S->kernel == SB_KERNEL_FAST ? sb_shell_isa_name(S->isa) : "");
 }
 
 const sb_method_type sb_method_bhem = {

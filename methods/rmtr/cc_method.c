@@ -205,6 +205,7 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
         return cc_state_fail(S, SB_ERR_INPUT, "run.threads = %d: this build has no OpenMP (build with make OPENMP=-fopenmp)",
                              S->threads);
     char msg[256];
+    if (sb_shell_isa_from_params(cfg->params, &S->isa, msg, sizeof msg)) return cc_state_fail(S, SB_ERR_INPUT, "%s", msg);
     if (sb_material_init_msg(&S->mat, &scene->material, (int)param(cfg, "n_thick"), msg, sizeof msg) != SB_OK)
         return cc_state_fail(S, SB_ERR_INPUT, "material: %s", msg);
     int n, nt, levels;
@@ -243,7 +244,7 @@ static int cc_create(void *state, const sb_scene *scene, const sb_method_config 
         S->tw = calloc((size_t)S->threads, sizeof *S->tw);
         if (!st && !S->tw) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
         for (int t = 0; !st && t < S->threads; t++)
-            if (sb_elem_scratch_init(&S->tw[t], kmax, nq)) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
+            if (sb_elem_scratch_init(&S->tw[t], kmax, nq, S->isa)) st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
         if (!st && !(S->assembler = sb_assembler_new(S->threads, nm, max_terms)))
             st = cc_fail(&e, SB_ERR_NOMEM, "out of memory");
     }
@@ -383,8 +384,12 @@ static void cc_describe(const void *state, char *buf, size_t len)
 {
     const cc_state *S = state;
     const cc_level *L = &S->lv[S->nlev - 1];
-    snprintf(buf, len, "Catmull-Clark subdivision, %d levels, %dx%d -> %dx%d elements (+ghost ring), %d dofs, %s projection",
-             S->nlev, S->n_coarse, S->nt_coarse, S->n_fine, S->nt_fine, 3 * L->nv, proj_choices[S->proj]);
+    snprintf(buf, len,
+             "Catmull-Clark subdivision, %d levels, %dx%d -> %dx%d elements (+ghost ring), %d dofs, %s projection, "
+             "%s kernel%s%s",
+             S->nlev, S->n_coarse, S->nt_coarse, S->n_fine, S->nt_fine, 3 * L->nv, proj_choices[S->proj],
+             sb_kernel_names[S->kernel], S->kernel == SB_KERNEL_FAST ? " at vectors " : "",
+             S->kernel == SB_KERNEL_FAST ? sb_shell_isa_name(S->isa) : "");
 }
 
 static int cc_penalty_violation_op(void *state, int level, const double *x, sb_penalty_report *r)

@@ -92,6 +92,7 @@ typedef struct cc_state {
     double *Ke, *ge, *qe, *psd;
     /* assembly (issue 30): method.kernel, run.threads, per-thread scratch */
     sb_kernel_kind kernel;
+    sb_shell_isa isa;   /* run.vectors: the fast kernel's vector width */
     int threads;
     sb_elem_scratch *tw;
     struct sb_assembler *assembler;
