@@ -43,6 +43,9 @@ run() {
   rm -f "$f.tmp"
 }
 
+# The runs and their series; not in `pictures` mode (which must not touch
+# them: without the records, distance.py would empty the committed series).
+if [ "${2:-}" != pictures ]; then
 run curtain-adaptive-cholmod --set method.adaptive=1
 run curtain-full-cholmod --set method.adaptive=0
 # a looser criterion (Eq. 23 limits 5 and 50 /m instead of 2 and 20): the speed / accuracy trade-off
@@ -100,6 +103,7 @@ python3 bench/sqrt3/distance.py "$OUT" --full curtain-g6-full-cholmod --diag 1.8
   adaptive=curtain-g6-adaptive-cholmod > "$OUT/series_curtain_g6.csv"
 python3 bench/sqrt3/distance.py "$OUT" --full cs-full --diag 0.848528137 adaptive=cs-adaptive loose=cs-adaptive-loose \
   looser=cs-adaptive-looser > "$OUT/series_cloth_sphere.csv"
+fi   # runs and series
 # picture TAG [--set ...]: the last step of run TAG as a small PNG
 # (results/sqrt3/images/TAG.png, 240x180 at 8 samples per pixel, committed;
 # the report shows it).  Drawn with `render --step LAST`, the recorded surface
