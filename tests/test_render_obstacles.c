@@ -3,7 +3,9 @@
  * rendered step: a scene with one of each, mapped by
  * sb_render_scene_obstacles at step 2 of a 4-step motion ramp (f = 1/2),
  * is hit by rays where the analytic geometry of the moved obstacle says
- * (distance and normal), misses where it says, and shadows. */
+ * (distance and normal), misses where it says, and shadows; and a scene
+ * with as many obstacles as a scene can have (64 spheres in a row, more
+ * than the 16 the renderer once held) has every one drawn. */
 #include "sb_test.h"
 #include "sb_render_world.h"
 #include "sb_scene.h"
@@ -42,14 +44,15 @@ typedef struct fixture {
     sb_world w;
 } fixture;
 
-/* the scene's obstacles at step 2 around a small triangle far from them
- * (the plane's drawn square is centred under the surface) */
-static int open_fixture(sb_test_state *T, fixture *F)
+/* the obstacles of scene `json` (n_expect of them) at step 2 around a small
+ * triangle far from them (the plane's drawn square is centred under the
+ * surface) */
+static int open_scene(sb_test_state *T, fixture *F, const char *json, int n_expect)
 {
     memset(F, 0, sizeof *F);
     char path[1024], err[1024];
     snprintf(path, sizeof path, "%s/tests/scenes/contact/inline.json", sb_test_root());
-    int rc = sb_scene_parse_string(SCENE, path, &F->sc, err, sizeof err);
+    int rc = sb_scene_parse_string(json, path, &F->sc, err, sizeof err);
     CHECK_MSG(rc == 0, "%s", err);
     if (rc) return -1;
     const double v[9] = { 10, 10, 10, 11, 10, 10, 10, 11, 10 };
@@ -62,11 +65,14 @@ static int open_fixture(sb_test_state *T, fixture *F)
     sb_render_options_default(&F->o);
     F->o.ground = 0;
     CHECK_EQ_INT(sb_render_scene_obstacles(&F->sc, 2, &F->o, &F->mv), 0);
-    CHECK_EQ_INT(F->o.n_obstacles, 5);
+    CHECK_EQ_INT(F->o.n_obstacles, n_expect);
     rc = sb_world_build(&F->w, &F->s, NULL, &F->o, err, sizeof err);
     CHECK_MSG(rc == 0, "%s", err);
     return rc ? -1 : 0;
 }
+
+/* the scene with one obstacle of each kind */
+static int open_fixture(sb_test_state *T, fixture *F) { return open_scene(T, F, SCENE, 5); }
 
 static void close_fixture(fixture *F)
 {
@@ -246,12 +252,68 @@ SB_TEST(obstacles_cast_shadows_and_render)
     close_fixture(&F);
 }
 
+/* Sphere i of the row: centre (ROW_X0 + ROW_DX i, 0, 0), radius ROW_R. */
+#define ROW_X0 2.0
+#define ROW_DX 0.5
+#define ROW_R 0.1
+
+/* A scene with SB_SCENE_MAX_OBSTACLES spheres in a row along x (the most a
+ * scene may have): every one is placed for the renderer and drawn.  Rays
+ * straight down onto the 17th (the first beyond the renderer's former 16)
+ * and the last sphere hit it at its top, t = height - ROW_R, normal +z; a
+ * ray along the row from beyond its end hits the last sphere first, at
+ * t = distance to the centre - ROW_R, normal +x. */
+SB_TEST(every_obstacle_of_a_full_scene_is_drawn)
+{
+    enum { N = SB_SCENE_MAX_OBSTACLES };
+    char json[16384];
+    size_t len = (size_t)snprintf(json, sizeof json, "%s",
+        "{\"name\": \"row\", \"domain\": {\"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [1, 1]},"
+        "\"material\": {\"model\": \"stvk\", \"young\": 1e5, \"poisson\": 0.3, \"thickness\": 0.001, \"density\": 0.2},"
+        "\"loads\": [{\"type\": \"gravity\", \"acceleration\": [0, 0, -9.81]}],"
+        "\"time\": {\"mode\": \"dynamic\", \"dt\": 0.01, \"steps\": 5}, \"obstacles\": [");
+    for (int i = 0; i < N && len < sizeof json; i++)
+        len += (size_t)snprintf(json + len, sizeof json - len, "%s{\"type\": \"sphere\", \"center\": [%.17g, 0, 0], \"radius\": %g}",
+                                i ? "," : "", ROW_X0 + ROW_DX * i, ROW_R);
+    if (len < sizeof json) len += (size_t)snprintf(json + len, sizeof json - len, "], \"contact\": {\"dhat\": 0.001}}");
+    CHECK(len < sizeof json);
+    if (len >= sizeof json) return;
+
+    fixture F;
+    if (open_scene(T, &F, json, N)) { close_fixture(&F); return; }
+    CHECK_EQ_INT(F.w.n_obstacles, N);
+    const double d[3] = { 0, 0, -1 };
+    const double o16[3] = { ROW_X0 + ROW_DX * 16, 0, 5 };
+    EXPECT_HIT(&F, o16, d, 16, 5 - ROW_R, 0, 0, 1);
+    const double xl = ROW_X0 + ROW_DX * (N - 1);
+    const double ol[3] = { xl, 0, 5 };
+    EXPECT_HIT(&F, ol, d, N - 1, 5 - ROW_R, 0, 0, 1);
+    const double oe[3] = { xl + 3, 0, 0 }, de[3] = { -1, 0, 0 };
+    EXPECT_HIT(&F, oe, de, N - 1, 3 - ROW_R, 1, 0, 0);
+    /* between the last two spheres, nothing */
+    const double om[3] = { xl - 0.5 * ROW_DX, 0, 5 };
+    CHECK(misses(&F, om, d));
+
+    /* room is short only after obstacles the caller put in first: one of
+       its own leaves the scene's last out, and the count says so */
+    sb_render_options o;
+    sb_render_options_default(&o);
+    o.n_obstacles = 1;
+    o.obstacles[0] = F.o.obstacles[0];
+    double *mv = NULL;
+    CHECK_EQ_INT(sb_render_scene_obstacles(&F.sc, 2, &o, &mv), 1);
+    CHECK_EQ_INT(o.n_obstacles, SB_RENDER_MAX_OBSTACLES);
+    free(mv);
+    close_fixture(&F);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(sphere_at_its_ramped_pose), SB_CASE(box_rotated_by_half_its_angle),
         SB_CASE(capsule_side_and_end_caps), SB_CASE(plane_is_a_bounded_square_under_the_surface),
-        SB_CASE(mesh_triangles_moved_and_rotated), SB_CASE(obstacles_cast_shadows_and_render), SB_END,
+        SB_CASE(mesh_triangles_moved_and_rotated), SB_CASE(obstacles_cast_shadows_and_render),
+        SB_CASE(every_obstacle_of_a_full_scene_is_drawn), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }

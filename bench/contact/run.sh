@@ -36,6 +36,7 @@ for scene in cloth_sphere drape_box needles; do
   done
 done
 for method in bhem rmtr linear_fem; do
+  [ "${2:-}" = pictures ] && break
   for solver in lsnewton tr; do
     for res in 4 8; do
       tag="tube_collapse-$method-$solver-r$res"
@@ -59,6 +60,7 @@ done
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 for scene in cloth_sphere drape_box; do
+  [ "${2:-}" = pictures ] && break
   python3 - "$scene" "$TMP" <<'PY'
 import json, sys
 scene, tmp = sys.argv[1], sys.argv[2]

@@ -158,23 +158,32 @@ def cloth_sphere():
             out += ["", "(gnuplot not available: no figure)"]
     return out
 def pictures(runs):
-    """Markdown showing the committed picture of every run present in runs
-    that has one (results/sqrt3/images/TAG.png: its last step, drawn by
-    `picture` in bench/sqrt3/run.sh from a rerun, the records not being
-    committed); nothing when none exists."""
+    """Markdown showing the committed pictures of every run present in runs
+    that has them (results/sqrt3/images/TAG-open.png: step 2200, 11 s, the
+    curtain open; TAG.png: its last step; drawn by `picture` in
+    bench/sqrt3/run.sh from a rerun, the records not being committed), the
+    open states in the first row; nothing when none exists."""
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     from render_thumbs import thumbnails
     images = os.path.join(DIR, "images")
-    items = [("%s: step %d of %d (run %s, drawn from a rerun)" % (name, runs[tag]["steps"], runs[tag]["steps"], tag),
-              os.path.join(images, tag + ".h5"), (), tag)
-             for tag, name in RUNS if runs.get(tag)]
+    open_step = 2200   # bench/sqrt3/run.sh OPEN_STEP: 11 s at dt = 5 ms
+    present = [(tag, name) for tag, name in RUNS if runs.get(tag)]
+    items = [("%s: open, step %d of %d (11 s; run %s, drawn from a rerun)" % (name, open_step, runs[tag]["steps"], tag),
+              os.path.join(images, tag + "-open.h5"), (), tag + "-open")
+             for tag, name in present if runs[tag]["steps"] >= open_step]
+    items += [("%s: closed, step %d of %d (20 s; run %s, drawn from a rerun)" % (name, runs[tag]["steps"],
+                                                                               runs[tag]["steps"], tag),
+               os.path.join(images, tag + ".h5"), (), tag)
+              for tag, name in present]
     rows = thumbnails(None, items, images, os.path.join(os.path.basename(os.path.normpath(DIR)), "images"))
     if not rows:
         return []
-    return ["", "**Pictures**: the curtain at the last step of each run (the PCG run takes the same steps as the "
-            "CHOLMOD one and is not drawn), by `shellbench render --step LAST` (240x180, 8 samples per pixel): the "
-            "recorded surface of that step, since an adaptive record's final state does not rebuild from the base "
-            "mesh.  The records are not committed, so `bench/sqrt3/run.sh` made each run again to draw it.", ""] + rows
+    return ["", "**Pictures**: the curtain of each run open (11 s, the hooks fully gathered) and at its last step "
+            "(20 s, closed again), seen from the front (the curtain hangs along -y; the grid behind it is the "
+            "picture's ground plane, a wall here), by `shellbench render --step K` (240x180, 8 samples per pixel): "
+            "the recorded surface of that step, since an adaptive record's final state does not rebuild from the "
+            "base mesh.  The PCG run takes the same steps as the CHOLMOD one and is not drawn.  The records are not "
+            "committed, so `bench/sqrt3/run.sh` made each run again to draw it.", ""] + rows
 
 
 def main():

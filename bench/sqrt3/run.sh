@@ -12,8 +12,8 @@
 # the records (h5dump) into results/sqrt3/series.csv, and report.py writes
 # results/sqrt3_report.md and results/sqrt3/fig8.png from the summaries and
 # that CSV, never by re-running.  A summary that exists is skipped.  The
-# final state of three runs is drawn into results/sqrt3/images/ (small PNGs,
-# committed; `picture` below).
+# last step and the open state (11 s) of three runs are drawn into
+# results/sqrt3/images/ (small PNGs, committed; `picture` below).
 #
 #   bash bench/sqrt3/run.sh [SHELLBENCH] [pictures]
 #
@@ -43,6 +43,9 @@ run() {
   rm -f "$f.tmp"
 }
 
+# The runs and their series; not in `pictures` mode (which must not touch
+# them: without the records, distance.py would empty the committed series).
+if [ "${2:-}" != pictures ]; then
 run curtain-adaptive-cholmod --set method.adaptive=1
 run curtain-full-cholmod --set method.adaptive=0
 # a looser criterion (Eq. 23 limits 5 and 50 /m instead of 2 and 20): the speed / accuracy trade-off
@@ -100,30 +103,50 @@ python3 bench/sqrt3/distance.py "$OUT" --full curtain-g6-full-cholmod --diag 1.8
   adaptive=curtain-g6-adaptive-cholmod > "$OUT/series_curtain_g6.csv"
 python3 bench/sqrt3/distance.py "$OUT" --full cs-full --diag 0.848528137 adaptive=cs-adaptive loose=cs-adaptive-loose \
   looser=cs-adaptive-looser > "$OUT/series_cloth_sphere.csv"
-# picture TAG [--set ...]: the last step of run TAG as a small PNG
-# (results/sqrt3/images/TAG.png, 240x180 at 8 samples per pixel, committed;
-# the report shows it).  Drawn with `render --step LAST`, the recorded surface
-# of the last step: an adaptive record's final state does not rebuild from
-# the base mesh (its /final/x has the adapted mesh's dofs).  From the run's
-# record; when the record is gone (records are not committed) the same
-# command is run again into a temporary record first, its summary
-# discarded.  A picture that exists is kept (delete it to redraw).
+fi   # runs and series
+# picture TAG [--set ...]: run TAG as two small PNGs (240x180 at 8 samples
+# per pixel, committed; the report shows them): results/sqrt3/images/TAG.png,
+# its last step (20 s, the curtain closed again), and TAG-open.png, step
+# OPEN_STEP (11 s, the hooks fully gathered by the scene's schedule).  Drawn
+# with `render --step K`, the recorded surface of step K: an adaptive
+# record's final state does not rebuild from the base mesh (its /final/x has
+# the adapted mesh's dofs).  From the run's record; when the record is gone
+# (records are not committed) the same command is run again into a
+# temporary record first, its summary discarded.  A picture that exists is
+# kept (delete it to redraw).
+#
+# The curtain hangs in the x-y plane along -y, so it is seen from the front:
+# from +z straight down the z axis (for which the renderer takes +y as up),
+# 3.6 m away (the vertical field of view of 30 degrees then spans 1.93 m),
+# the target at x = -0.1 so that the curtain (x in [0, 1], y in [0, 1.5])
+# lies right of the labels.  The picture's ground plane, under the lowest z,
+# is a wall behind it.
+OPEN_STEP=2200   # 11 s / dt 5 ms
+CAMERA="-0.1,0.68,3.6,-0.1,0.68,0"
 picture() {
   local tag=$1; shift
-  local png="$OUT/images/$tag.png" rec="$OUT/records/$tag.h5" log="$OUT/images/$tag.log"
-  [ -s "$png" ] && return 0
+  local png="$OUT/images/$tag.png" open="$OUT/images/$tag-open.png"
+  local rec="$OUT/records/$tag.h5" log="$OUT/images/$tag.log"
+  [ -s "$png" ] && [ -s "$open" ] && return 0
   mkdir -p "$OUT/images"
   local last
   last=$(python3 -c 'import json, sys; t = open(sys.argv[1]).read(); print(json.loads(t[t.index("{"):])["steps"])' \
          "$OUT/runs/$tag.json" 2> /dev/null) || { echo "$tag: no summary, no picture" >&2; return 0; }
   if [ ! -s "$rec" ]; then
-    echo "== $tag (rerun for its picture)" >&2
+    echo "== $tag (rerun for its pictures)" >&2
     rec="$OUT/records/$tag.picture.h5"
     "$BIN" run --scene curtain --method adaptive_sqrt3 --solver linearized --res 8x12 --samples 11 \
       --set method.Es=1000 --set method.max_generation=4 --set run.single_step_rtol=1e300 \
       --out "$rec" --quiet "$@" > /dev/null 2> "$log"
   fi
-  "$BIN" render "$rec" --step "$last" --size 240x180 --spp 8 --out "$png" --quiet 2>> "$log" && rm -f "$log"
+  local ok=1
+  [ -s "$png" ] || "$BIN" render "$rec" --step "$last" --camera "$CAMERA" --size 240x180 --spp 8 --out "$png" \
+    --quiet 2>> "$log" || ok=0
+  if [ "$last" -ge "$OPEN_STEP" ] && [ ! -s "$open" ]; then
+    "$BIN" render "$rec" --step "$OPEN_STEP" --camera "$CAMERA" --size 240x180 --spp 8 --out "$open" \
+      --quiet 2>> "$log" || ok=0
+  fi
+  [ "$ok" = 1 ] && rm -f "$log"
   case "$rec" in *.picture.h5) rm -f "${rec%.h5}".*;; esac
   return 0
 }

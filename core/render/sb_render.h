@@ -12,6 +12,7 @@
 #include "sb_bezier_ray.h"
 #include "sb_surface.h"
 #include "sb_material.h"
+#include "sb_scene.h"   /* SB_SCENE_MAX_OBSTACLES */
 
 typedef enum { SB_COLOR_NONE = 0, SB_COLOR_CURVATURE, SB_COLOR_STRAIN, SB_COLOR_SOFTENING, SB_COLOR_COUNT } sb_color_kind;
 extern const char *const sb_color_names[];   /* "none", "curvature", "strain", "softening", NULL */
@@ -45,7 +46,9 @@ typedef struct sb_obstacle {
     const double *verts;
     const int *tris;
 } sb_obstacle;
-#define SB_RENDER_MAX_OBSTACLES 16
+/* Room for every obstacle a scene can have: the record path draws all of a
+ * scene's obstacles (at most SB_SCENE_MAX_OBSTACLES, sb_scene.h). */
+#define SB_RENDER_MAX_OBSTACLES SB_SCENE_MAX_OBSTACLES
 
 typedef struct sb_render_options {
     int width, height;       /* pixels */
@@ -108,14 +111,16 @@ int sb_render_surface(const sb_surface *s, const sb_material *mat, const sb_rend
 
 /* ---- records ---------------------------------------------------------- */
 
-struct sb_scene;
 /* Append the obstacles of scene sc at their pose of `step` (motion ramps,
- * sb_obstacle_motion_factor) to o (up to SB_RENDER_MAX_OBSTACLES).  Mesh
- * obstacles need their vertices moved: *mesh_verts receives one malloc'd
- * block holding them (free it after rendering; NULL when there are none).
- * Returns the number of obstacles left out (over the limit), or -1 when out
- * of memory. */
-int sb_render_scene_obstacles(const struct sb_scene *sc, int step, sb_render_options *o, double **mesh_verts);
+ * sb_obstacle_motion_factor) to o.  Mesh obstacles need their vertices
+ * moved: *mesh_verts receives one malloc'd block holding them (free it after
+ * rendering; NULL when there are none).  o has room for every obstacle of a
+ * scene (SB_RENDER_MAX_OBSTACLES = SB_SCENE_MAX_OBSTACLES), so all of them
+ * are appended when o starts without obstacles; only obstacles the caller
+ * put into o before can leave too little room.  Returns the number of the
+ * scene's obstacles left out for want of room (0 when o->n_obstacles was 0),
+ * or -1 when out of memory. */
+int sb_render_scene_obstacles(const sb_scene *sc, int step, sb_render_options *o, double **mesh_verts);
 
 
 /* Which state of a record to draw: step -1 = the final state (exact, from

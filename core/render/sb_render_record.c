@@ -49,6 +49,10 @@ static void rebuilt_free(rebuilt *b)
     memset(b, 0, sizeof *b);
 }
 
+/* o's obstacle array holds every obstacle a scene can have */
+_Static_assert(SB_RENDER_MAX_OBSTACLES >= SB_SCENE_MAX_OBSTACLES,
+               "sb_render_options must have room for every obstacle of a scene");
+
 /* Every obstacle of the scene (docs/contact.md) at its pose of `step`:
  * x_world = c + R (y - c) + f t (sb_pose_at, the motion factor f of the
  * step's ramp) applied to the rest-frame geometry. */
@@ -62,7 +66,7 @@ int sb_render_scene_obstacles(const sb_scene *sc, int step, sb_render_options *o
     if (nmv && !(*mesh_verts = malloc(nmv * 3 * sizeof(double)))) return -1;
     double *mv = *mesh_verts;
     for (int i = 0; i < sc->n_obstacles; i++) {
-        if (o->n_obstacles >= SB_RENDER_MAX_OBSTACLES) { left_out++; continue; }
+        if (o->n_obstacles >= SB_RENDER_MAX_OBSTACLES) { left_out++; continue; }   /* only after the caller's own */
         const sb_obstacle_spec *ob = &sc->obstacles[i];
         sb_pose P;
         sb_pose_at(ob, sb_obstacle_motion_factor(sc, ob, step), &P);
@@ -343,7 +347,6 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         }
     }
     sb_render_options o = rq->opt;
-    int left_out = 0;   /* obstacles beyond SB_RENDER_MAX_OBSTACLES */
     if (!rc) {
         /* labels: what, which state, how it ended */
         if (!o.title[0])
@@ -363,11 +366,18 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
                      rq->step >= 0 ? "step" : sum.status == SB_STATUS_UNFINISHED ? "saved, step" : "final, step", step,
                      sum.steps_planned, state, size);
         }
+        /* every obstacle of the scene: o has room for all of them unless the
+           caller's request brought obstacles of its own (the CLI's never does) */
         double *mesh_verts = NULL;
-        left_out = sb_render_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o, &mesh_verts);
+        const int own = o.n_obstacles;
+        const int left_out = sb_render_scene_obstacles(&b.scene, rq->step >= 0 ? rq->step : sum.steps, &o, &mesh_verts);
         if (left_out < 0) {
             snprintf(err, errlen, "%s: out of memory placing the scene's mesh obstacles", path);
             rc = SB_ERR_NOMEM;
+        } else if (left_out > 0) {
+            snprintf(err, errlen, "%s: the request's %d obstacles leave room for only %d of the scene's %d (at most %d)",
+                     path, own, SB_RENDER_MAX_OBSTACLES - own, b.scene.n_obstacles, SB_RENDER_MAX_OBSTACLES);
+            rc = SB_ERR_INPUT;
         } else {
             rc = sb_render_surface(&surf, have_mat ? &mat : NULL, &o, &img, st, err, errlen);
         }
@@ -390,10 +400,9 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
         const char *val[] = { o.title, path, desc, param, software };
         if (sb_image_write_png(&img, rq->out, 5, key, val, err, errlen)) rc = SB_ERR_IO;
         if (!rc && info)
-            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s%s%s", rq->out, o.width, o.height,
+            snprintf(info, infolen, "%s: %dx%d, %d spp, %s, %s intersection, %.2f s%s", rq->out, o.width, o.height,
                      o.spp, surf.what, surf.n_patches ? sb_isect_names[o.isect] : "triangle",
                      st ? st->seconds : 0.0,
-                     left_out > 0 ? "; only the scene's first 16 obstacles drawn" : "",
                      sum.status == SB_STATUS_UNFINISHED && rq->step < 0
                          ? "; a checkpoint of an unfinished run: the state after its last saved step, labelled CHECKPOINT"
                          : "");
