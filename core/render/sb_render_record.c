@@ -350,7 +350,12 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
     if (!rc) {
         /* labels: what, which state, how it ended */
         if (!o.title[0])
-            snprintf(o.title, sizeof o.title, "%s | %s r%d | %s", sum.scene, sum.method, su.res, sum.solver);
+        {   /* the resolution as given: r8, or r8x12 for --res 8x12 */
+            char res[32];
+            if (su.res_t > 0 && su.res_t != su.res) snprintf(res, sizeof res, "r%dx%d", su.res, su.res_t);
+            else snprintf(res, sizeof res, "r%d", su.res);
+            snprintf(o.title, sizeof o.title, "%s | %s %s | %s", sum.scene, sum.method, res, sum.solver);
+        }
         if (!o.subtitle[0]) {
             const int step = rq->step >= 0 ? rq->step : sum.steps;
             char state[96];
