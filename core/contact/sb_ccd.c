@@ -16,6 +16,7 @@
  *  - touching (a root where the point is on an edge or vertex) counts as a
  *    contact: barycentric tolerance 1e-10. */
 #include "sb_obstacle.h"
+#include "sb_ccd_poly.h"
 
 #include <gsl/gsl_poly.h>
 #include <math.h>
@@ -47,7 +48,7 @@ static int in_triangle(const double p[3], const double a[3], const double b[3], 
 
 /* real roots in [0, 1] of c3 t^3 + c2 t^2 + c1 t + c0, ascending; their
  * count, or -1 when all coefficients are below `zero` (identically zero) */
-static int roots01(double c3, double c2, double c1, double c0, double zero, double r[3])
+int sb_ccd_roots01(double c3, double c2, double c1, double c0, double zero, double r[3])
 {
     double S = fmax(fmax(fabs(c3), fabs(c2)), fmax(fabs(c1), fabs(c0)));
     double x[3];
@@ -88,7 +89,7 @@ static double coplanar(const double *P[2], const double *A[2], const double *B[2
             g[s] = dot3(x, n);
         }
         double qa = 2 * g[0] - 4 * g[1] + 2 * g[2], qb = -3 * g[0] + 4 * g[1] - g[2], r[3];
-        int m = roots01(0.0, qa, qb, g[0], zero, r);
+        int m = sb_ccd_roots01(0.0, qa, qb, g[0], zero, r);
         for (int i = 0; i < m; i++) {
             double u[3], v[3], q[3], d[3], w[3];
             lerp3(U0[0], U0[1], r[i], u); lerp3(U1[0], U1[1], r[i], v); lerp3(P[0], P[1], r[i], q);
@@ -98,6 +99,31 @@ static double coplanar(const double *P[2], const double *A[2], const double *B[2
         }
     }
     return best;
+}
+
+/* The coplanarity cubic of three vectors moving linearly over t in [0, 1]:
+ * f(t) = ((e1 + t de1) x (e2 + t de2)) . (w + t dw) = k[3] t^3 + k[2] t^2 +
+ * k[1] t + k[0] (Provot 1997; Bridson, Fedkiw & Anderson 2002, §4: a point
+ * and a triangle, or two edges, are coplanar at its roots).  Returns the
+ * length scale L of the configuration (the largest component of the six
+ * vectors; f is a volume, L^3). */
+double sb_ccd_coplanar_cubic(const double e1[3], const double de1[3], const double e2[3], const double de2[3],
+                             const double w[3], const double dw[3], double k[4])
+{
+    double n0[3], nm1[3], nm2[3], n2[3], nm[3];
+    cross3(e1, e2, n0);
+    cross3(e1, de2, nm1);
+    cross3(de1, e2, nm2);
+    cross3(de1, de2, n2);
+    for (int i = 0; i < 3; i++) nm[i] = nm1[i] + nm2[i];
+    k[3] = dot3(n2, dw);
+    k[2] = dot3(nm, dw) + dot3(n2, w);
+    k[1] = dot3(n0, dw) + dot3(nm, w);
+    k[0] = dot3(n0, w);
+    double L = 0;
+    for (int i = 0; i < 3; i++)
+        L = fmax(L, fmax(fmax(fabs(e1[i]), fabs(e2[i])), fmax(fmax(fabs(w[i]), fabs(de1[i])), fmax(fabs(de2[i]), fabs(dw[i])))));
+    return L;
 }
 
 double sb_ccd_point_triangle(const double p0[3], const double p1[3], const double a0[3], const double a1[3],
@@ -112,20 +138,10 @@ double sb_ccd_point_triangle(const double p0[3], const double p1[3], const doubl
         de2[i] = (c1[i] - a1[i]) - e2[i];
         dw[i] = (p1[i] - a1[i]) - w[i];
     }
-    /* f(t) = ((e1 + t de1) x (e2 + t de2)) . (w + t dw) */
-    double n0[3], nm1[3], nm2[3], n2[3], nm[3];
-    cross3(e1, e2, n0);
-    cross3(e1, de2, nm1);
-    cross3(de1, e2, nm2);
-    cross3(de1, de2, n2);
-    for (int i = 0; i < 3; i++) nm[i] = nm1[i] + nm2[i];
-    double k3 = dot3(n2, dw), k2 = dot3(nm, dw) + dot3(n2, w), k1 = dot3(n0, dw) + dot3(nm, w), k0 = dot3(n0, w);
-    /* the length scale of the configuration: f is a volume (L^3) */
-    double L = 0;
-    for (int i = 0; i < 3; i++)
-        L = fmax(L, fmax(fmax(fabs(e1[i]), fabs(e2[i])), fmax(fmax(fabs(w[i]), fabs(de1[i])), fmax(fabs(de2[i]), fabs(dw[i])))));
+    double k[4];
+    const double L = sb_ccd_coplanar_cubic(e1, de1, e2, de2, w, dw, k);
     double r[3];
-    int m = roots01(k3, k2, k1, k0, 1e-13 * L * L * L, r);
+    int m = sb_ccd_roots01(k[3], k[2], k[1], k[0], 1e-13 * L * L * L, r);
     const double *P[2] = { p0, p1 }, *A[2] = { a0, a1 }, *B[2] = { b0, b1 }, *C[2] = { c0, c1 };
     if (m < 0) return coplanar(P, A, B, C, L);
     for (int i = 0; i < m; i++) {

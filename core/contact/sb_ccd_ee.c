@@ -20,8 +20,8 @@
  * the segment when its parameter s(t) = (p - u).(v - u) / |v - u|^2 crosses
  * 0 or 1 (quadratic conditions). */
 #include "sb_self_geom.h"
+#include "sb_ccd_poly.h"
 
-#include <gsl/gsl_poly.h>
 #include <math.h>
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -34,23 +34,6 @@ static void cross3(const double a[3], const double b[3], double c[3])
 static void lerp3(const double a[3], const double b[3], double t, double o[3])
 {
     for (int i = 0; i < 3; i++) o[i] = a[i] + t * (b[i] - a[i]);
-}
-
-/* real roots in [0, 1] of c3 t^3 + c2 t^2 + c1 t + c0, ascending; -1 when
- * the polynomial is identically zero at the scale `zero` */
-static int roots01(double c3, double c2, double c1, double c0, double zero, double r[3])
-{
-    const double S = fmax(fmax(fabs(c3), fabs(c2)), fmax(fabs(c1), fabs(c0)));
-    double x[3];
-    int n = 0, m = 0;
-    if (S <= zero) return -1;
-    const double eps = 1e-12 * S;
-    if (fabs(c3) > eps) n = gsl_poly_solve_cubic(c2 / c3, c1 / c3, c0 / c3, &x[0], &x[1], &x[2]);
-    else if (fabs(c2) > eps || fabs(c1) > eps) n = gsl_poly_solve_quadratic(fabs(c2) > eps ? c2 : 0.0, c1, c0, &x[0], &x[1]);
-    else return fabs(c0) > eps ? 0 : -1;
-    for (int i = 0; i < n; i++)
-        if (x[i] >= 0 && x[i] <= 1) r[m++] = x[i];
-    return m;
 }
 
 /* coefficients (c2, c1, c0) of the quadratic through g(0), g(1/2), g(1) */
@@ -91,7 +74,7 @@ double sb_ccd_point_edge(const double p[3], const double pe[3], const double u[3
     }
     if (best_k >= 0 && best_S > zero) {
         double r[3];
-        const int m = roots01(0.0, C[best_k][0], C[best_k][1], C[best_k][2], zero, r);
+        const int m = sb_ccd_roots01(0.0, C[best_k][0], C[best_k][1], C[best_k][2], zero, r);
         for (int i = 0; i < m; i++) {
             double a[3], b[3], q[3], d[3], w[3], c[3];
             lerp3(u, ue, r[i], a); lerp3(v, ve, r[i], b); lerp3(p, pe, r[i], q);
@@ -107,9 +90,9 @@ double sb_ccd_point_edge(const double p[3], const double pe[3], const double u[3
     double Cn[3], Cl[3], r[3], best = 2.0;
     quad_coef(ns, Cn);
     quad_coef(ls, Cl);
-    int m = roots01(0.0, Cn[0], Cn[1], Cn[2], zero, r);
+    int m = sb_ccd_roots01(0.0, Cn[0], Cn[1], Cn[2], zero, r);
     for (int i = 0; i < m; i++) best = fmin(best, r[i]);
-    m = roots01(0.0, Cn[0] - Cl[0], Cn[1] - Cl[1], Cn[2] - Cl[2], zero, r);
+    m = sb_ccd_roots01(0.0, Cn[0] - Cl[0], Cn[1] - Cl[1], Cn[2] - Cl[2], zero, r);
     for (int i = 0; i < m; i++) best = fmin(best, r[i]);
     return best;
 }
@@ -127,21 +110,12 @@ double sb_ccd_edge_edge(const double a0[3], const double a0e[3], const double a1
         dw[i] = (b0e[i] - a0e[i]) - w[i];
     }
     /* f(t) = ((ea + t dea) x (eb + t deb)) . (w + t dw) */
-    double n0[3], nm1[3], nm2[3], n2[3], nm[3];
-    cross3(ea, eb, n0);
-    cross3(ea, deb, nm1);
-    cross3(dea, eb, nm2);
-    cross3(dea, deb, n2);
-    for (int i = 0; i < 3; i++) nm[i] = nm1[i] + nm2[i];
-    const double k3 = dot3(n2, dw), k2 = dot3(nm, dw) + dot3(n2, w), k1 = dot3(n0, dw) + dot3(nm, w),
-                 k0 = dot3(n0, w);
-    double L = 0;
-    for (int i = 0; i < 3; i++)
-        L = fmax(L, fmax(fmax(fabs(ea[i]), fabs(eb[i])), fmax(fmax(fabs(w[i]), fabs(dea[i])), fmax(fabs(deb[i]), fabs(dw[i])))));
+    double k[4];
+    const double L = sb_ccd_coplanar_cubic(ea, dea, eb, deb, w, dw, k);
     if (!(L > 0)) return 0.0;
     if (sb_self_segment_distance(a0, a1, b0, b1) <= 1e-9 * L) return 0.0;
     double r[3];
-    const int m = roots01(k3, k2, k1, k0, 1e-13 * L * L * L, r);
+    const int m = sb_ccd_roots01(k[3], k[2], k[1], k[0], 1e-13 * L * L * L, r);
     if (m >= 0) {
         for (int i = 0; i < m; i++) {
             double p[3], q[3], s[3], t[3];
