@@ -171,9 +171,13 @@ for k in sorted(pairs):
         c.get("proximity_impulses", "—"), c.get("ccd_hits", "—"), c.get("impact_zones", "—"),
         c.get("unresolved_steps", "—")))
 P()
-P("A barrier share marked refused: `adaptive_sqrt3` has no contact sample points in this build, so "
-  "the barrier model cannot run it; the impulse pipeline needs only its vertex masses and "
-  "triangles.  Runs that stop early (`not_posdef`: linear_fem's Hessian is indefinite once the "
+refused = sorted({k[1] for k in pairs if pairs[k].get("impulse") and not pairs[k].get("barrier")})
+if refused:
+    P("A barrier share marked refused: no summary of the barrier run, which %s refused before any work "
+      "(its log in results/contact/runs/); the impulse pipeline needs only vertex masses and triangles."
+      % ", ".join("`%s`" % m for m in refused))
+    P()
+P("Runs that stop early (`not_posdef`: linear_fem's Hessian is indefinite once the "
   "cloth buckles, which the linearized solver cannot factor without the barrier's curvature; "
   "`strain_bound`: the run's physical judgement) are shown as they ran, and their shares are of "
   "fewer steps.")
