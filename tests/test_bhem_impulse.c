@@ -166,7 +166,7 @@ SB_TEST(run_loop_reports_the_stats)
     CHECK_EQ_INT(code, 0);
     CHECK(o != NULL);
     if (!o) return;
-    json_t *im = json_object_get(o, "impulse");
+    json_t *im = json_object_get(o, "contact");   /* the impulse counts live in the contact object */
     CHECK(im != NULL);
     CHECK(json_integer_value(json_object_get(im, "ccd_hits")) > 0);
     CHECK(json_integer_value(json_object_get(im, "proximity_impulses")) > 0);
@@ -279,7 +279,7 @@ SB_TEST(cloth_on_a_mesh_box)
     CHECK_EQ_INT(code, 0);
     CHECK(o != NULL);
     if (!o) return;
-    json_t *im = json_object_get(o, "impulse");
+    json_t *im = json_object_get(o, "contact");
     CHECK(json_integer_value(json_object_get(im, "ccd_hits")) > 0);
     CHECK_EQ_INT(json_integer_value(json_object_get(im, "unresolved_steps")), 0);
     const double z = json_real_value(json_array_get(json_object_get(json_object_get(json_object_get(o, "probes"), "center"),

@@ -57,7 +57,7 @@ def main():
         sec = s["seconds"]
         tot, col = sec["total"], sec["collide"]
         st = s["steps"]
-        im = s.get("impulse") or {}
+        im = s.get("impulse") or s.get("contact") or {}   # summaries before 2026-12-05 had a separate "impulse" object
         ms = max(s["material"]["max_strain"]) if s.get("material") else float("nan")
         P("| %s | %d | %d | %d | %s | %.2f | %.2f | %.1f%% | %.3f | %.3f | %s | %s | %s | %s | %s | %.3g |" % (
             model, s["res"], s["dofs"], st, s["status"], tot, col, 100 * col / tot if tot else float("nan"),

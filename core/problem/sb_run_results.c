@@ -290,18 +290,6 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
         }
         json_object_set_new(o, "contact", co);
     }
-    if (R->rec.has_impulse) {
-        /* contact.model = "impulse": the method's collision response (sb_impulse.h) */
-        const sb_impulse_stats *s = &R->rec.impulse;
-        json_t *im = json_object();
-        json_object_set_new(im, "proximity_impulses", json_integer(s->proximity_impulses));
-        json_object_set_new(im, "ccd_tests", json_integer(s->ccd_tests));
-        json_object_set_new(im, "ccd_hits", json_integer(s->ccd_hits));
-        json_object_set_new(im, "ccd_iterations", json_integer(s->ccd_iterations));
-        json_object_set_new(im, "impact_zones", json_integer(s->impact_zones));
-        json_object_set_new(im, "unresolved_steps", json_integer(s->unresolved_steps));
-        json_object_set_new(o, "impulse", im);
-    }
     json_set_num(o, "energy_final", R->rec.has_energy ? R->rec.energy_final : NAN);
     if (R->rec.has_error) {
         json_t *er = json_object();

@@ -352,8 +352,6 @@ static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
     return bad ? -1 : 0;
 }
 
-/* /final/impulse: the impulse-based collision response (sb_impulse.h) */
-
 static int write_final(sb_h5w *w, hid_t f, const sb_run *r)
 {
     hid_t g = sb_h5w_group(w, f, "/final");
