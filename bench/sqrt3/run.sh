@@ -8,7 +8,7 @@
 # 11 s and closes by 17 s (the scene's schedule, as the paper's Fig. 8); then
 # cloth over a sphere (below).  Each run writes a JSON summary
 # (small, committed) and an HDF5 record (results/sqrt3/records/, NOT
-# committed: ~25 MB each with the per-step sample grid); distance.py reads
+# committed: tens of MB each, ~76 MB for the adaptive run, with the per-step sample grid); distance.py reads
 # the records (h5dump) into results/sqrt3/series.csv, and report.py writes
 # results/sqrt3_report.md and results/sqrt3/fig8.png from the summaries and
 # that CSV, never by re-running.  A summary that exists is skipped.  The
