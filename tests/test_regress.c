@@ -89,6 +89,9 @@ SB_TEST(verdicts)
     now.c[8].fig.energy = -1.5 * (1 + 1e-13);         /* round-off: within rtol */
     now.c[8].fig.probe[0][0] = 1e-17;                 /* a zero coordinate off by round-off */
     for (int i = 0; i < 5; i++) now.c[9].norm[i] = i % 2 ? 1.3 : 0.8;   /* large spread, no shift */
+    /* a run of 0.02 s slower by 15 % (3 ms, every repeat): below --min-seconds */
+    fill(sb_regress_set_add(&base, "short"), 0.02, 5);
+    fill(sb_regress_set_add(&now, "short"), 0.023, 5);
     base.prov.calib_version = now.prov.calib_version = SB_REGRESS_CALIB_VERSION;
     int reg = sb_regress_judge(&now, &base, &ru);
     const sb_verdict want[] = { SB_VERDICT_SAME, SB_VERDICT_SLOWER, SB_VERDICT_FASTER, SB_VERDICT_SAME,
@@ -96,6 +99,13 @@ SB_TEST(verdicts)
                                 SB_VERDICT_SAME, SB_VERDICT_SAME };
     for (int k = 0; k < 10; k++)
         CHECK_MSG(now.c[k].verdict == want[k], "%s: %s (%s)", ids[k], sb_verdict_name(now.c[k].verdict), now.c[k].detail);
+    CHECK_MSG(now.c[10].verdict == SB_VERDICT_SAME && strstr(now.c[10].detail, "below the minimum of 10 ms"), "short: %s (%s)",
+              sb_verdict_name(now.c[10].verdict), now.c[10].detail);
+    ru.min_seconds = 0.001;   /* a finer floor: the same run is slower */
+    sb_regress_judge(&now, &base, &ru);
+    CHECK_MSG(now.c[10].verdict == SB_VERDICT_SLOWER, "short at 1 ms: %s", now.c[10].detail);
+    sb_regress_rules_default(&ru);
+    sb_regress_judge(&now, &base, &ru);
     CHECK(strstr(now.c[4].detail, "iterations 7 -> 8") != NULL);
     CHECK(strstr(now.c[5].detail, "energy_final") != NULL);
     CHECK(strstr(now.c[3].detail, "below the minimum effect") != NULL);

@@ -14,7 +14,8 @@
 const char sb_cli_regress_help[] =
     "usage: shellbench regress [--suite FILE] [--baseline FILE] [--history FILE] [--out DIR]\n"
     "                          [--repeat K] [--jobs N] [--set KEY=VALUE]... [--update-baseline]\n"
-    "                          [--no-history] [--no-confirm] [--alpha A] [--min-effect E] [--rtol R] [--quiet]\n"
+    "                          [--no-history] [--no-confirm] [--alpha A] [--min-effect E] [--min-seconds S]\n"
+    "                          [--rtol R] [--quiet]\n"
     "Nightly performance regression (docs/regression.md): runs the suite (a study file) K times with a\n"
     "calibration pass per round, compares every case with the baseline and gives a verdict per case:\n"
     "same, faster, slower (CPU time / calibration, Mann-Whitney U test p < A and a change of at least\n"
@@ -34,6 +35,7 @@ const char sb_cli_regress_help[] =
     "                        the verdict stands only when a second measurement agrees)\n"
     "  --alpha A             significance of the U test (default 0.05)\n"
     "  --min-effect E        smallest relative change of the median time called a change (default 0.10)\n"
+    "  --min-seconds S       smallest change of a run's CPU seconds called a change (default 0.01)\n"
     "  --rtol R              relative tolerance of energies and probe positions (default 1e-9)\n"
     "exit code: 0 no regression, 1 regression, 2 input error, 3 internal error.\n";
 
@@ -149,6 +151,7 @@ int sb_cli_regress(int argc, char **argv)
         else if (!strcmp(a, "--jobs")) { if (int_opt(a, v, 1, 64, &o.jobs)) return 2; }
         else if (!strcmp(a, "--alpha")) { if (real_opt(a, v, 1e-6, 0.5, &ru.alpha)) return 2; }
         else if (!strcmp(a, "--min-effect")) { if (real_opt(a, v, 0, 10, &ru.min_effect)) return 2; }
+        else if (!strcmp(a, "--min-seconds")) { if (real_opt(a, v, 0, 1e6, &ru.min_seconds)) return 2; }
         else if (!strcmp(a, "--rtol")) { if (real_opt(a, v, 0, 1, &ru.rtol)) return 2; }
         else if (!strcmp(a, "--set") && v && strchr(v, '=')) {
             if (o.n_sets == SB_REGRESS_MAX_SETS) { fprintf(stderr, "shellbench regress: more than %d --set\n", SB_REGRESS_MAX_SETS); return 2; }

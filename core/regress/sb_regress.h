@@ -150,6 +150,9 @@ const sb_regress_case *sb_regress_set_find(const sb_regress_set *s, const char *
 typedef struct sb_regress_rules {
     double alpha;        /* significance of the U test (default 0.05) */
     double min_effect;   /* smallest relative change of the median called a change (default 0.10) */
+    double min_seconds;  /* smallest change of a run's CPU seconds called a change (default 0.01): the
+                            median now times |ratio - 1|; below it the kernel's CPU-time accounting
+                            and a process's start-up move runs of a few hundredths of a second */
     double rtol;         /* relative tolerance of energies and probes (default 1e-9) */
 } sb_regress_rules;
 void sb_regress_rules_default(sb_regress_rules *r);

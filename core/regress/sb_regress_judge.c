@@ -11,8 +11,11 @@
  *   slower / faster  the normalized CPU times (cpu / calibration median)
  *            differ from the baseline's by a two-sided Mann-Whitney U test
  *            at level alpha AND the medians differ by at least min_effect
+ *            AND the change is at least min_seconds of this run's CPU time
  *            (the test alone calls a 1 % change significant once samples
- *            are large; the effect alone would call noise a change)
+ *            are large; the effect alone would call noise a change; runs of
+ *            a few hundredths of a second move by more than 10 % between
+ *            invocations of the same build)
  *   same     otherwise (also when the baseline's calibration kernel is
  *            another version: its normalized times mean something else).
  * slower, changed and failed are regressions (exit code 1). */
@@ -36,6 +39,7 @@ void sb_regress_rules_default(sb_regress_rules *r)
 {
     r->alpha = 0.05;
     r->min_effect = 0.10;
+    r->min_seconds = 0.01;
     r->rtol = 1e-9;
 }
 
@@ -86,11 +90,20 @@ static void judge_time(sb_regress_case *c, const sb_regress_case *b, const sb_re
         return;
     }
     c->p = t.p;
+    /* the change in this run's seconds: its median CPU time times |ratio - 1| */
+    const double dsec = fabs(c->ratio - 1) * median(c->cpu, c->n_rep);
     int significant = t.p < ru->alpha, large = fabs(c->ratio - 1) >= ru->min_effect;
-    c->verdict = significant && large ? (c->ratio > 1 ? SB_VERDICT_SLOWER : SB_VERDICT_FASTER) : SB_VERDICT_SAME;
+    int long_enough = !(dsec < ru->min_seconds);
+    c->verdict = significant && large && long_enough ? (c->ratio > 1 ? SB_VERDICT_SLOWER : SB_VERDICT_FASTER)
+                                                     : SB_VERDICT_SAME;
+    char why[96] = "";
+    if (c->verdict == SB_VERDICT_SAME) {
+        if (!significant) snprintf(why, sizeof why, ": not significant");
+        else if (!large) snprintf(why, sizeof why, ": below the minimum effect");
+        else snprintf(why, sizeof why, ": a change of %.1f ms, below the minimum of %.0f ms", 1e3 * dsec, 1e3 * ru->min_seconds);
+    }
     snprintf(c->detail, sizeof c->detail, "median x%.3f, p = %.3g (%s, %d vs %d)%s", c->ratio, t.p,
-             t.exact ? "exact" : "normal approx.", c->n_rep, b->n_rep,
-             c->verdict != SB_VERDICT_SAME ? "" : !significant ? ": not significant" : ": below the minimum effect");
+             t.exact ? "exact" : "normal approx.", c->n_rep, b->n_rep, why);
 }
 
 int sb_regress_judge(sb_regress_set *now, const sb_regress_set *base, const sb_regress_rules *ru)

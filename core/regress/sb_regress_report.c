@@ -48,8 +48,9 @@ void sb_regress_markdown(FILE *out, const sb_regress_set *now, const sb_regress_
     else fprintf(out, "* baseline: none (`%s`)\n", baseline_path);
     fprintf(out, "* times: CPU seconds of each run's process divided by the calibration kernel's (same invocation); "
                  "slower/faster when a two-sided Mann-Whitney U test gives p < %g **and** the medians differ by at least "
-                 "%.0f %%; deterministic figures exactly (energy and probes to %.0e relative)\n\n",
-            ru->alpha, 100 * ru->min_effect, ru->rtol);
+                 "%.0f %% **and** by at least %.0f ms of the run's CPU time; deterministic figures exactly (energy and "
+                 "probes to %.0e relative)\n\n",
+            ru->alpha, 100 * ru->min_effect, 1e3 * ru->min_seconds, ru->rtol);
     if (busy(&now->prov) || (base && busy(&base->prov)))
         fprintf(out, "**Warning**: the machine was busier than its cores during %s (load average above the core "
                      "count): CPU times then inflate unevenly (shared caches and memory bandwidth), which the calibration "
