@@ -3,6 +3,19 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+
+void sb_test_request(sb_run_request *req, const char *scene, const char *method, const char *solver, int res)
+{
+    memset(req, 0, sizeof *req);
+    req->scene = scene;
+    req->method = method;
+    req->solver = solver;
+    req->res = res;
+    req->out = "none";
+    req->quiet = 1;
+    req->progress = -1;
+}
 
 json_t *sb_test_run_json(const sb_run_request *req, int *exit_code)
 {

@@ -10,4 +10,8 @@
  * *exit_code receives the run's exit code. */
 json_t *sb_test_run_json(const sb_run_request *req, int *exit_code);
 
+/* *req zeroed, then scene, method, solver and res set, no record written
+ * (out "none"), quiet, no progress: the request most tests start from */
+void sb_test_request(sb_run_request *req, const char *scene, const char *method, const char *solver, int res);
+
 #endif

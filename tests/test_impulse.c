@@ -15,6 +15,7 @@
 #include "sb_obstacle.h"
 #include "sb_self_geom.h"
 #include "sb_test.h"
+#include "seg_tri.h"
 
 /* ---- edge–edge CCD ------------------------------------------------------- */
 
@@ -157,21 +158,6 @@ SB_TEST(rigid_zone_momenta)
 
 /* ---- whole steps on particle meshes ------------------------------------------ */
 
-static double orient(const double *a, const double *b, const double *c, const double *d)
-{
-    double u[3], v[3], w[3];
-    for (int i = 0; i < 3; i++) { u[i] = b[i] - a[i]; v[i] = c[i] - a[i]; w[i] = d[i] - a[i]; }
-    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
-
-/* the open segment pq crosses the triangle abc (strict signs: an independent test) */
-static int seg_tri(const double *p, const double *q, const double *a, const double *b, const double *c)
-{
-    double s1 = orient(a, b, c, p), s2 = orient(a, b, c, q);
-    if (!((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0))) return 0;
-    double o1 = orient(p, q, a, b), o2 = orient(p, q, b, c), o3 = orient(p, q, c, a);
-    return (o1 > 0 && o2 > 0 && o3 > 0) || (o1 < 0 && o2 < 0 && o3 < 0);
-}
 
 /* crossings of mesh A's edges with mesh B's triangles (self: skip shared vertices) */
 static int crossings(int ntA, const int *triA, const double *xA, int ntB, const int *triB, const double *xB, int self)
@@ -183,7 +169,7 @@ static int crossings(int ntA, const int *triA, const double *xA, int ntB, const 
             for (int t = 0; t < ntB; t++) {
                 const int *f = triB + 3 * t;
                 if (self && (i == f[0] || i == f[1] || i == f[2] || j == f[0] || j == f[1] || j == f[2])) continue;
-                n += seg_tri(xA + 3 * i, xA + 3 * j, xB + 3 * f[0], xB + 3 * f[1], xB + 3 * f[2]);
+                n += tb_seg_tri(xA + 3 * i, xA + 3 * j, xB + 3 * f[0], xB + 3 * f[1], xB + 3 * f[2]);
             }
         }
     return n;

@@ -22,6 +22,7 @@
 #include "sb_solver.h"
 #include "sb_surface.h"
 #include "sb_test.h"
+#include "seg_tri.h"
 
 extern const sb_param_def sb_solve_params[];
 
@@ -71,20 +72,6 @@ static int inside_obstacle(const sb_scene *sc, const double *p)
 
 /* steps of scene `name` with method mt driven directly (solve, then the
  * response), the surface's vertices checked after every step */
-/* the open segment pq crosses triangle abc (orientation predicates, strict) */
-static double orient(const double *a, const double *b, const double *c, const double *d)
-{
-    double u[3], v[3], w[3];
-    for (int i = 0; i < 3; i++) { u[i] = b[i] - a[i]; v[i] = c[i] - a[i]; w[i] = d[i] - a[i]; }
-    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
-static int seg_tri(const double *p, const double *q, const double *a, const double *b, const double *c)
-{
-    double s1 = orient(a, b, c, p), s2 = orient(a, b, c, q);
-    if (!((s1 > 0 && s2 < 0) || (s1 < 0 && s2 > 0))) return 0;
-    double o1 = orient(p, q, a, b), o2 = orient(p, q, b, c), o3 = orient(p, q, c, a);
-    return (o1 > 0 && o2 > 0 && o3 > 0) || (o1 < 0 && o2 < 0 && o3 < 0);
-}
 /* edges of the surface crossing its own triangles (no shared vertex) */
 static int self_crossings(const sb_surface *s)
 {
@@ -95,7 +82,7 @@ static int self_crossings(const sb_surface *s)
             for (int t = 0; t < s->n_tris; t++) {
                 const int *f = s->tri + 3 * t;
                 if (i == f[0] || i == f[1] || i == f[2] || j == f[0] || j == f[1] || j == f[2]) continue;
-                n += seg_tri(s->vert + 3 * i, s->vert + 3 * j, s->vert + 3 * f[0], s->vert + 3 * f[1], s->vert + 3 * f[2]);
+                n += tb_seg_tri(s->vert + 3 * i, s->vert + 3 * j, s->vert + 3 * f[0], s->vert + 3 * f[1], s->vert + 3 * f[2]);
             }
         }
     return n;
@@ -227,14 +214,8 @@ static json_t *run(const char *scene, const char *method, const char *solver, in
                    int *code)
 {
     sb_run_request req;
-    memset(&req, 0, sizeof req);
-    req.scene = scene;
-    req.method = method;
-    req.solver = solver;
-    req.out = "none";
+    sb_test_request(&req, scene, method, solver, 0);
     req.summary_json = 1;
-    req.quiet = 1;
-    req.progress = -1;
     req.n_sets = n_sets;
     req.sets = sets;
     return sb_test_run_json(&req, code);
@@ -290,14 +271,9 @@ SB_TEST(record_holds_the_counts)
     CHECK_EQ_INT(impulse_scene("drape_box", 12, 0, 0, path, sizeof path), 0);
     snprintf(h5, sizeof h5, "%s.h5", path);
     sb_run_request req;
-    memset(&req, 0, sizeof req);
-    req.scene = path;
-    req.method = "linear_fem";
-    req.solver = "lsnewton";
+    sb_test_request(&req, path, "linear_fem", "lsnewton", 0);
     req.out = h5;
     req.summary_json = 1;
-    req.quiet = 1;
-    req.progress = -1;
     int code = -1;
     json_t *j = sb_test_run_json(&req, &code);
     CHECK_EQ_INT(code, 0);
