@@ -158,7 +158,6 @@ SB_TEST(rigid_zone_momenta)
 
 /* ---- whole steps on particle meshes ------------------------------------------ */
 
-
 /* crossings of mesh A's edges with mesh B's triangles (self: skip shared vertices) */
 static int crossings(int ntA, const int *triA, const double *xA, int ntB, const int *triB, const double *xB, int self)
 {
