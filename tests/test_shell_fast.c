@@ -161,6 +161,14 @@ SB_TEST(fast_matches_reference)
                 CHECK(sb_shell_element(&c.m, c.nq, c.r, c.b, q, NULL, NULL, kind, bw) == e2);
                 CHECK(sb_shell_element(&c.m, c.nq, c.r, c.b, q, g3, NULL, kind, bw) == e2);
                 CHECK(memcmp(g3, g2, sizeof(double) * n) == 0);
+                /* sb_shell_element_into overwrites every entry: on a matrix of
+                 * NaN it gives the bits of sb_shell_element on a zeroed one */
+                for (int i = 0; i < n * n; i++) H1[i] = NAN;
+                memset(g3, 0, sizeof(double) * n);
+                CHECK(sb_shell_element_into(&c.m, c.nq, c.r, c.b, q, g3, H1, kind, bw) == e2);
+                CHECK_MSG(memcmp(H1, H2, sizeof(double) * n * n) == 0 && memcmp(g3, g2, sizeof(double) * n) == 0,
+                          "%s %s kind %d: sb_shell_element_into differs from sb_shell_element", bname[basis],
+                          denim ? "denim" : "stvk", kind);
             }
     free(g1);
     free(g2);

@@ -339,58 +339,36 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
 
 /* H (3k x 3k) += sign * the element matrix of the products in w->Hc: entry
  * (3I+c, 3J+d) is H^cd[I][J] for c < d, H^dc[J][I] for c > d and H^cc at
- * (min, max) on the diagonal pairs, so the result is exactly symmetric */
-static inline void scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
+ * (min, max) on the diagonal pairs, so the result is exactly symmetric.
+ * With store (sb_shell_element_into, sign 1) every entry is written once
+ * and not read: 0.0 + x is what h += x gives on a zeroed matrix (the same
+ * bits, also for x = -0).  sign and store are constants at every call, so
+ * each instance compiles to its own branch-free loop. */
+static inline void scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign, int store)
 {
     const int n3 = 3 * k;
     const double *H[3][3];
     for (int pr = 0; pr < 6; pr++) H[pc[pr]][pd[pr]] = w->Hc + (size_t)pr * kp * kp;
+#define SB_PUT(i, x) h[i] = (store ? 0.0 : h[i]) + sign * (x)
     for (int I = 0; I < k; I++) {
         double *row0 = hess + (size_t)(3 * I) * n3;
         for (int J = 0; J < k; J++) {
             const size_t ij = (size_t)I * kp + J, ji = (size_t)J * kp + I, dg = I <= J ? ij : ji;
             double *h = row0 + 3 * J;
-            h[0] += sign * H[0][0][dg];
-            h[1] += sign * H[0][1][ij];
-            h[2] += sign * H[0][2][ij];
+            SB_PUT(0, H[0][0][dg]);
+            SB_PUT(1, H[0][1][ij]);
+            SB_PUT(2, H[0][2][ij]);
             h += n3;
-            h[0] += sign * H[0][1][ji];
-            h[1] += sign * H[1][1][dg];
-            h[2] += sign * H[1][2][ij];
+            SB_PUT(0, H[0][1][ji]);
+            SB_PUT(1, H[1][1][dg]);
+            SB_PUT(2, H[1][2][ij]);
             h += n3;
-            h[0] += sign * H[0][2][ji];
-            h[1] += sign * H[1][2][ji];
-            h[2] += sign * H[2][2][dg];
+            SB_PUT(0, H[0][2][ji]);
+            SB_PUT(1, H[1][2][ji]);
+            SB_PUT(2, H[2][2][dg]);
         }
     }
-}
-
-/* hess (3k x 3k) = the element matrix of the products (sb_shell_element_into):
- * every entry written once, no read; 0.0 + x is what h += x gives on a
- * zeroed matrix (the same bits, also for x = -0) */
-static void scatter_store(int k, int kp, const sb_shell_batch *w, double *hess)
-{
-    const int n3 = 3 * k;
-    const double *H[3][3];
-    for (int pr = 0; pr < 6; pr++) H[pc[pr]][pd[pr]] = w->Hc + (size_t)pr * kp * kp;
-    for (int I = 0; I < k; I++) {
-        double *row0 = hess + (size_t)(3 * I) * n3;
-        for (int J = 0; J < k; J++) {
-            const size_t ij = (size_t)I * kp + J, ji = (size_t)J * kp + I, dg = I <= J ? ij : ji;
-            double *h = row0 + 3 * J;
-            h[0] = 0.0 + H[0][0][dg];
-            h[1] = 0.0 + H[0][1][ij];
-            h[2] = 0.0 + H[0][2][ij];
-            h += n3;
-            h[0] = 0.0 + H[0][1][ji];
-            h[1] = 0.0 + H[1][1][dg];
-            h[2] = 0.0 + H[1][2][ij];
-            h += n3;
-            h[0] = 0.0 + H[0][2][ji];
-            h[1] = 0.0 + H[1][2][ji];
-            h[2] = 0.0 + H[2][2][dg];
-        }
-    }
+#undef SB_PUT
 }
 
 /* sign = 1 (the element) and -1 (the PSD difference) as constants: h += x
@@ -398,11 +376,11 @@ static void scatter_store(int k, int kp, const sb_shell_batch *w, double *hess)
 void SB_VEC_FN(sb_elem_scatter)(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
 {
     if (sign == 1.0)
-        scatter(k, kp, w, hess, 1.0);
+        scatter(k, kp, w, hess, 1.0, 0);
     else if (sign == -1.0)
-        scatter(k, kp, w, hess, -1.0);
+        scatter(k, kp, w, hess, -1.0, 0);
     else
-        scatter(k, kp, w, hess, sign);
+        scatter(k, kp, w, hess, sign, 0);
 }
 
 double SB_VEC_FN(sb_elem_element)(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
@@ -459,9 +437,9 @@ double SB_VEC_FN(sb_elem_element)(const sb_material *m, int nq, const sb_shell_r
     if (!hess) return e;
     SB_VEC_FN(sb_elem_products)(5 * nq, kp, w);
     if (w->store)
-        scatter_store(k, kp, w, hess);
+        scatter(k, kp, w, hess, 1.0, 1);
     else
-        scatter(k, kp, w, hess, 1.0);
+        scatter(k, kp, w, hess, 1.0, 0);
     return e;
 }
 
