@@ -42,14 +42,24 @@ void sb_hash_free(sb_hash *H)
     memset(H, 0, sizeof *H);
 }
 
+/* *p holds at least need ints (reallocated, its contents dropped, when shorter) */
+static int reserve(int **p, int *cap, long need)
+{
+    if (need < 1) need = 1;
+    if (*cap >= need) return 0;
+    free(*p);
+    *p = malloc((size_t)need * sizeof **p);
+    *cap = *p ? (int)need : 0;
+    return *p ? 0 : -1;
+}
+
 int sb_hash_build(sb_hash *H, int n, const int *ids, const double *boxes, double cell)
 {
-    sb_hash_free(H);
     H->cell = cell;
     H->n = n;
     H->boxes = boxes;
-    H->ids = malloc((size_t)(n ? n : 1) * sizeof *H->ids);
-    if (!H->ids) return -1;
+    H->nbig = 0;
+    if (reserve(&H->ids, &H->cap_ids, n)) return -1;
     if (n) memcpy(H->ids, ids, (size_t)n * sizeof *ids);
     long entries = 0;
     for (int k = 0; k < n; k++) {
@@ -60,10 +70,10 @@ int sb_hash_build(sb_hash *H, int n, const int *ids, const double *boxes, double
         else entries += (long)cnt;
     }
     H->size = (int)(2 * entries + 1);
-    H->start = calloc((size_t)H->size + 1, sizeof *H->start);
-    H->item = malloc((size_t)(entries ? entries : 1) * sizeof *H->item);
-    H->big = malloc((size_t)(H->nbig ? H->nbig : 1) * sizeof *H->big);
-    if (!H->start || !H->item || !H->big) return -1;
+    if (reserve(&H->start, &H->cap_start, (long)H->size + 1) || reserve(&H->item, &H->cap_item, entries) ||
+        reserve(&H->big, &H->cap_big, H->nbig))
+        return -1;
+    memset(H->start, 0, ((size_t)H->size + 1) * sizeof *H->start);
     /* counting sort of the (cell hash, primitive) entries */
     H->nbig = 0;
     for (int pass = 0; pass < 2; pass++) {

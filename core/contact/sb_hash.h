@@ -11,12 +11,14 @@ typedef struct sb_hash {
     int nbig, *big;           /* primitives covering too many cells: always candidates */
     int n, *ids;              /* the primitives entered */
     const double *boxes;      /* 6 per primitive id (lo xyz, hi xyz); not owned */
+    int cap_start, cap_item, cap_big, cap_ids;   /* allocated lengths: a rebuild reuses them */
 } sb_hash;
 
 typedef struct sb_idlist { int n, cap; int *v; } sb_idlist;
 
-/* Enter primitives ids[0..n) with boxes (6 per id, indexed by id). 0 or -1
- * (out of memory). */
+/* Enter primitives ids[0..n) with boxes (6 per id, indexed by id), replacing
+ * what H held (a zeroed H, or one built before: its arrays are reused and
+ * grown only when too short).  0 or -1 (out of memory). */
 int  sb_hash_build(sb_hash *H, int n, const int *ids, const double *boxes, double cell);
 void sb_hash_free(sb_hash *H);
 /* The primitives whose boxes overlap box into out (reset first); stamp[id]

@@ -138,8 +138,7 @@ static int search(sb_self *s, const double *X, double radius, int keep, double *
         C.q = p;
         if (sb_hash_visit(&h, q, stamp, ++mark, &L, cand_pt, &C)) rc = SB_ERR_NOMEM;
     }
-    sb_hash_free(&h);
-    if (rc) goto out;
+    if (rc) goto out_hash;
     /* edges against edges */
     for (int e = 0; e < s->ne; e++)
         for (int a = 0; a < 3; a++) {
@@ -154,6 +153,7 @@ static int search(sb_self *s, const double *X, double radius, int keep, double *
         C.q = e;
         if (sb_hash_visit(&h, q, stamp, ++mark, &L, cand_ee, &C)) rc = SB_ERR_NOMEM;
     }
+out_hash:   /* the edge hash reused the triangle hash's arrays */
     sb_hash_free(&h);
 out:
     free(box);
