@@ -451,6 +451,11 @@ SB_TEST(runs_identical_for_any_thread_count)
  * refuses an out-of-range count */
 SB_TEST(threads_refused_when_unavailable)
 {
+    /* run.vectors: not a width at all */
+    const char *sbad[] = { "run.vectors=avx9", NULL };
+    asm_case cb;
+    CHECK(case_open(&cb, "bench/scenes/plate_clamped.json", "bhem", 4, 1e-3, sbad) != 0);
+    case_close(&cb);
     /* run.vectors: a width this CPU runs is accepted, another refused with a sentence */
     for (int i = 1; sb_vector_choices[i]; i++) {
         char set[64];

@@ -228,6 +228,8 @@ SB_TEST(regress_command_end_to_end)
     CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --set method.nonsense=1", common), 2);
     CHECK_MSG(strstr(err, "method.nonsense"), "%s", err);
     CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --repeat 1", common), 2);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --min-seconds -1", common), 2);
+    CHECK_MSG(strstr(err, "--min-seconds"), "%s", err);
     CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --frobnicate", common), 2);
     /* the history: one line per case per completed invocation, plus the header */
     char hist[400];
