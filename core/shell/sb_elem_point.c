@@ -117,6 +117,25 @@ static void jtdj(double Jx[6][2][3], const double *n, double D[6][6], double K[1
         }
 }
 
+/* [s00 s01; s01 s11] <- its positive semidefinite part (kept when it is
+ * PSD): S+ = lp v v^T = lp (S - lm I) / (lp - lm) with lp >= lm its
+ * eigenvalues, 0 when lp <= 0 */
+static inline void psd_part2(double *s00, double *s11, double *s01)
+{
+    const double a = *s00, b = *s11, c = *s01;
+    if (a >= 0.0 && b >= 0.0 && a * b - c * c >= 0.0) return;
+    const double mean = 0.5 * (a + b), rad = sqrt(0.25 * (a - b) * (a - b) + c * c);
+    const double lp = mean + rad, lm = mean - rad;
+    if (lp <= 0.0) {
+        *s00 = *s11 = *s01 = 0.0;
+    } else {
+        const double f = lp / (lp - lm);
+        *s00 = f * (a - lm);
+        *s11 = f * (b - lm);
+        *s01 = f * c;
+    }
+}
+
 /* ---- one quadrature point ---------------------------------------------------- */
 
 /* Energy of point p; fills Gt rows (gradient de/dy) and, with hess, the Z
@@ -242,18 +261,7 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
     double s00 = nA[0], s11 = nA[1], s01 = 0.5 * nA[2];
     if (kd) {   /* the PSD difference: S - S+ on the diagonal blocks, below the bending terms */
         double t00 = s00, t11 = s11, t01 = s01;
-        if (!(t00 >= 0.0 && t11 >= 0.0 && t00 * t11 - t01 * t01 >= 0.0)) {
-            const double mean = 0.5 * (t00 + t11), rad = sqrt(0.25 * (t00 - t11) * (t00 - t11) + t01 * t01);
-            const double lp = mean + rad, lm = mean - rad;
-            if (lp <= 0.0) {
-                t00 = t11 = t01 = 0.0;
-            } else {
-                const double f = lp / (lp - lm);
-                t00 = f * (t00 - lm);
-                t11 = f * (t11 - lm);
-                t01 = f * t01;
-            }
-        }
+        psd_part2(&t00, &t11, &t01);
         for (int i = 0; i < 27; i++) kd[i] = 0.0;
         for (int d = 0; d < 3; d++) {
             kd[4 * d] = s00 - t00;             /* B11 += (S - S+)_00 I */
@@ -261,18 +269,7 @@ static double point(const sb_material *m, const sb_shell_ref *r, int p, int kp, 
             kd[18 + 4 * d] = s11 - t11;        /* B22 */
         }
     }
-    if (kind == SB_HESS_PSD && !(s00 >= 0.0 && s11 >= 0.0 && s00 * s11 - s01 * s01 >= 0.0)) {
-        const double mean = 0.5 * (s00 + s11), rad = sqrt(0.25 * (s00 - s11) * (s00 - s11) + s01 * s01);
-        const double lp = mean + rad, lm = mean - rad;
-        if (lp <= 0.0) {
-            s00 = s11 = s01 = 0.0;
-        } else {   /* S+ = lp v v^T = lp (S - lm I) / (lp - lm) */
-            const double f = lp / (lp - lm);
-            s00 = f * (s00 - lm);
-            s11 = f * (s11 - lm);
-            s01 = f * s01;
-        }
-    }
+    if (kind == SB_HESS_PSD) psd_part2(&s00, &s11, &s01);
     for (int d = 0; d < 3; d++) {
         K[3 * S_X1 + d][3 * S_X1 + d] += s00;
         K[3 * S_X2 + d][3 * S_X2 + d] += s11;
