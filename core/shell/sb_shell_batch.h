@@ -88,29 +88,21 @@ double sb_section_fast_isa(sb_shell_isa isa, const sb_material *m, const double 
                            double sA[3], double sB[3], double C[36]);
 double sb_section_denim_isa(sb_shell_isa isa, const sb_material *m, const double A[3], const double B[3],
                             double sA[3], double sB[3], double C[36]);
-/* the variants of sb_elem_tile.c and sb_section_denim.c */
+/* The functions each vector width's compile defines (sb_elem_point.c,
+ * sb_elem_tile.c, sb_section_denim.c, named by SB_VEC_FN), declared for the
+ * widths base, avx2 and avx512; sb_shell_isa.c tables them. */
 #define SB_SECTION_DENIM_ARGS const sb_material *m, const double A[3], const double B[3], double sA[3], double sB[3], double C[36]
-double sb_section_denim_base(SB_SECTION_DENIM_ARGS);
-double sb_section_denim_avx2(SB_SECTION_DENIM_ARGS);
-double sb_section_denim_avx512(SB_SECTION_DENIM_ARGS);
-double sb_elem_element_base(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
-                            const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
-double sb_elem_element_avx2(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
-                            const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
-double sb_elem_element_avx512(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,
-                              const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w);
-void sb_elem_scatter_base(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
-void sb_elem_scatter_avx2(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
-void sb_elem_scatter_avx512(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
-void sb_elem_zrows_base(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
-void sb_elem_zrows_avx2(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
-void sb_elem_zrows_avx512(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);
-void sb_elem_products_base(int R, int kp, sb_shell_batch *w);
-void sb_elem_gram_base(int R, int n, const double *G, const double *Gb, double *C);
-void sb_elem_products_avx2(int R, int kp, sb_shell_batch *w);
-void sb_elem_gram_avx2(int R, int n, const double *G, const double *Gb, double *C);
-void sb_elem_products_avx512(int R, int kp, sb_shell_batch *w);
-void sb_elem_gram_avx512(int R, int n, const double *G, const double *Gb, double *C);
+#define SB_VEC_DECLARE(sfx)                                                                                          \
+    double sb_section_denim_##sfx(SB_SECTION_DENIM_ARGS);                                                           \
+    double sb_elem_element_##sfx(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b,      \
+                                 const double *q, double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w); \
+    void sb_elem_scatter_##sfx(int k, int kp, const sb_shell_batch *w, double *hess, double sign);                 \
+    void sb_elem_zrows_##sfx(double K[15][15], const double *Wp, int kp, double *Z0, size_t zstride);              \
+    void sb_elem_products_##sfx(int R, int kp, sb_shell_batch *w);                                                 \
+    void sb_elem_gram_##sfx(int R, int n, const double *G, const double *Gb, double *C);
+SB_VEC_DECLARE(base)
+SB_VEC_DECLARE(avx2)
+SB_VEC_DECLARE(avx512)
 /* hess (3k x 3k) += sign * the products, exactly symmetric */
 void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign);
 /* C (n x n, n <= 6) positive definite?  And C <- its PSD part. */

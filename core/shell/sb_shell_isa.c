@@ -86,59 +86,51 @@ int sb_shell_isa_from_params(const sb_paramset *ps, sb_shell_isa *isa, char *msg
  * its pre-broadcast copy */
 int sb_elem_wants_broadcast(const sb_shell_batch *w) { return SB_VL == 2 && w->isa == SB_ISA_BASE; }
 
+/* The variants' functions, one constant table per width (the default
+ * build's others exist only with SB_VEC_VARIANTS; a missing entry falls back
+ * to the base width, which set_isa never lets a batch choose anyway). */
+typedef struct sb_vec_ops {
+    double (*element)(const sb_material *, int, const sb_shell_ref *, const sb_shell_basis *, const double *, double *,
+                      double *, sb_hess_kind, sb_shell_batch *);
+    void (*scatter)(int, int, const sb_shell_batch *, double *, double);
+    void (*products)(int, int, sb_shell_batch *);
+    void (*gram)(int, int, const double *, const double *, double *);
+    double (*denim)(SB_SECTION_DENIM_ARGS);
+} sb_vec_ops;
+
+#define SB_VEC_OPS(sfx)                                                                                          \
+    { sb_elem_element_##sfx, sb_elem_scatter_##sfx, sb_elem_products_##sfx, sb_elem_gram_##sfx,                   \
+      sb_section_denim_##sfx }
+static const sb_vec_ops vec_ops[SB_ISA_COUNT] = {
+    [SB_ISA_BASE] = SB_VEC_OPS(base),
+#ifdef SB_VEC_VARIANTS
+    [SB_ISA_AVX2] = SB_VEC_OPS(avx2),
+    [SB_ISA_AVX512] = SB_VEC_OPS(avx512),
+#endif
+};
+
+static const sb_vec_ops *ops_of(sb_shell_isa isa)
+{
+    return (unsigned)isa < SB_ISA_COUNT && vec_ops[isa].element ? &vec_ops[isa] : &vec_ops[SB_ISA_BASE];
+}
+
 double sb_elem_element(const sb_material *m, int nq, const sb_shell_ref *r, const sb_shell_basis *b, const double *q,
                        double *grad, double *hess, sb_hess_kind kind, sb_shell_batch *w)
 {
-    switch (w ? w->isa : SB_ISA_BASE) {
-#ifdef SB_VEC_VARIANTS
-    case SB_ISA_AVX512: return sb_elem_element_avx512(m, nq, r, b, q, grad, hess, kind, w);
-    case SB_ISA_AVX2: return sb_elem_element_avx2(m, nq, r, b, q, grad, hess, kind, w);
-#endif
-    default: return sb_elem_element_base(m, nq, r, b, q, grad, hess, kind, w);
-    }
+    return ops_of(w ? w->isa : SB_ISA_BASE)->element(m, nq, r, b, q, grad, hess, kind, w);
 }
 
 void sb_elem_scatter(int k, int kp, const sb_shell_batch *w, double *hess, double sign)
 {
-    switch (w->isa) {
-#ifdef SB_VEC_VARIANTS
-    case SB_ISA_AVX512: sb_elem_scatter_avx512(k, kp, w, hess, sign); return;
-    case SB_ISA_AVX2: sb_elem_scatter_avx2(k, kp, w, hess, sign); return;
-#endif
-    default: sb_elem_scatter_base(k, kp, w, hess, sign); return;
-    }
+    ops_of(w->isa)->scatter(k, kp, w, hess, sign);
 }
 
-void sb_elem_products(int R, int kp, sb_shell_batch *w)
-{
-    switch (w->isa) {
-#ifdef SB_VEC_VARIANTS
-    case SB_ISA_AVX512: sb_elem_products_avx512(R, kp, w); return;
-    case SB_ISA_AVX2: sb_elem_products_avx2(R, kp, w); return;
-#endif
-    default: sb_elem_products_base(R, kp, w); return;
-    }
-}
+void sb_elem_products(int R, int kp, sb_shell_batch *w) { ops_of(w->isa)->products(R, kp, w); }
 
-void sb_elem_gram(int R, int n, sb_shell_batch *w)
-{
-    switch (w->isa) {
-#ifdef SB_VEC_VARIANTS
-    case SB_ISA_AVX512: sb_elem_gram_avx512(R, n, w->G, w->Gb, w->C3); return;
-    case SB_ISA_AVX2: sb_elem_gram_avx2(R, n, w->G, w->Gb, w->C3); return;
-#endif
-    default: sb_elem_gram_base(R, n, w->G, w->Gb, w->C3); return;
-    }
-}
+void sb_elem_gram(int R, int n, sb_shell_batch *w) { ops_of(w->isa)->gram(R, n, w->G, w->Gb, w->C3); }
 
 double sb_section_denim_isa(sb_shell_isa isa, const sb_material *m, const double A[3], const double B[3],
                             double sA[3], double sB[3], double C[36])
 {
-    switch (isa) {
-#ifdef SB_VEC_VARIANTS
-    case SB_ISA_AVX512: return sb_section_denim_avx512(m, A, B, sA, sB, C);
-    case SB_ISA_AVX2: return sb_section_denim_avx2(m, A, B, sA, sB, C);
-#endif
-    default: return sb_section_denim_base(m, A, B, sA, sB, C);
-    }
+    return ops_of(isa)->denim(m, A, B, sA, sB, C);
 }
