@@ -4,7 +4,9 @@
  * run.max_memory, or whose Hessian could not be indexed, is refused with a
  * sentence (exit 2) for methods with an estimate op (bhem, rmtr) and without
  * one (the fixtures, measured after create); the estimate op's sizes are
- * those create() builds (bhem, rmtr, linear_fem). */
+ * those create() builds (bhem, rmtr, linear_fem, adaptive_sqrt3); issue 37
+ * item 9: adaptive_sqrt3 and a study's plan are refused by the estimate
+ * before anything is built. */
 #include "cli_sh.h"
 #include "run_json.h"
 #include "sb_context.h"
