@@ -219,6 +219,13 @@ SB_TEST(every_echo_escaped)
     echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s sweep --scenes tests/scenes/membrane_dynamic.json "
                             "--methods fixture_membrane --solvers lsnewton --res 2 --dir '%s/%s'", root, bin, tmpdir, E),
                    0, "sweep --dir");
+    /* run: the record path it names at the end, and again when resumed */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s run --scene tests/scenes/membrane_dynamic.json "
+                            "--method fixture_membrane --solver lsnewton --res 2 --out '%s/%s/a.h5'", root, bin, tmpdir, E),
+                   0, "run --out");
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s run --scene tests/scenes/membrane_dynamic.json "
+                            "--method fixture_membrane --solver lsnewton --res 2 --out '%s/%s/a.h5' --resume", root, bin,
+                            tmpdir, E), 0, "run --resume");
     /* regress: the baseline's and the suite's names */
     echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s regress --suite %s/study0.json --baseline '%s/%s.json' "
                             "--out %s/rg --no-history", bin, tmpdir, tmpdir, E, tmpdir), 2, "regress --baseline");
