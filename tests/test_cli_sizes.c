@@ -191,6 +191,10 @@ SB_TEST(adaptive_sqrt3_estimate_matches_create)
     char path[1024], msg[2048];
     sb_scene sc;
     CHECK(sb_scene_resolve("curtain", path, sizeof path) == SB_OK && sb_scene_load(path, &sc, msg, sizeof msg) == SB_OK);
+    /* every method of the build (not the test fixtures) is estimated before it is created */
+    for (int k = 0; k < sb_method_count(); k++)
+        if (!(sb_method_at(k)->flags & SB_METHOD_TEST_FIXTURE))
+            CHECK_MSG(sb_method_at(k)->estimate != NULL, "method %s has no estimate op", sb_method_at(k)->name);
     const sb_method_type *mt = sb_method_find("adaptive_sqrt3");
     CHECK(mt && mt->estimate);
     if (!mt || !mt->estimate) return;
