@@ -47,7 +47,7 @@ static int cmd_check(int argc, char **argv)
         char err[2048], path[1024];
         const char *file = sb_scene_resolve(argv[i], path, sizeof path) == SB_OK ? path : argv[i];
         if (sb_scene_load(file, &sc, err, sizeof err)) {
-            fprintf(stderr, "%s\n", err);
+            sb_escape_print(stderr, "%s", err);
             bad = 1;
         } else if (sb_run_scene_methods_check(&sc, err, sizeof err) ||
                    sb_reference_check(&sc, NULL, 0, err, sizeof err)) {   /* a reference file must be usable */

@@ -180,18 +180,18 @@ int sb_cli_regress(int argc, char **argv)
     struct stat stt;
     if (stat(baseline, &stt) == 0) {
         if (sb_regress_baseline_read(baseline, &base, err, sizeof err)) {
-            fprintf(stderr, "shellbench regress: %s\n", err);
+            sb_escape_print(stderr, "shellbench regress: %s", err);
             return 2;
         }
         have_base = 1;
     } else if (!update) {
-        fprintf(stderr, "shellbench regress: no baseline %s: make one with --update-baseline\n", baseline);
+        sb_escape_print(stderr, "shellbench regress: no baseline %s: make one with --update-baseline", baseline);
         return 2;
     }
     sb_study *st = malloc(sizeof *st);
     if (!st) return 3;
     if (sb_study_load(suite, NULL, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_print(stderr, "%s", err);
         free(st);
         sb_regress_set_free(&base);
         return 2;
@@ -218,7 +218,7 @@ int sb_cli_regress(int argc, char **argv)
     }
     char dir[1024], report[1100];
     if (mkdir_p(outdir)) {
-        fprintf(stderr, "shellbench regress: cannot create %s: %s\n", outdir, strerror(errno));
+        sb_escape_print(stderr, "shellbench regress: cannot create %s: %s", outdir, strerror(errno));
         rc = 3;
     } else {
         snprintf(report, sizeof report, "%s/report.md", outdir);
@@ -228,12 +228,12 @@ int sb_cli_regress(int argc, char **argv)
             sb_regress_pictures(f, &now, records, outdir, stderr);
             if (fclose(f)) f = NULL;
         }
-        if (!f) fprintf(stderr, "shellbench regress: cannot write %s: %s\n", report, strerror(errno)), rc = 3;
+        if (!f) sb_escape_print(stderr, "shellbench regress: cannot write %s: %s", report, strerror(errno)), rc = 3;
     }
     sb_regress_markdown(stdout, &now, have_base ? &base : NULL, &ru, baseline);
     if (!no_history) {
         if (dir_of(history, dir, sizeof dir) || sb_regress_history_append(&now, history, err, sizeof err)) {
-            fprintf(stderr, "shellbench regress: %s\n", err);
+            sb_escape_print(stderr, "shellbench regress: %s", err);
             rc = 3;
         } else if (!rc) {
             sb_regress_history_plots(history, &now, outdir, NULL, stderr);
@@ -243,14 +243,14 @@ int sb_cli_regress(int argc, char **argv)
         int failed = 0;
         for (int k = 0; k < now.n; k++) failed += now.c[k].verdict == SB_VERDICT_FAILED;
         if (failed) {
-            fprintf(stderr, "shellbench regress: %d case%s failed: the baseline %s is left as it was\n", failed,
+            sb_escape_print(stderr, "shellbench regress: %d case%s failed: the baseline %s is left as it was", failed,
                     failed > 1 ? "s" : "", baseline);
             regressions = regressions ? regressions : 1;
         } else if (dir_of(baseline, dir, sizeof dir) || sb_regress_baseline_write(&now, baseline, err, sizeof err)) {
-            fprintf(stderr, "shellbench regress: %s\n", err);
+            sb_escape_print(stderr, "shellbench regress: %s", err);
             rc = 3;
         } else {
-            printf("baseline written: %s (%d cases, build %s)\n", baseline, now.n, now.prov.build);
+            sb_escape_print(stdout, "baseline written: %s (%d cases, build %s)", baseline, now.n, now.prov.build);
             regressions = 0;   /* the new baseline is this run: nothing regressed against it */
         }
     }

@@ -271,12 +271,12 @@ static int start_or_resume(run_state *R, const sb_run_request *req, const char *
     if (access(out_path, F_OK) == 0) {
         sb_record_summary done_s;
         if (sb_record_read_summary(out_path, &done_s, msg, sizeof msg) == SB_OK) {
-            if (!req->quiet) fprintf(err, "shellbench: %s is already recorded (%s): nothing to resume\n", out_path, done_s.reason_name);
+            if (!req->quiet) sb_escape_print(err, "shellbench: %s is already recorded (%s): nothing to resume", out_path, done_s.reason_name);
             int code = done_s.status == 0 ? SB_EXIT_CONVERGED : SB_EXIT_NOT_CONVERGED;
             sb_record_summary_free(&done_s);
             return code;
         }
-        fprintf(err, "shellbench: warning: %s exists but is no readable record (%s): running again\n", out_path, msg);
+        sb_escape_print(err, "shellbench: warning: %s exists but is no readable record (%s): running again", out_path, msg);
     }
     int k = sb_run_resume(R, req->quiet);
     if (k < 0) return SB_EXIT_INPUT;
@@ -395,7 +395,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             sb_run_write_checkpoint(R);
             if (R->checkpoint_failed) return SB_EXIT_INTERNAL;
             if (!req->quiet)
-                fprintf(err, "shellbench: stopped after step %d of %d as asked; checkpoint %s (continue with --resume)\n",
+                sb_escape_print(err, "shellbench: stopped after step %d of %d as asked; checkpoint %s (continue with --resume)",
                         step, sc->time.steps, R->partial_path);
             return SB_EXIT_STOPPED;
         }
@@ -450,7 +450,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     if (summary) *summary = js;
     else free(js);
     if (!req->quiet && !req->summary_json)
-        fprintf(err, "%s/%s/%s: %s (%s), validation %s, %ld dofs, %d of %d steps, %.3f s%s%s\n", sc->name, R->mt->name,
+        sb_escape_print(err, "%s/%s/%s: %s (%s), validation %s, %ld dofs, %d of %d steps, %.3f s%s%s", sc->name, R->mt->name,
                 R->stype->name, rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason),
                 sb_validation_name(rec->validation), rec->n_dofs, rec->steps_done, rec->steps_planned,
                 stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");

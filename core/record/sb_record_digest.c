@@ -156,12 +156,28 @@ int sb_record_digest(const char *path, int drop_state, int *already, char *err, 
     /* the record must read (checksum, format) and not be a checkpoint */
     int rc = sb_h5r_open(&r, &f);
     if (!rc && H5Aexists(f, "digest") > 0) *already = 1;
-    if (!rc && H5Lexists(f, "/resume", H5P_DEFAULT) > 0)
-        rc = sb_h5r_fail(&r, SB_ERR_INPUT, "is a checkpoint of an unfinished run (it holds", "/resume), not a record");
+    if (!rc && H5Lexists(f, "/resume", H5P_DEFAULT) > 0) {
+        snprintf(err, errlen, "cannot digest %s: it is a checkpoint of an unfinished run (it holds /resume), not a "
+                 "finished record: finish the run with --resume, then digest its record", path);
+        rc = SB_ERR_INPUT;
+    }
     sb_h5r_close(&r, f);
     if (rc || *already) return rc;
     sb_output_kind kind;
     if (sb_output_check(path, "record", &kind, err, errlen)) return SB_ERR_INPUT;
+    /* the digest is written beside the record and renamed onto it: its
+     * directory must be writable, which is checked before any copying */
+    char dir[4200];
+    const char *slash = strrchr(path, '/');
+    if (!slash) snprintf(dir, sizeof dir, ".");
+    else if (slash == path) snprintf(dir, sizeof dir, "/");
+    else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    if (access(dir, W_OK | X_OK) != 0) {
+        snprintf(err, errlen, "cannot digest %s: its directory %s is not writable (%s); the digest is written beside "
+                 "the record and renamed onto it: make the directory writable or digest a copy elsewhere", path, dir,
+                 strerror(errno));
+        return SB_ERR_INPUT;
+    }
     char tmp[4200], note[256];
     if ((size_t)snprintf(tmp, sizeof tmp, "%s.digest.tmp", path) >= sizeof tmp) {
         snprintf(err, errlen, "cannot digest %s: path too long", path);

@@ -42,10 +42,11 @@ void sb_regress_markdown(FILE *out, const sb_regress_set *now, const sb_regress_
 {
     int count[SB_VERDICT_COUNT] = { 0 };
     for (int k = 0; k < now->n; k++) count[now->c[k].verdict]++;
-    fprintf(out, "# Nightly regression: `%s`\n\n", now->prov.suite);
+    char esc[1100];   /* the suite's and the baseline's names as given, terminal-safe (sb_escape_copy) */
+    fprintf(out, "# Nightly regression: `%s`\n\n", sb_escape_copy(now->prov.suite, esc, sizeof esc));
     prov_line(out, "this run", &now->prov);
     if (base) prov_line(out, "baseline", &base->prov);
-    else fprintf(out, "* baseline: none (`%s`)\n", baseline_path);
+    else fprintf(out, "* baseline: none (`%s`)\n", sb_escape_copy(baseline_path, esc, sizeof esc));
     fprintf(out, "* times: CPU seconds of each run's process divided by the calibration kernel's (same invocation); "
                  "slower/faster when a two-sided Mann-Whitney U test gives p < %g **and** the medians differ by at least "
                  "%.0f %% **and** by at least %.0f ms of the run's CPU time; deterministic figures exactly (energy and "

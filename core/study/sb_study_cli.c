@@ -20,7 +20,7 @@ static int parse_count(const char *opt, const char *v, int lo, int *out)
     char *end;
     long x = v ? strtol(v, &end, 10) : 0;
     if (!v || end == v || *end || x < lo || x > 100000) {
-        fprintf(stderr, "shellbench: %s: \"%s\" is not an integer >= %d\n", opt, v ? v : "", lo);
+        sb_escape_print(stderr, "shellbench: %s: \"%s\" is not an integer >= %d", opt, v ? v : "", lo);
         return -1;
     }
     *out = (int)x;
@@ -35,10 +35,10 @@ static void print_plan(const sb_study *st, const sb_plan *p, FILE *out)
         char label[128];
         sb_plan_config_label(st, r, label, sizeof label);
         if (r->state == SB_PLAN_RUN)
-            fprintf(out, "%-16s %-28s res %4d %7ld dofs start %d  %s%s\n", st->scenes[r->scene].name, label, r->res, r->dofs,
+            sb_escape_print(out, "%-16s %-28s res %4d %7ld dofs start %d  %s%s", st->scenes[r->scene].name, label, r->res, r->dofs,
                     r->start, r->out, sb_study_run_done(r) ? "  (recorded)" : "");
         else
-            fprintf(out, "%-16s %-28s %s: %s\n", st->scenes[r->scene].name, label, state[r->state], r->why);
+            sb_escape_print(out, "%-16s %-28s %s: %s", st->scenes[r->scene].name, label, state[r->state], r->why);
     }
 }
 
@@ -61,9 +61,9 @@ int sb_study_cmd_sweep(int argc, char **argv)
         else if (!strcmp(a, "--plan")) plan_only = 1;
         else if (!strcmp(a, "--quiet")) o.quiet = 1;
         else {
-            fprintf(stderr, "shellbench sweep --study: unknown option or missing value \"%s\" "
+            sb_escape_print(stderr, "shellbench sweep --study: unknown option or missing value \"%s\" "
                             "(--study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume] "
-                            "[--emit slurm [--out FILE]] [--task K])\n", a);
+                            "[--emit slurm [--out FILE]] [--task K])", a);
             return 2;
         }
     }
@@ -84,7 +84,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_print(stderr, "%s", err);
         free(st);
         return 2;
     }
@@ -99,7 +99,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
         sb_plan p;
         rc = 0;
         if (sb_study_plan(st, &p, err, sizeof err)) {
-            fprintf(stderr, "shellbench sweep: %s: %s\n", file, err);
+            sb_escape_print(stderr, "shellbench sweep: %s: %s", file, err);
             rc = 2;
         } else {
             print_plan(st, &p, stdout);
@@ -124,8 +124,8 @@ int sb_study_cmd_report(int argc, char **argv)
         else if (!strcmp(a, "--out") && v) o.out_dir = v, i++;
         else if (!strcmp(a, "--deterministic")) o.deterministic = 1;
         else {
-            fprintf(stderr, "shellbench report --study: unknown option or missing value \"%s\" "
-                            "(--study FILE [--out DIR] [--dir DIR] [--deterministic])\n", a);
+            sb_escape_print(stderr, "shellbench report --study: unknown option or missing value \"%s\" "
+                            "(--study FILE [--out DIR] [--dir DIR] [--deterministic])", a);
             return 2;
         }
     }
@@ -137,7 +137,7 @@ int sb_study_cmd_report(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_print(stderr, "%s", err);
         free(st);
         return 2;
     }
