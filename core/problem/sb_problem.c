@@ -8,6 +8,7 @@
 #include "sb_impulse.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -741,6 +742,68 @@ int sb_problem_contact_separate(sb_problem *p, int step, double *x, int *moved)
     free(fixed);
     sb_stats_event(&p->ctx->stats, p->nl - 1, SB_EV_COLLIDE, t0);
     return left;
+}
+
+static const char *obstacle_kind_name(const sb_obstacle_spec *o)
+{
+    static const char *const names[] = { "sphere", "plane", "box", "capsule", "mesh" };
+    return (int)o->kind >= 0 && (int)o->kind < 5 ? names[o->kind] : "obstacle";
+}
+
+int sb_problem_contact_swept(sb_problem *p, int step, const double *x_n, char *why, size_t why_size)
+{
+    level_data *L = &p->lv[p->nl - 1];
+    if (why_size) why[0] = '\0';
+    if (!L->contact) return 0;
+    double t0 = sb_now();
+    sb_contact_sweep_hit h;
+    const int n = sb_contact_sweep_check(L->contact, step, x_n, &h);
+    sb_stats_event(&p->ctx->stats, p->nl - 1, SB_EV_COLLIDE, t0);
+    if (!n) return 0;
+    const sb_obstacle_spec *o = &p->scene->obstacles[h.obstacle];
+    char e[SB_NAME_LEN * 4 + 8];
+    snprintf(why, why_size,
+             "step %d: obstacle \"%s\" (%s) moves through the cloth within the step: its motion over the step "
+             "reaches %d contact sample point%s, first point %d (s = %.4g, t = %.4g) at (%.4g, %.4g, %.4g) m, %s "
+             "%.3g of the step, %s; the barrier sees obstacles only at the step's end, so the cloth would be left "
+             "on the wrong side unseen.  Use smaller steps (time.dt) or a slower motion (motion.ramp_steps)",
+             step, sb_escape_copy(o->name, e, sizeof e), obstacle_kind_name(o), n, n == 1 ? "" : "s", h.point,
+             h.st[0], h.st[1], h.x[0], h.x[1], h.x[2], h.when > 0 ? "touched after" : "inside it at",
+             h.when, h.ends_inside ? "and it ends inside the obstacle" : "and it ends on the obstacle's far side");
+    return n;
+}
+
+int sb_problem_contact_start_check(sb_problem *p, const double *x, char *why, size_t why_size)
+{
+    const int F = p->nl - 1;
+    level_data *L = &p->lv[F];
+    const sb_scene *sc = p->scene;
+    if (why_size) why[0] = '\0';
+    if (sc->n_obstacles == 0 || !p->mt->contact_points) return 0;
+    sb_contact *c = L->contact, *tmp = NULL;
+    if (!c) {   /* contact.model "impulse": the method's sample points, for this check only */
+        sb_contact_points cp;
+        memset(&cp, 0, sizeof cp);
+        int rc = p->mt->contact_points(p->ms, F, sc->contact.samples, &cp);
+        if (!rc) rc = sb_contact_create(sc, &cp, &tmp);
+        sb_contact_points_free(&cp);
+        if (rc) return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "method %s: contact sample points failed",
+                                p->mt->name);
+        c = tmp;
+    }
+    sb_contact_sweep_hit h;
+    const int n = sb_contact_inside_check(c, 0, x, &h);
+    sb_contact_free(tmp);
+    if (!n) return 0;
+    const sb_obstacle_spec *o = &sc->obstacles[h.obstacle];
+    char e[SB_NAME_LEN * 4 + 8];
+    snprintf(why, why_size,
+             "the cloth starts inside obstacle \"%s\" (%s): contact sample point %d (s = %.4g, t = %.4g) of "
+             "method %s at (%.4g, %.4g, %.4g) m is %s it at the start (%d point%s in all); contact cannot start "
+             "from there (infinite barrier energy, no side to push to).  Move the obstacle or the cloth apart",
+             sb_escape_copy(o->name, e, sizeof e), obstacle_kind_name(o), h.point, h.st[0], h.st[1], p->mt->name,
+             h.x[0], h.x[1], h.x[2], o->kind == SB_OBST_MESH ? "on a triangle of" : "inside", n, n == 1 ? "" : "s");
+    return n;
 }
 
 int sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside)

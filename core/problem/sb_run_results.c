@@ -278,6 +278,8 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(co, "self", se);
         }
         if (R->mt && R->mt->adapt) json_object_set_new(co, "separated", json_integer(R->contact_separated));
+        if (R->rec.contact_stop[0]) json_object_set_new(co, "stopped", json_string(R->rec.contact_stop));
+        if (R->rec.contact_coverage[0]) json_object_set_new(co, "coverage", json_string(R->rec.contact_coverage));
         if (R->rec.has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
             const sb_impulse_stats *s = &R->rec.impulse;
             json_object_set_new(co, "model", json_string("impulse"));
