@@ -465,6 +465,33 @@ void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r)
         r->min_distance = fmin(r->min_distance, M.dmin);
         if (M.dmin < c->dhat) r->active++;
     }
+    /* the surface between the points: each sample triangle against each
+       analytic obstacle (sb_obstacle_triangle_depth), counted when the
+       obstacle reaches deeper than dhat into it while its corners are all
+       outside (a corner inside is counted above) */
+    r->between_obstacle = -1;
+    r->between = P->nt > 0 ? 0 : -1;
+    for (int t = 0; t < P->nt; t++) {
+        double xa[3], xb[3], xc[3];
+        sb_contact_points_eval(P, P->tri[3 * t], x, xa);
+        sb_contact_points_eval(P, P->tri[3 * t + 1], x, xb);
+        sb_contact_points_eval(P, P->tri[3 * t + 2], x, xc);
+        for (int o = 0; o < c->sc->n_obstacles; o++) {
+            const sb_obstacle_spec *ob = &c->sc->obstacles[o];
+            /* deeper than dhat: the chord between points resting on a curved
+               obstacle dips into it by about h^2 / (8 R), a discretization
+               error the barrier's own scale covers; a needle between the
+               points pierces (INFINITY) */
+            if (ob->kind == SB_OBST_MESH || !(sb_obstacle_triangle_depth(ob, &c->pose[o], xa, xb, xc) > c->dhat))
+                continue;
+            if (sb_obstacle_phi(ob, &c->pose[o], xa, NULL, NULL) <= 0 || sb_obstacle_phi(ob, &c->pose[o], xb, NULL, NULL) <= 0 ||
+                sb_obstacle_phi(ob, &c->pose[o], xc, NULL, NULL) <= 0)
+                continue;
+            if (r->between_obstacle < 0) r->between_obstacle = o;
+            r->between++;
+            break;
+        }
+    }
     r->self_min_distance = INFINITY;
     if (c->self) {
         sb_self_report s;

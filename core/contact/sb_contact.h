@@ -65,6 +65,14 @@ typedef struct sb_contact_report {
     int active;              /* points within dhat of an obstacle (barrier active) */
     int inside;              /* points inside an analytic obstacle or on a mesh triangle */
     double min_distance;     /* smallest distance of a sample point to an obstacle (m) */
+    /* between the sample points (issue 37): the sample triangles into which
+     * an analytic obstacle's solid reaches deeper than dhat (or which a
+     * capsule's axis pierces) although their three corners are outside it
+     * (an obstacle crossing the cloth between the points); -1 when the
+     * method does not triangulate its points (not checked); the first such
+     * obstacle (-1: none) */
+    int between;
+    int between_obstacle;
     /* self-contact (zero / INFINITY without) */
     int self_pairs;          /* candidate pairs of the step */
     int self_active;         /* candidate pairs within dhat */

@@ -3,6 +3,8 @@
  * point–triangle distance of mesh obstacles (sb_obstacle.h). */
 #include "sb_obstacle.h"
 #include "sb_geometry.h"
+#include "sb_self_geom.h"
+#include "sb_bridson.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -380,4 +382,107 @@ int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size)
     }
     free(st);
     return found;
+}
+
+/* ---- a cloth triangle against an analytic solid ---------------------------- */
+
+/* Triangle (a, b, c) (rest frame) against the axis-aligned box |y - m| <= h:
+ * the separating-axis test of Akenine-Möller (2001, "Fast 3D triangle-box
+ * overlap testing"): 3 box axes, the triangle's normal, 9 edge x axis
+ * products.  Returns the smallest overlap of the two projections over the
+ * axes (each axis normalized): <= 0 when an axis separates them, else the
+ * penetration depth (the shortest translation that separates them, for
+ * these convex polytopes the minimum over these axes). */
+static double tri_box_depth(const double a[3], const double b[3], const double c[3], const double m[3], const double h[3])
+{
+    double v[3][3], e[3][3];
+    for (int i = 0; i < 3; i++) { v[0][i] = a[i] - m[i]; v[1][i] = b[i] - m[i]; v[2][i] = c[i] - m[i]; }
+    for (int i = 0; i < 3; i++) { e[0][i] = v[1][i] - v[0][i]; e[1][i] = v[2][i] - v[1][i]; e[2][i] = v[0][i] - v[2][i]; }
+    double axes[13][3];
+    int na = 0;
+    for (int k = 0; k < 3; k++) {   /* the box's faces */
+        double u[3] = { 0, 0, 0 };
+        u[k] = 1;
+        memcpy(axes[na++], u, sizeof u);
+    }
+    double nrm[3] = { e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
+                      e[0][0] * e[1][1] - e[0][1] * e[1][0] };
+    memcpy(axes[na++], nrm, sizeof nrm);
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < 3; k++) {   /* e_j x unit axis k */
+            double u[3] = { 0, 0, 0 }, w[3];
+            u[k] = 1;
+            w[0] = e[j][1] * u[2] - e[j][2] * u[1];
+            w[1] = e[j][2] * u[0] - e[j][0] * u[2];
+            w[2] = e[j][0] * u[1] - e[j][1] * u[0];
+            memcpy(axes[na++], w, sizeof w);
+        }
+    double depth = INFINITY;
+    for (int q = 0; q < na; q++) {
+        const double *u = axes[q], un = sqrt(dot3(u, u));
+        if (!(un > 1e-12 * (1 + sqrt(dot3(nrm, nrm))))) continue;   /* degenerate axis: no information */
+        double lo = INFINITY, hi = -INFINITY;
+        for (int k = 0; k < 3; k++) {
+            const double p = dot3(v[k], u);
+            lo = fmin(lo, p);
+            hi = fmax(hi, p);
+        }
+        const double r = h[0] * fabs(u[0]) + h[1] * fabs(u[1]) + h[2] * fabs(u[2]);
+        depth = fmin(depth, (fmin(hi, r) - fmax(lo, -r)) / un);
+        if (depth <= 0) return depth;
+    }
+    return depth;
+}
+
+static double tri_point_distance(const double p[3], const double a[3], const double b[3], const double c[3])
+{
+    return sb_point_triangle_distance(p, a, b, c, NULL, NULL);
+}
+
+double sb_obstacle_triangle_depth(const sb_obstacle_spec *o, const sb_pose *P, const double xa[3], const double xb[3],
+                                  const double xc[3])
+{
+    double a[3], b[3], c[3];
+    sb_pose_inverse(P, xa, a);
+    sb_pose_inverse(P, xb, b);
+    sb_pose_inverse(P, xc, c);
+    switch (o->kind) {
+    case SB_OBST_SPHERE: {
+        for (int i = 0; i < 3; i++)   /* bounding-box cull */
+            if (fmin(a[i], fmin(b[i], c[i])) >= o->center[i] + o->radius ||
+                fmax(a[i], fmax(b[i], c[i])) <= o->center[i] - o->radius)
+                return 0;
+        return o->radius - tri_point_distance(o->center, a, b, c);
+    }
+    case SB_OBST_PLANE: {   /* linear: its minimum over the triangle is at a corner */
+        double m = INFINITY;
+        const double *v[3] = { a, b, c };
+        for (int k = 0; k < 3; k++) {
+            double w[3] = { v[k][0] - o->point[0], v[k][1] - o->point[1], v[k][2] - o->point[2] };
+            m = fmin(m, dot3(o->normal, w));
+        }
+        return -m;
+    }
+    case SB_OBST_BOX:
+        return tri_box_depth(a, b, c, o->center, o->half);
+    case SB_OBST_CAPSULE: {
+        for (int i = 0; i < 3; i++)
+            if (fmin(a[i], fmin(b[i], c[i])) >= fmax(o->a[i], o->b[i]) + o->radius ||
+                fmax(a[i], fmax(b[i], c[i])) <= fmin(o->a[i], o->b[i]) - o->radius)
+                return 0;
+        /* the axis segment through the triangle: the capsule pierces it */
+        if (sb_segment_triangle_intersect(o->a, o->b, a, b, c)) return INFINITY;
+        /* else its distance to the triangle, attained at an end of the
+           segment or on an edge of the triangle */
+        double d = fmin(tri_point_distance(o->a, a, b, c), tri_point_distance(o->b, a, b, c));
+        const double *v[3] = { a, b, c };
+        for (int k = 0; k < 3; k++) {
+            double s, t;
+            d = fmin(d, sb_closest_segments(o->a, o->b, v[k], v[(k + 1) % 3], &s, &t));
+        }
+        return o->radius - d;
+    }
+    default:
+        return 0;   /* meshes: not tested here */
+    }
 }

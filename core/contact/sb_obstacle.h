@@ -63,6 +63,17 @@ double sb_obstacle_sweep(const sb_obstacle_spec *o, double fa, double fb, const 
  * method's own sample points too). */
 int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size);
 
+/* How deep the open solid of analytic obstacle o in pose P reaches into
+ * the world triangle (xa, xb, xc): > 0 when they overlap (<= 0 otherwise).
+ * Sphere: radius minus the centre's distance to the triangle; capsule:
+ * radius minus the axis segment's distance, INFINITY when the axis crosses
+ * the triangle (pierced); box: the penetration depth of the separating-axis
+ * test (Akenine-Möller 2001); plane: minus the lowest corner's distance.
+ * Meshes: 0 (not tested).  Used to see an obstacle crossing the cloth
+ * between its sample points (docs/contact.md "What the guarantee covers"). */
+double sb_obstacle_triangle_depth(const sb_obstacle_spec *o, const sb_pose *P, const double xa[3], const double xb[3],
+                                  const double xc[3]);
+
 /* Continuous collision of a point against a triangle, all four moving
  * linearly from time 0 to 1 (p0 -> p1, a0 -> a1, ...): the first time in
  * [0, 1] at which the point lies on the triangle (closed triangle), or 2 when

@@ -806,6 +806,20 @@ int sb_problem_contact_start_check(sb_problem *p, const double *x, char *why, si
     return n;
 }
 
+int sb_problem_contact_report(sb_problem *p, const double *x, sb_contact_report *r, double *spacing)
+{
+    level_data *L = &p->lv[p->nl - 1];
+    if (!L->contact) return 0;
+    double t0 = sb_now();
+    sb_contact_measure(L->contact, x, r);
+    const sb_contact_points *P = sb_contact_points_of(L->contact);
+    double a = 0;
+    for (int k = 0; k < P->n; k++) a += P->area[k];
+    *spacing = P->n > 0 ? sqrt(a / P->n) : NAN;
+    sb_stats_event(&p->ctx->stats, p->nl - 1, SB_EV_COLLIDE, t0);
+    return r->points;
+}
+
 int sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside)
 {
     level_data *L = &p->lv[p->nl - 1];

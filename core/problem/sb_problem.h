@@ -126,6 +126,12 @@ double sb_problem_step_bound(sb_problem *p, int level, const double *x, const do
  * pushes (sb_contact_separate); returns the points still closer (0 without contact). */
 int    sb_problem_contact_separate(sb_problem *p, int step, double *x, int *moved);
 int    sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside);
+/* The full report of the finest level's contact at x (sb_contact_measure:
+ * also the sample triangles an analytic obstacle crosses between the
+ * points) and the sample spacing sqrt(mean area per point) (m); returns
+ * 0 (and leaves *r) without contact. */
+struct sb_contact_report;
+int    sb_problem_contact_report(sb_problem *p, const double *x, struct sb_contact_report *r, double *spacing);
 
 /* Moving obstacles against the finest level's sample points at x_n
  * (docs/contact.md "Obstacles that move through the cloth"): the barrier

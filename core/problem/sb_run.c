@@ -17,6 +17,7 @@
  * A phase returns RUN_GO_ON to continue or the exit code to stop with.  All
  * statistics come from the core wrappers (sb_problem.c). */
 #include "sb_run_state.h"
+#include "sb_contact.h"
 #include "sb_sysinfo.h"
 #include "sb_surface.h"
 
@@ -384,9 +385,12 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         if (R->mt->eval_points) sb_run_record_probes(R, step);
         if (sb_problem_has_contact(R->prob)) {
             /* contact: distances of the step's end state (docs/contact.md) */
-            double dmin;
-            int act, ins;
-            rec->contact_points = sb_problem_contact_measure(R->prob, R->x, &dmin, &act, &ins);
+            sb_contact_report cr;
+            double spacing;
+            rec->contact_points = sb_problem_contact_report(R->prob, R->x, &cr, &spacing);
+            const double dmin = cr.min_distance;
+            const int act = cr.active, ins = cr.inside;
+            sb_run_contact_between(R, step, &cr, spacing);
             if (!rec->has_contact || dmin < rec->contact_min_distance) rec->contact_min_distance = dmin;
             rec->has_contact = 1;
             rec->contact_active = act;
@@ -450,6 +454,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
         sb_run_judge_penalty(R);
     }
     sb_run_potential_change(R);
+    sb_run_contact_coverage(R);
     sb_run_compute_error(R, err);
     sb_run_record_material(R);
     sb_run_record_energy(R);
@@ -478,6 +483,8 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
                 R->stype->name, rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason),
                 sb_validation_name(rec->validation), rec->n_dofs, rec->steps_done, rec->steps_planned,
                 stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
+    if (!req->quiet && rec->has_contact && rec->contact_steps_between > 0)
+        fprintf(err, "shellbench: warning: %s\n", rec->contact_coverage);
     if (rec->status) return SB_EXIT_NOT_CONVERGED;
     if (req->strict && rec->validation == SB_VALIDATION_FAILED) {
         if (!req->quiet) fprintf(err, "shellbench: --strict: validation failed (an expected probe value is out of tolerance)\n");
