@@ -650,10 +650,14 @@ int sb_contact_inside_check(const sb_contact *c, int step, const double *x, sb_c
                 double y[3];
                 sb_pose_inverse(&A, xp, y);
                 d = INFINITY;
-                for (int f = 0; f < ob->nt && d > 0; f++)
-                    d = fmin(d, sb_point_triangle_distance(y, ob->verts + 3 * ob->tris[3 * f],
-                                                           ob->verts + 3 * ob->tris[3 * f + 1],
-                                                           ob->verts + 3 * ob->tris[3 * f + 2], NULL, NULL));
+                for (int f = 0; f < ob->nt && d > 0; f++) {
+                    const double *a = ob->verts + 3 * ob->tris[3 * f], *b = ob->verts + 3 * ob->tris[3 * f + 1],
+                                 *cc = ob->verts + 3 * ob->tris[3 * f + 2];
+                    int out = 0;   /* only a triangle whose box holds y can have it on it */
+                    for (int i = 0; i < 3; i++)
+                        out |= y[i] < fmin(a[i], fmin(b[i], cc[i])) || y[i] > fmax(a[i], fmax(b[i], cc[i]));
+                    if (!out) d = fmin(d, sb_point_triangle_distance(y, a, b, cc, NULL, NULL));
+                }
             }
             if (!(d <= 0)) continue;
             if (n_in++ == 0) {

@@ -332,6 +332,14 @@ double sb_obstacle_sweep(const sb_obstacle_spec *o, double fa, double fb, const 
 
 /* ---- the scene's reference surface against the obstacles at the start ---- */
 
+/* y within the bounding box of triangle (a, b, c) (closed): only then can it lie on it */
+static int in_tri_box(const double y[3], const double a[3], const double b[3], const double c[3])
+{
+    for (int i = 0; i < 3; i++)
+        if (y[i] < fmin(a[i], fmin(b[i], c[i])) || y[i] > fmax(a[i], fmax(b[i], c[i]))) return 0;
+    return 1;
+}
+
 int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size)
 {
     static const char *const kinds[] = { "sphere", "plane", "box", "capsule", "mesh" };
@@ -360,9 +368,11 @@ int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size)
                 sb_pose_inverse(&P, J.x, y);
                 d = INFINITY;
                 for (int f = 0; f < ob->nt && d > 0; f++)
-                    d = fmin(d, sb_point_triangle_distance(y, ob->verts + 3 * ob->tris[3 * f],
-                                                           ob->verts + 3 * ob->tris[3 * f + 1],
-                                                           ob->verts + 3 * ob->tris[3 * f + 2], NULL, NULL));
+                    if (in_tri_box(y, ob->verts + 3 * ob->tris[3 * f], ob->verts + 3 * ob->tris[3 * f + 1],
+                                   ob->verts + 3 * ob->tris[3 * f + 2]))
+                        d = fmin(d, sb_point_triangle_distance(y, ob->verts + 3 * ob->tris[3 * f],
+                                                               ob->verts + 3 * ob->tris[3 * f + 1],
+                                                               ob->verts + 3 * ob->tris[3 * f + 2], NULL, NULL));
             }
             if (d <= 0) {
                 sb_jet2 xi;

@@ -42,6 +42,10 @@ struct sb_problem {
     double *scale_x, *scale_g;  /* sb_problem_force_scale (finest level, allocated on first use) */
     int self;                   /* self-contact on every level (contact.self) */
     int pattern_changed;        /* a level's pattern was replaced (sb_problem_take_pattern_change) */
+    /* contact.model "impulse": the finest level's contact sample points,
+     * for the end-of-step measurements only (no energy, no filter; issue 37:
+     * what the response left between its points) */
+    sb_contact *watch;
 };
 
 static void level_free(sb_problem *p, level_data *L)
@@ -66,6 +70,7 @@ void sb_problem_free(sb_problem *p)
 {
     if (!p) return;
     for (int l = 0; l < p->nl; l++) level_free(p, &p->lv[l]);
+    sb_contact_free(p->watch);
     free(p->scale_x);
     free(p->scale_g);
     free(p);
@@ -93,6 +98,17 @@ static int contact_create(sb_problem *p)
             return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for self-contact (contact.self) with "
                             "contact.model \"impulse\", but method %s's impulse response handles obstacles only "
                             "(use the barrier model for its self-contact)", sc->name, p->mt->name);
+        sb_contact_free(p->watch);
+        p->watch = NULL;
+        if (p->mt->contact_points) {
+            sb_contact_points cp;
+            memset(&cp, 0, sizeof cp);
+            int rc = p->mt->contact_points(p->ms, p->nl - 1, sc->contact.samples, &cp);
+            if (!rc) rc = sb_contact_create(sc, &cp, &p->watch);
+            sb_contact_points_free(&cp);
+            if (rc) return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "method %s: contact sample points failed",
+                                    p->mt->name);
+        }
         return SB_OK;
     }
     if (!p->mt->contact_points)
@@ -809,10 +825,15 @@ int sb_problem_contact_start_check(sb_problem *p, const double *x, char *why, si
 int sb_problem_contact_report(sb_problem *p, const double *x, sb_contact_report *r, double *spacing)
 {
     level_data *L = &p->lv[p->nl - 1];
-    if (!L->contact) return 0;
+    sb_contact *c = L->contact;
+    if (!c && p->watch) {   /* impulse: the watch points, at the obstacles' poses of the step */
+        c = p->watch;
+        if (sb_contact_begin_step(c, p->step, 0.0, NULL)) return 0;
+    }
+    if (!c) return 0;
     double t0 = sb_now();
-    sb_contact_measure(L->contact, x, r);
-    const sb_contact_points *P = sb_contact_points_of(L->contact);
+    sb_contact_measure(c, x, r);
+    const sb_contact_points *P = sb_contact_points_of(c);
     double a = 0;
     for (int k = 0; k < P->n; k++) a += P->area[k];
     *spacing = P->n > 0 ? sqrt(a / P->n) : NAN;

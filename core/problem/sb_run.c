@@ -366,6 +366,10 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             }
             if (rc == SB_NONFINITE) reason = SB_REASON_NONFINITE;
             rec->has_impulse = 1;
+            /* what the response left between its points (issue 37) */
+            sb_contact_report cr;
+            double spacing;
+            if (sb_problem_contact_report(R->prob, R->x, &cr, &spacing) > 0) sb_run_contact_between(R, step, &cr, spacing);
         }
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
@@ -483,7 +487,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
                 R->stype->name, rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason),
                 sb_validation_name(rec->validation), rec->n_dofs, rec->steps_done, rec->steps_planned,
                 stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
-    if (!req->quiet && rec->has_contact && rec->contact_steps_between > 0)
+    if (!req->quiet && rec->has_between && rec->contact_steps_between > 0)
         fprintf(err, "shellbench: warning: %s\n", rec->contact_coverage);
     if (rec->status) return SB_EXIT_NOT_CONVERGED;
     if (req->strict && rec->validation == SB_VALIDATION_FAILED) {

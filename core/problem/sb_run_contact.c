@@ -15,7 +15,9 @@
 void sb_run_contact_between(run_state *R, int step, const sb_contact_report *r, double spacing)
 {
     sb_run *rec = &R->rec;
-    if (!rec->has_contact) {   /* first measured step of this process */
+    if (!R->between_init) {   /* first measured step of this process */
+        R->between_init = 1;
+        rec->has_between = 1;
         rec->contact_steps_between = 0;
         R->between_first_step = 0;
         R->between_obstacle = -1;
@@ -51,19 +53,17 @@ void sb_run_contact_coverage(run_state *R)
     int meshes = 0;
     for (int o = 0; o < sc->n_obstacles; o++) meshes += sc->obstacles[o].kind == SB_OBST_MESH;
     char e[SB_NAME_LEN * 4 + 8];
-    if (sc->contact.model == SB_CONTACT_IMPULSE) {
+    if (sc->contact.model == SB_CONTACT_IMPULSE)
         ADD("contact.model impulse: collisions are swept and resolved at the method's own points (bhem: cloth "
             "sample points and mesh vertices against patches; triangle methods: vertices against analytic solids, "
-            "vertices and edges against mesh triangles and edges); a cloth edge can cut an analytic obstacle between "
-            "two vertices that stay outside, which is not checked");
+            "vertices and edges against mesh triangles and edges); ");
+    else
+        ADD("the barrier keeps the sample points outside the obstacles (its guarantee covers the sample points "
+            "only); ");
+    if (!rec->has_between) {
+        ADD("between them nothing was checked (no step was measured)");
         return;
     }
-    if (!rec->has_contact) {
-        ADD("no step was measured");
-        return;
-    }
-    ADD("the barrier keeps the sample points outside the obstacles (its guarantee covers the sample points "
-        "only); ");
     if (rec->contact_steps_between < 0) {
         /* not checked: name the analytic obstacles a crossing between points
            could come from (a feature narrower than the spacing: spheres and
@@ -90,10 +90,16 @@ void sb_run_contact_coverage(run_state *R)
     if (rec->contact_steps_between == 0) ADD("no crossing found");
     else
         ADD("%d step end%s had an obstacle crossing the cloth between sample points, through their flat sample "
-            "triangles (first: step %d, obstacle \"%s\" (%s)); the result is not penetration-free",
+            "triangles (first: step %d, obstacle \"%s\" (%s)); %s",
             rec->contact_steps_between, rec->contact_steps_between == 1 ? "" : "s", R->between_first_step,
             sb_escape_copy(sc->obstacles[R->between_obstacle].name, e, sizeof e),
-            kind_name(&sc->obstacles[R->between_obstacle]));
+            kind_name(&sc->obstacles[R->between_obstacle]),
+            /* the triangle methods' surface is those triangles; the smooth
+               methods' is curved between the points, the triangles its chords */
+            R->tri_surface ? "the result is not penetration-free (those triangles are the method's surface)"
+                           : "the result is not shown penetration-free (those triangles are chords of the method's "
+                             "smooth surface, which may pass above an obstacle that crosses a chord, e.g. a cloth "
+                             "tented over a needle tip)");
     if (R->resumed) ADD(" (counted over the steps this process ran, after the resume)");
     if (meshes) ADD("; mesh obstacles are not checked between sample points (a mesh vertex or edge can pass between them)");
 #undef ADD

@@ -63,7 +63,7 @@ typedef struct run_state {
     int contact_separated;
     /* obstacles crossing the cloth between its sample points (issue 37,
      * sb_run_contact.c): the first step and obstacle, the sample spacing */
-    int between_first_step, between_obstacle;
+    int between_init, between_first_step, between_obstacle;
     double contact_spacing;
 } run_state;
 

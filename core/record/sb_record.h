@@ -176,7 +176,7 @@ typedef struct sb_run {
     /* steps whose end had an analytic obstacle crossing a sample triangle
      * with its corners outside (between the points); -1: not checked (the
      * method does not triangulate its points) */
-    int contact_steps_between;
+    int has_between, contact_steps_between;
     /* self-contact (contact.self; docs/contact.md): end-of-step figures */
     int has_self, self_pairs, self_active, self_steps_crossing;
     double self_min_distance;

@@ -340,7 +340,7 @@ static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
     }
     /* issue 37: why a moving obstacle stopped the run, and what the
        no-penetration guarantee covered */
-    if (r->has_contact) bad |= sb_h5w_attr_long(w, g, "steps_between", (long)r->contact_steps_between);
+    if (r->has_between) bad |= sb_h5w_attr_long(w, g, "steps_between", (long)r->contact_steps_between);
     if (r->contact_stop[0]) bad |= sb_h5w_attr_str(w, g, "stopped", r->contact_stop);
     if (r->contact_coverage[0]) bad |= sb_h5w_attr_str(w, g, "coverage", r->contact_coverage);
     if (r->has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
