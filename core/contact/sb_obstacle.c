@@ -399,10 +399,11 @@ int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size)
 /* Triangle (a, b, c) (rest frame) against the axis-aligned box |y - m| <= h:
  * the separating-axis test of Akenine-Möller (2001, "Fast 3D triangle-box
  * overlap testing"): 3 box axes, the triangle's normal, 9 edge x axis
- * products.  Returns the smallest overlap of the two projections over the
- * axes (each axis normalized): <= 0 when an axis separates them, else the
- * penetration depth (the shortest translation that separates them, for
- * these convex polytopes the minimum over these axes). */
+ * products.  Returns, over the axes (each normalized), the smallest of the
+ * two translations along it that separate the projections: <= 0 when an
+ * axis separates them, else the penetration depth (the shortest
+ * translation that separates the two convex polytopes is along one of
+ * these axes). */
 static double tri_box_depth(const double a[3], const double b[3], const double c[3], const double m[3], const double h[3])
 {
     double v[3][3], e[3][3];
@@ -438,7 +439,9 @@ static double tri_box_depth(const double a[3], const double b[3], const double c
             hi = fmax(hi, p);
         }
         const double r = h[0] * fabs(u[0]) + h[1] * fabs(u[1]) + h[2] * fabs(u[2]);
-        depth = fmin(depth, (fmin(hi, r) - fmax(lo, -r)) / un);
+        /* the shorter of the two pushes that separate the projections
+           [lo, hi] and [-r, r]: up by r - lo or down by hi + r */
+        depth = fmin(depth, fmin(r - lo, hi + r) / un);
         if (depth <= 0) return depth;
     }
     return depth;
