@@ -710,6 +710,12 @@ SB_TEST(probe_on_slit_lips)
                               "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0]}]}", "closed.json", &sc, err, sizeof err);
     CHECK_MSG(r == 0, "%s", err);
     if (!r) sb_scene_free(&sc);
+    r = sb_scene_parse_string(SLIT_HEAD "\"loads\": [{\"type\": \"gravity\", \"acceleration\": [0, 0, -1]}],"
+                              "\"boundary\": [{\"type\": \"clamped\", \"on\": [\"inner\"]}],"
+                              "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0], \"on\": \"end\"}]}", "closed.json", &sc, err,
+                              sizeof err);
+    CHECK_MSG(r == 0, "%s", err);   /* either edge of a closed seam */
+    if (!r) sb_scene_free(&sc);
     /* a disc's centre, where the lips meet and every method merges them */
     r = sb_scene_parse_string("{\"name\": \"s\", \"domain\": {\"type\": \"annulus_sector\", \"r_in\": 0, \"r_out\": 1.0,"
                               " \"theta\": [0, 360]},"

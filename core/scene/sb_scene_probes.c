@@ -209,7 +209,15 @@ static int resolve_probe_lip(sbj_ctx *c, const json_t *o, const sb_scene *sc, sb
     for (int dir = 0; dir < 2; dir++) {
         const double u = p->st[dir];
         if (!(fabs(u) <= tol || fabs(u - 1) <= tol)) continue;
-        if (!seam_closes(sc, dir) || !seam_named(sc, dir)) continue;
+        if (!seam_closes(sc, dir)) continue;
+        if (!seam_named(sc, dir)) {
+            /* a closed seam (merged): both edges are one curve; "on" may name either */
+            if (have_on && part.st0[dir] == part.st1[dir] && (part.st0[dir] == 0.0 || part.st0[dir] == 1.0)) {
+                p->st[dir] = part.st0[dir];
+                return SB_OK;
+            }
+            continue;
+        }
         /* a point where the lips meet (the chart does not move across the
            seam there: all of its other parameter maps to one point, e.g. a
            disc's centre) is merged by every method: not ambiguous */
