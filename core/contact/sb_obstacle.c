@@ -358,6 +358,12 @@ int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size)
         const sb_obstacle_spec *ob = &sc->obstacles[o];
         sb_pose P;
         sb_pose_at(ob, sb_obstacle_motion_factor(sc, ob, 0), &P);
+        double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+        for (int v = 0; ob->kind == SB_OBST_MESH && v < ob->nv; v++)
+            for (int i = 0; i < 3; i++) {
+                lo[i] = fmin(lo[i], ob->verts[3 * v + i]);
+                hi[i] = fmax(hi[i], ob->verts[3 * v + i]);
+            }
         for (int k = 0; k < np && k < n * n && !found; k++) {
             sb_jet3 J;
             sb_geometry_eval_st(sc, st[2 * k], st[2 * k + 1], &J);
@@ -367,7 +373,9 @@ int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size)
                 double y[3];
                 sb_pose_inverse(&P, J.x, y);
                 d = INFINITY;
-                for (int f = 0; f < ob->nt && d > 0; f++)
+                int out = 0;   /* outside the mesh's bounding box: on none of its triangles */
+                for (int i = 0; i < 3; i++) out |= y[i] < lo[i] || y[i] > hi[i];
+                for (int f = 0; f < ob->nt && d > 0 && !out; f++)
                     if (in_tri_box(y, ob->verts + 3 * ob->tris[3 * f], ob->verts + 3 * ob->tris[3 * f + 1],
                                    ob->verts + 3 * ob->tris[3 * f + 2]))
                         d = fmin(d, sb_point_triangle_distance(y, ob->verts + 3 * ob->tris[3 * f],
