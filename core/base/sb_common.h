@@ -53,6 +53,11 @@ typedef enum {
                                 physical solution (NOT converged) */
     SB_REASON_SINGLE_STEP_RESIDUAL, /* linearized: the single step left ||g|| above
                                 run.single_step_rtol times the step's force scale (NOT converged) */
+    /* added by issue 37 */
+    SB_REASON_OBSTACLE_SWEPT, /* a moving obstacle's motion over the step sweeps through a contact
+                                sample point (or overruns it): the barrier, which sees the obstacle at
+                                the step's end only, cannot keep the cloth on its side; the step is
+                                not solved (NOT converged; docs/contact.md) */
     SB_REASON_COUNT
 } sb_reason;
 

@@ -17,6 +17,7 @@
  * A phase returns RUN_GO_ON to continue or the exit code to stop with.  All
  * statistics come from the core wrappers (sb_problem.c). */
 #include "sb_run_state.h"
+#include "sb_contact.h"
 #include "sb_sysinfo.h"
 #include "sb_surface.h"
 
@@ -235,6 +236,18 @@ static int prepare_run(run_state *R, int levels)
     /* run.perturb: the start, perturbed (the reference state, probes and
      * sample grid above are the unperturbed ones) */
     perturb_start(n, R->x, sb_param(ps, "run.perturb"), (unsigned long long)sb_param_int(ps, "run.seed"));
+    /* the method's contact sample points at the start against the obstacles
+     * (either contact model): a point inside is refused before any work */
+    char why[1024];
+    const int inside = sb_problem_contact_start_check(R->prob, R->x, why, sizeof why);
+    if (inside < 0) {
+        fprintf(err, "shellbench: %s\n", R->ctx.err);
+        return SB_EXIT_INTERNAL;
+    }
+    if (inside > 0) {
+        fprintf(err, "shellbench: scene %s: %s\n", sc->name, why);
+        return SB_EXIT_INPUT;
+    }
     return RUN_GO_ON;
 nomem:
     fprintf(err, "shellbench: out of memory\n");
@@ -319,15 +332,27 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
                 return SB_EXIT_INTERNAL;
             }
         }
+        /* a moving obstacle that sweeps through the cloth within the step is
+         * invisible to the barrier (it sees the step's end only): the run
+         * stops here with the reason recorded (docs/contact.md) */
+        const int swept = sb_problem_contact_swept(R->prob, step, R->xn, rec->contact_stop, sizeof rec->contact_stop);
         /* lifting of boundary motion; not for the single-step solver, which is
          * by definition one Newton step from x_n */
-        if (sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
+        if (!swept && sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
             (rc = sb_problem_lift(R->prob, R->xn, R->x)) < 0) {
             fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
             return SB_EXIT_INTERNAL;
         }
         sb_step_outcome o;
-        sb_reason reason = sb_solve_step_ex(R->stype, R->ss, R->prob, ps, step, R->x, &o);
+        sb_reason reason;
+        if (swept) {
+            memset(&o, 0, sizeof o);
+            o.f = o.gnorm = o.g0 = o.force_scale = o.gstop = NAN;
+            reason = o.reason = SB_REASON_OBSTACLE_SWEPT;
+            sb_copy(n, R->xn, R->x);   /* the state stays at the step's start */
+            if (!req->quiet) fprintf(err, "shellbench: %s\n", rec->contact_stop);
+        } else
+            reason = sb_solve_step_ex(R->stype, R->ss, R->prob, ps, step, R->x, &o);
         const int iters = o.iterations;
         const double f = o.f, gn = o.gnorm;
         sb_run_progress_clear(R);
@@ -341,6 +366,10 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             }
             if (rc == SB_NONFINITE) reason = SB_REASON_NONFINITE;
             rec->has_impulse = 1;
+            /* what the response left between its points (issue 37) */
+            sb_contact_report cr;
+            double spacing;
+            if (sb_problem_contact_report(R->prob, R->x, &cr, &spacing) > 0) sb_run_contact_between(R, step, &cr, spacing);
         }
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
@@ -360,9 +389,12 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         if (R->mt->eval_points) sb_run_record_probes(R, step);
         if (sb_problem_has_contact(R->prob)) {
             /* contact: distances of the step's end state (docs/contact.md) */
-            double dmin;
-            int act, ins;
-            rec->contact_points = sb_problem_contact_measure(R->prob, R->x, &dmin, &act, &ins);
+            sb_contact_report cr;
+            double spacing;
+            rec->contact_points = sb_problem_contact_report(R->prob, R->x, &cr, &spacing);
+            const double dmin = cr.min_distance;
+            const int act = cr.active, ins = cr.inside;
+            sb_run_contact_between(R, step, &cr, spacing);
             if (!rec->has_contact || dmin < rec->contact_min_distance) rec->contact_min_distance = dmin;
             rec->has_contact = 1;
             rec->contact_active = act;
@@ -426,6 +458,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
         sb_run_judge_penalty(R);
     }
     sb_run_potential_change(R);
+    sb_run_contact_coverage(R);
     sb_run_compute_error(R, err);
     sb_run_record_material(R);
     sb_run_record_energy(R);
@@ -454,6 +487,8 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
                 R->stype->name, rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason),
                 sb_validation_name(rec->validation), rec->n_dofs, rec->steps_done, rec->steps_planned,
                 stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
+    if (!req->quiet && rec->has_between && rec->contact_steps_between > 0)
+        fprintf(err, "shellbench: warning: %s\n", rec->contact_coverage);
     if (rec->status) return SB_EXIT_NOT_CONVERGED;
     if (req->strict && rec->validation == SB_VALIDATION_FAILED) {
         if (!req->quiet) fprintf(err, "shellbench: --strict: validation failed (an expected probe value is out of tolerance)\n");

@@ -264,6 +264,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(co, "active", json_integer(R->rec.contact_active));
             json_object_set_new(co, "inside", json_integer(R->rec.contact_inside));
             json_object_set_new(co, "steps_inside", json_integer(R->rec.contact_steps_inside));
+
             json_set_num(co, "min_distance", R->rec.contact_min_distance);
         }
         if (R->rec.has_self) {
@@ -278,6 +279,11 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(co, "self", se);
         }
         if (R->mt && R->mt->adapt) json_object_set_new(co, "separated", json_integer(R->contact_separated));
+        /* steps that ended with an obstacle crossing the cloth between
+           sample points (-1: not checked; issue 37) */
+        if (R->rec.has_between) json_object_set_new(co, "steps_between", json_integer(R->rec.contact_steps_between));
+        if (R->rec.contact_stop[0]) json_object_set_new(co, "stopped", json_string(R->rec.contact_stop));
+        if (R->rec.contact_coverage[0]) json_object_set_new(co, "coverage", json_string(R->rec.contact_coverage));
         if (R->rec.has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
             const sb_impulse_stats *s = &R->rec.impulse;
             json_object_set_new(co, "model", json_string("impulse"));

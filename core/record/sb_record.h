@@ -167,6 +167,16 @@ typedef struct sb_run {
     int has_contact;
     int contact_points, contact_active, contact_inside, contact_steps_inside;
     double contact_min_distance;
+    /* why the run stopped at a moving obstacle that swept through the
+     * cloth within a step ("" otherwise; reason obstacle_swept) and what the
+     * no-penetration guarantee covers (docs/contact.md "What the guarantee
+     * covers"); both "" without obstacles */
+    char contact_stop[1024];
+    char contact_coverage[1024];
+    /* steps whose end had an analytic obstacle crossing a sample triangle
+     * with its corners outside (between the points); -1: not checked (the
+     * method does not triangulate its points) */
+    int has_between, contact_steps_between;
     /* self-contact (contact.self; docs/contact.md): end-of-step figures */
     int has_self, self_pairs, self_active, self_steps_crossing;
     double self_min_distance;
