@@ -250,7 +250,8 @@ static int check_reference(run_state *R, const sb_run_request *req, const char *
 {
     char msg[2048], a[4096], b[4096];
     if (R->scene.reference.kind != SB_REF_FILE) return RUN_GO_ON;
-    if (out_path && sb_run_same_path(out_path, R->scene.reference.file, a, b, sizeof a)) return RUN_GO_ON;
+    if (req->makes_reference || (out_path && sb_run_same_path(out_path, R->scene.reference.file, a, b, sizeof a)))
+        return RUN_GO_ON;
     if (sb_reference_check(&R->scene, R->rec.sample_st, R->rec.n_samples, req->allow_unsealed_reference, msg,
                            sizeof msg)) {
         fprintf(R->err, "shellbench: %s\n", msg);
@@ -436,10 +437,10 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
        measured against the file it replaces, if that can serve: a refusal
        is no verdict on this run (check_reference skipped it too) */
     char pa[4096], pb[4096];
-    const int writes_ref = out_path && sc->reference.kind == SB_REF_FILE &&
-                           sb_run_same_path(out_path, sc->reference.file, pa, pb, sizeof pa);
-    const int ref_refused = sb_run_compute_error(R, err, req->allow_unsealed_reference || writes_ref) != SB_OK &&
-                            !writes_ref;
+    const int writes_ref = req->makes_reference || (out_path && sc->reference.kind == SB_REF_FILE &&
+                                                    sb_run_same_path(out_path, sc->reference.file, pa, pb, sizeof pa));
+    const int ref_refused = sb_run_compute_error(R, err, req->allow_unsealed_reference || writes_ref,
+                                                 req->makes_reference) != SB_OK && !writes_ref;
     sb_run_record_material(R);
     sb_run_record_energy(R);
     if (out_path) {

@@ -27,6 +27,8 @@ typedef struct sb_run_request {
     int stop_after_steps;     /* > 0: stop after this step with a checkpoint (exit SB_EXIT_STOPPED) */
     int strict;               /* --strict: a converged run whose validation failed exits SB_EXIT_VALIDATION */
     int allow_unsealed_reference;   /* --allow-unsealed-reference: a reference file without a checksum is used */
+    int makes_reference;      /* the run computes its scene's reference (`shellbench reference`): the scene's
+                                 reference file is neither checked at the start nor a verdict at the end */
     /* a live progress line on err_stream (step, iteration, f, ||g||, radius or
      * step length, elapsed): 0 = when err_stream is a terminal and the run is
      * not quiet, 1 = always (--progress; plain lines, one a second, off a

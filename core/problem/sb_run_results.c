@@ -317,7 +317,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
 }
 
 /* error against the scene's reference (DESIGN.md "Accuracy") */
-int sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed)
+int sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed, int skip_file)
 {
     int rc = SB_OK;
     const sb_scene *sc = &R->scene;
@@ -330,7 +330,7 @@ int sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed)
         rec->has_error = 1;
         rec->error_probe = worst;
         snprintf(rec->error_kind, sizeof rec->error_kind, "probes");
-    } else if (sc->reference.kind == SB_REF_FILE && rec->n_samples > 0) {
+    } else if (sc->reference.kind == SB_REF_FILE && rec->n_samples > 0 && !skip_file) {
         sb_refrec ref;
         char msg[2048];
         if (sb_refrec_load(sc->reference.file, sc->name, sc->json_text, rec->n_samples, rec->sample_st, allow_unsealed,

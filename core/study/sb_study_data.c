@@ -115,6 +115,14 @@ static void read_point(sb_study_data *d, sb_study_point *q, FILE *err)
         snprintf(q->why, sizeof q->why, "unreadable record");
         return;
     }
+    if (sb_study_record_check(st, r, msg, sizeof msg) == SB_ERR_INPUT) {
+        /* another run's record in this run's place (sb_study_records.c): not counted */
+        fprintf(err, "shellbench report: warning: %s (counted as not run)\n", msg);
+        sb_record_summary_free(&s);
+        q->state = SB_POINT_MISSING;
+        snprintf(q->why, sizeof q->why, "not the planned run's record (misplaced)");
+        return;
+    }
     q->state = SB_POINT_RECORDED;
     q->status = s.status;
     snprintf(q->reason, sizeof q->reason, "%s", s.reason_name);
