@@ -146,7 +146,7 @@ SB_TEST(reference_flipped_bit_and_unsealed_refused)
     sb_refrec ref;
     char msg[2048];
     double st[2] = { 0, 0 };
-    CHECK(sb_refrec_load(flipped, "trampoline", "{}", 1, st, 1, &ref, msg, sizeof msg) != SB_OK &&
+    CHECK(sb_refrec_load_opt(flipped, "trampoline", "{}", 1, st, 1, &ref, msg, sizeof msg) != SB_OK &&
           strstr(msg, "checksum"));
 
     /* an unsealed record (format version 1, no checksum): the user block
@@ -179,7 +179,7 @@ SB_TEST(reference_flipped_bit_and_unsealed_refused)
     rc = sh(cmd);
     CHECK_MSG(rc == 0 && strstr(out_buf, "\"kind\": \"field\""), "run --allow-unsealed-reference: %d %s %s", rc,
               out_buf, err_buf);
-    CHECK(sb_refrec_load(unsealed, "trampoline", "{}", 1, st, 0, &ref, msg, sizeof msg) != SB_OK &&
+    CHECK(sb_refrec_load(unsealed, "trampoline", "{}", 1, st, &ref, msg, sizeof msg) != SB_OK &&
           strstr(msg, "carries no checksum"));
 }
 
@@ -315,7 +315,7 @@ SB_TEST(reference_with_other_obstacles_refused_everywhere)
     sb_refrec rr;
     char msg[2048];
     double st[2] = { 0, 0 };
-    CHECK(text && sb_refrec_load(ref, "cloth_mesh_impulse", text, 1, st, 0, &rr, msg, sizeof msg) == SB_ERR_INPUT &&
+    CHECK(text && sb_refrec_load(ref, "cloth_mesh_impulse", text, 1, st, &rr, msg, sizeof msg) == SB_ERR_INPUT &&
           strstr(msg, "/obstacles"));
     free(text);
     /* the same scene text with an edited OBJ file: other mesh contents */

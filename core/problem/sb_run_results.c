@@ -333,7 +333,7 @@ int sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed, int skip_f
     } else if (sc->reference.kind == SB_REF_FILE && rec->n_samples > 0 && !skip_file) {
         sb_refrec ref;
         char msg[2048];
-        if (sb_refrec_load(sc->reference.file, sc->name, sc->json_text, rec->n_samples, rec->sample_st, allow_unsealed,
+        if (sb_refrec_load_opt(sc->reference.file, sc->name, sc->json_text, rec->n_samples, rec->sample_st, allow_unsealed,
                            &ref, msg, sizeof msg)) {
             /* the verdict of check and of the run's start (sb_reference_check): refused, exit 2 */
             fprintf(err, "shellbench: scene %s: no error computed: %s\n", sc->name, msg);

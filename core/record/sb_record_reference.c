@@ -84,7 +84,13 @@ int sb_reference_sealed(const char *path, int allow_unsealed, char *err, size_t 
 }
 
 int sb_refrec_load(const char *path, const char *scene_name, const char *scene_json, int n,
-                   const double *st, int allow_unsealed, sb_refrec *ref, char *err, size_t errlen)
+                   const double *st, sb_refrec *ref, char *err, size_t errlen)
+{
+    return sb_refrec_load_opt(path, scene_name, scene_json, n, st, 0, ref, err, errlen);
+}
+
+int sb_refrec_load_opt(const char *path, const char *scene_name, const char *scene_json, int n,
+                       const double *st, int allow_unsealed, sb_refrec *ref, char *err, size_t errlen)
 {
     (void)scene_name;   /* the problem decides, not the name (not_the_problem) */
     memset(ref, 0, sizeof *ref);

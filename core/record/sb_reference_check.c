@@ -6,10 +6,13 @@
  * checksum matches: not missing, not a directory, not /dev/zero, not a JSON
  * file), of a finished, converged run (not an unfinished checkpoint), of
  * the same scene — the same domain, geometry, material, loads, boundary
- * conditions and time mode (for dynamic scenes also dt, steps and damping:
- * the final time must match; quasi-static load steps may differ, as the
- * reference is the final load state) — and, at run start, recorded on this
- * run's sample grid (the error is taken point by point on it). */
+ * conditions and time mode (for dynamic scenes also dt, steps and damping),
+ * named section by section, and then the same problem by the test the end
+ * of the run and the study reports make (sb_scene_same_problem: obstacles,
+ * contact, load steps; issue 37: one verdict everywhere), with obstacle
+ * meshes of the same contents — sealed with a checksum unless the caller
+ * allows otherwise, and, at run start, recorded on this run's sample grid
+ * (the error is taken point by point on it). */
 #include "sb_record_io.h"
 #include "sb_reference.h"
 #include "sb_geometry.h"

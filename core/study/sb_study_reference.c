@@ -214,8 +214,8 @@ int sb_study_cmd_reference(int argc, char **argv)
             double *grid = NULL, *pos = NULL;
             sb_refrec ref, chk;
             if (sb_record_read_samples(check_out, &n, &grid, &pos, msg, sizeof msg) == SB_OK &&
-                sb_refrec_load(out, sc->name, sc->scene->json_text, n, grid, 0, &ref, msg, sizeof msg) == SB_OK) {
-                if (sb_refrec_load(check_out, sc->name, sc->scene->json_text, n, grid, 0, &chk, msg, sizeof msg) == SB_OK) {
+                sb_refrec_load(out, sc->name, sc->scene->json_text, n, grid, &ref, msg, sizeof msg) == SB_OK) {
+                if (sb_refrec_load(check_out, sc->name, sc->scene->json_text, n, grid, &chk, msg, sizeof msg) == SB_OK) {
                     sb_field_error(n, chk.pos, ref.pos, sb_domain_diameter(&sc->scene->domain), &crms, &cmax);
                     cdofs = chk.dofs;
                     sb_refrec_free(&chk);
