@@ -162,7 +162,7 @@ int sb_reference_check(const sb_scene *sc, const double *sample_st, int n_sample
         return SB_ERR_INPUT;
     }
     /* the obstacle meshes: the same file names (above), and the same contents */
-    char ours[1024], theirs[1024];
+    char ours[SB_RECORD_MESH_SUMS_LEN], theirs[SB_RECORD_MESH_SUMS_LEN];
     sb_record_mesh_sums(sc, ours, sizeof ours);
     if (ours[0]) {
         if (sb_record_read_mesh_sums(path, theirs, sizeof theirs, msg, sizeof msg)) {
