@@ -89,6 +89,24 @@ static long dset_offset(const char *path, const char *dset, int i, double *v)
     return a == HADDR_UNDEF ? -1 : (long)a + 8L * i;
 }
 
+/* PATH, a sealed record, made a record without a checksum (format version
+ * 1): the user block cleared and the version set back, as the bundled
+ * references were before issue 37 */
+static int unseal(const char *path)
+{
+    hid_t h = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t a = h >= 0 ? H5Aopen(h, "format_version", H5P_DEFAULT) : -1;
+    long one = 1;
+    int bad = a < 0 || H5Awrite(a, H5T_NATIVE_LONG, &one) < 0;
+    if (a >= 0) H5Aclose(a);
+    if (h >= 0) H5Fclose(h);
+    FILE *f = fopen(path, "r+b");
+    static const char zeros[SB_RECORD_USERBLOCK];
+    bad |= !f || fwrite(zeros, 1, sizeof zeros, f) != sizeof zeros;
+    if (f) bad |= fclose(f) != 0;
+    return bad ? -1 : 0;
+}
+
 /* The bundled references carry checksums; a copy of trampoline.h5 with one
  * exponent bit of /final/sample_pos flipped is refused by `check`, at the
  * start of a run and by a study's error, each naming the file; an unsealed
@@ -149,18 +167,7 @@ SB_TEST(reference_flipped_bit_and_unsealed_refused)
     CHECK(sb_refrec_load_opt(flipped, "trampoline", "{}", 1, st, 1, &ref, msg, sizeof msg) != SB_OK &&
           strstr(msg, "checksum"));
 
-    /* an unsealed record (format version 1, no checksum): the user block
-     * cleared and the version set back, as the bundled references were */
-    hid_t h = H5Fopen(unsealed, H5F_ACC_RDWR, H5P_DEFAULT);
-    hid_t a = h >= 0 ? H5Aopen(h, "format_version", H5P_DEFAULT) : -1;
-    long one = 1;
-    CHECK(a >= 0 && H5Awrite(a, H5T_NATIVE_LONG, &one) >= 0);
-    if (a >= 0) H5Aclose(a);
-    if (h >= 0) H5Fclose(h);
-    f = fopen(unsealed, "r+b");
-    static const char zeros[SB_RECORD_USERBLOCK];
-    CHECK(f && fwrite(zeros, 1, sizeof zeros, f) == sizeof zeros);
-    if (f) fclose(f);
+    CHECK(unseal(unsealed) == 0);
     snprintf(scene, sizeof scene, "%s/tramp_unsealed.json", tmpdir);
     json_decref(scene_copy("bench/scenes/trampoline.json", scene, unsealed, 0));
     snprintf(cmd, sizeof cmd, "check %s", scene);
@@ -328,6 +335,36 @@ SB_TEST(reference_with_other_obstacles_refused_everywhere)
     CHECK_MSG(rc == 2 && strstr(err_buf, "other obstacle meshes"), "run after the OBJ edit: %d %s", rc, err_buf);
 }
 
+/* A study's runs and report take an unsealed reference only with
+ * --allow-unsealed-reference (sweep --study, report --study). */
+SB_TEST(study_unsealed_reference_needs_the_option)
+{
+    char src[512], ref[512], scene[512], study[512], cmd[2048], md[600];
+    snprintf(src, sizeof src, "%s/results/references/trampoline.h5", sb_test_root());
+    snprintf(ref, sizeof ref, "%s/study_unsealed.h5", tmpdir);
+    CHECK(copy_file(src, ref) == 0 && unseal(ref) == 0);
+    snprintf(scene, sizeof scene, "%s/tramp_study.json", tmpdir);
+    json_decref(scene_copy("bench/scenes/trampoline.json", scene, ref, 0));
+    snprintf(study, sizeof study, "%s/unsealed_study.json", tmpdir);
+    FILE *f = fopen(study, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fprintf(f, "{\"study\": \"unsealed\", \"records\": \"%s/strec\", \"scenes\": [{\"scene\": \"%s\", \"solution\": \"unique\"}],\n"
+               " \"methods\": [\"bhem\"], \"solvers\": [\"lsnewton\"], \"res\": [4]}\n", tmpdir, scene);
+    fclose(f);
+    snprintf(cmd, sizeof cmd, "sweep --study %s --quiet --allow-unsealed-reference", study);
+    int rc = sh(cmd);
+    CHECK_MSG(rc == 0, "sweep --study --allow-unsealed-reference: %d %s %s", rc, out_buf, err_buf);
+    snprintf(md, sizeof md, "%s/strec/report.md", tmpdir);
+    snprintf(cmd, sizeof cmd, "report --study %s --deterministic && cat %s", study, md);
+    rc = sh(cmd);
+    CHECK_MSG(rc == 0 && strstr(out_buf, "carries no checksum"), "report --study: %d %s", rc, err_buf);
+    snprintf(cmd, sizeof cmd, "report --study %s --deterministic --allow-unsealed-reference && cat %s", study, md);
+    rc = sh(cmd);
+    CHECK_MSG(rc == 0 && !strstr(out_buf, "carries no checksum"), "report --study --allow-unsealed-reference: %d %s",
+              rc, err_buf);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_trust_inputs_XXXXXX");
@@ -337,6 +374,7 @@ int main(int argc, char **argv)
         SB_CASE(strict_verdict_read_from_the_record),
         SB_CASE(resume_refuses_an_edited_obstacle_mesh),
         SB_CASE(reference_with_other_obstacles_refused_everywhere),
+        SB_CASE(study_unsealed_reference_needs_the_option),
         SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);

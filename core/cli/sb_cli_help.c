@@ -78,7 +78,9 @@ static const char sweep_help[] =
     "usage: shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume]\n"
     "A study file (docs/study.md), checked whole before any run (FILE:LINE:COL); runs what is not\n"
     "recorded (--resume is implied), N at a time in child processes; refusals leave RECORD.refused;\n"
-    "--max-runs stops resumably (exit 4); --plan prints the runs and runs nothing.\n"
+    "--max-runs stops resumably (exit 4); --plan prints the runs and runs nothing;\n"
+    "--allow-unsealed-reference as for run.  A record in a run's place that is not that run's\n"
+    "(scene, method, solver, resolution, levels) is refused: nothing is run (exit 2).\n"
     "  mpirun -n N shellbench sweep --study FILE   the runs over N MPI ranks, longest expected first\n"
     "  --emit slurm [--out FILE]   write an sbatch job array of the runs not recorded (default\n"
     "                        RECORDS/STUDY.sbatch); --task K runs its task K (docs/regression.md)\n";
@@ -102,7 +104,8 @@ static const char report_help[] =
     "usage: shellbench report --study FILE [--out DIR] [--dir DIR] [--deterministic]\n"
     "The study's report.md: method selection, work-precision diagrams, performance profiles, the\n"
     "nonconvex scenes by energy, convergence plots (docs/study.md); --deterministic leaves out\n"
-    "wall-clock figures (the same records give the same bytes).\n";
+    "wall-clock figures (the same records give the same bytes); --allow-unsealed-reference: a scene's\n"
+    "reference record without a checksum is used.\n";
 
 static const char reference_help[] =
     "usage: shellbench reference SCENE [--method M] [--solver S] [--res N | --dofs N] [--levels L]\n"

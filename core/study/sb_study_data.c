@@ -144,7 +144,8 @@ static void read_point(sb_study_data *d, sb_study_point *q, FILE *err)
     if (d->has_ref[i] < 0 && q->n_samples > 0 && st->scenes[i].reference[0]) {
         /* the scene's reference, checked against the first record's grid */
         const sb_study_scene *sc = &st->scenes[i];
-        if (sb_refrec_load(sc->reference, sc->name, sc->scene->json_text, q->n_samples, st_grid, &d->ref[i],
+        if (sb_refrec_load_opt(sc->reference, sc->name, sc->scene->json_text, q->n_samples, st_grid,
+                               st->allow_unsealed_reference, &d->ref[i],
                            d->ref_why[i], sizeof d->ref_why[i]) == SB_OK) {
             d->has_ref[i] = 1;
             d->ref_check[i] = self_check(sc->reference);

@@ -45,6 +45,7 @@ int sb_study_run_one(const sb_study *st, const sb_plan_run *r, FILE *err)
     q.quiet = 1;
     q.sample_n = st->samples;
     q.resume = 1;
+    q.allow_unsealed_reference = st->allow_unsealed_reference;
     return sb_run_execute(&q, stdout, err, NULL);
 }
 

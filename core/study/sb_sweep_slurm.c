@@ -128,7 +128,8 @@ int sb_study_emit_slurm(const sb_study *st, const char *study_file, const char *
             sh_quote(f, sfile);
             fprintf(f, " --dir ");
             sh_quote(f, rec);
-            fprintf(f, " --task \"$SLURM_ARRAY_TASK_ID\"\n");
+            fprintf(f, "%s --task \"$SLURM_ARRAY_TASK_ID\"\n",
+                    st->allow_unsealed_reference ? " --allow-unsealed-reference" : "");
         }
         int bad = !f || ferror(f);
         if (f && fclose(f)) bad = 1;
