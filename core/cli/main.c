@@ -37,12 +37,17 @@ static int wants_help(int argc, char **argv)
 /* Results on stdout, errors on stderr. */
 static int cmd_check(int argc, char **argv)
 {
-    if (argc < 1) {
+    int bad = 0, allow_unsealed = 0, n_scenes = 0;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--allow-unsealed-reference")) allow_unsealed = 1;
+        else n_scenes++;
+    }
+    if (n_scenes < 1) {
         fprintf(stderr, "shellbench check: no scene given (see `shellbench help check`)\n");
         return 2;
     }
-    int bad = 0;
     for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--allow-unsealed-reference")) continue;
         sb_scene sc;
         char err[2048], path[1024];
         const char *file = sb_scene_resolve(argv[i], path, sizeof path) == SB_OK ? path : argv[i];
@@ -50,7 +55,7 @@ static int cmd_check(int argc, char **argv)
             sb_escape_print(stderr, "%s", err);
             bad = 1;
         } else if (sb_run_scene_methods_check(&sc, err, sizeof err) ||
-                   sb_reference_check(&sc, NULL, 0, err, sizeof err)) {   /* a reference file must be usable */
+                   sb_reference_check(&sc, NULL, 0, allow_unsealed, err, sizeof err)) {   /* a reference file must be usable */
             char e[1100];
             fprintf(stderr, "%s: %s\n", sb_escape_copy(file, e, sizeof e), err);
             sb_scene_free(&sc);

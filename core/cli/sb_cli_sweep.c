@@ -101,8 +101,10 @@ int sb_cli_sweep(int argc, char **argv)
         if (c.req.resume && access(it->out, F_OK) == 0) {
             sb_record_summary s;
             if (sb_record_read_summary(it->out, &s, err, sizeof err) == SB_OK) {
-                int code = s.status == 0 ? 0 : 1;
-                sb_escape_print(stdout, "%-60s skipped (recorded: %s)", it->out, sb_record_status_name(s.status));
+                /* the recorded verdict counts as the run's: status and, with --strict, validation */
+                int code = sb_run_recorded_exit(s.status, s.validation, c.req.strict);
+                sb_escape_print(stdout, "%-60s skipped (recorded: %s%s)", it->out, sb_record_status_name(s.status),
+                                code == SB_EXIT_VALIDATION ? ", validation failed" : "");
                 sb_record_summary_free(&s);
                 n_skip++;
                 if (code > worst) worst = code;

@@ -137,6 +137,7 @@ static void record_identity(run_state *R)
     sb_sysinfo_cpu_model(rec->cpu_model, sizeof rec->cpu_model);
     rec->n_cores = sb_sysinfo_cores();
     sb_sysinfo_now_iso(rec->started, sizeof rec->started);
+    sb_record_mesh_sums(sc, rec->obstacle_meshes, sizeof rec->obstacle_meshes);
     rec->steps_planned = sc->time.steps;
     rec->stats = &R->ctx.stats;
     rec->n_probes = R->mt->eval_points ? sc->n_probes : 0;
@@ -258,12 +259,14 @@ nomem:
  * (sb_reference_check): a record of this scene's finished, converged run
  * on this run's sample grid.  Not checked when this run writes that very
  * file (the run that makes the reference). */
-static int check_reference(run_state *R, const char *out_path)
+static int check_reference(run_state *R, const sb_run_request *req, const char *out_path)
 {
     char msg[2048], a[4096], b[4096];
     if (R->scene.reference.kind != SB_REF_FILE) return RUN_GO_ON;
-    if (out_path && sb_run_same_path(out_path, R->scene.reference.file, a, b, sizeof a)) return RUN_GO_ON;
-    if (sb_reference_check(&R->scene, R->rec.sample_st, R->rec.n_samples, msg, sizeof msg)) {
+    if (req->makes_reference || (out_path && sb_run_same_path(out_path, R->scene.reference.file, a, b, sizeof a)))
+        return RUN_GO_ON;
+    if (sb_reference_check(&R->scene, R->rec.sample_st, R->rec.n_samples, req->allow_unsealed_reference, msg,
+                           sizeof msg)) {
         fprintf(R->err, "shellbench: %s\n", msg);
         return SB_EXIT_INPUT;
     }
@@ -284,8 +287,12 @@ static int start_or_resume(run_state *R, const sb_run_request *req, const char *
     if (access(out_path, F_OK) == 0) {
         sb_record_summary done_s;
         if (sb_record_read_summary(out_path, &done_s, msg, sizeof msg) == SB_OK) {
-            if (!req->quiet) sb_escape_print(err, "shellbench: %s is already recorded (%s): nothing to resume", out_path, done_s.reason_name);
-            int code = done_s.status == 0 ? SB_EXIT_CONVERGED : SB_EXIT_NOT_CONVERGED;
+            /* the verdict is the record's: its status and, with --strict, its validation */
+            int code = sb_run_recorded_exit(done_s.status, done_s.validation, req->strict);
+            if (!req->quiet)
+                sb_escape_print(err, "shellbench: %s is already recorded (%s, validation %s): nothing to resume%s", out_path,
+                                done_s.reason_name, done_s.validation[0] ? done_s.validation : "not recorded",
+                                code == SB_EXIT_VALIDATION ? "; --strict: validation failed, exit 5 as the run that wrote it" : "");
             sb_record_summary_free(&done_s);
             return code;
         }
@@ -459,7 +466,14 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     }
     sb_run_potential_change(R);
     sb_run_contact_coverage(R);
-    sb_run_compute_error(R, err);
+    /* the run that rewrites its scene's reference (`shellbench reference`) is
+       measured against the file it replaces, if that can serve: a refusal
+       is no verdict on this run (check_reference skipped it too) */
+    char pa[4096], pb[4096];
+    const int writes_ref = req->makes_reference || (out_path && sc->reference.kind == SB_REF_FILE &&
+                                                    sb_run_same_path(out_path, sc->reference.file, pa, pb, sizeof pa));
+    const int ref_refused = sb_run_compute_error(R, err, req->allow_unsealed_reference || writes_ref,
+                                                 req->makes_reference) != SB_OK && !writes_ref;
     sb_run_record_material(R);
     sb_run_record_energy(R);
     if (out_path) {
@@ -489,6 +503,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
                 stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
     if (!req->quiet && rec->has_between && rec->contact_steps_between > 0)
         fprintf(err, "shellbench: warning: %s\n", rec->contact_coverage);
+    if (ref_refused) return SB_EXIT_INPUT;   /* the record is kept, without an error */
     if (rec->status) return SB_EXIT_NOT_CONVERGED;
     if (req->strict && rec->validation == SB_VALIDATION_FAILED) {
         if (!req->quiet) fprintf(err, "shellbench: --strict: validation failed (an expected probe value is out of tolerance)\n");
@@ -520,7 +535,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         (code = sb_run_prepare_output(R, req, levels, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
         (code = prepare_run(R, levels)) == RUN_GO_ON &&
         (code = sb_run_adapt_check(R, req)) == RUN_GO_ON &&
-        (code = check_reference(R, out_path)) == RUN_GO_ON &&
+        (code = check_reference(R, req, out_path)) == RUN_GO_ON &&
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)
         code = finish_run(R, req, out_path, out, summary);

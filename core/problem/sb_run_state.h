@@ -99,8 +99,11 @@ int    sb_run_record_probes(run_state *R, int step_slot);
 int    sb_run_record_mesh(run_state *R, int step_slot, int *n_tris);
 /* The JSON summary (caller frees). */
 char  *sb_run_summary_json(run_state *R, const char *out_path);
-/* Error against the scene's reference (DESIGN.md "Accuracy"). */
-void   sb_run_compute_error(run_state *R, FILE *err);
+/* Error against the scene's reference (DESIGN.md "Accuracy").  SB_OK, or
+ * SB_ERR_INPUT when the reference file is refused (the sentence on err, no
+ * error recorded): the run then exits 2, as check and its start would have.
+ * skip_file: the run makes its scene's reference; no file error is taken. */
+int    sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed, int skip_file);
 /* rec->material of the current state (methods with material_state). */
 void   sb_run_record_material(run_state *R);
 /* rec->energy_final: the method's energy of the current state (uncounted). */

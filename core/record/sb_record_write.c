@@ -51,6 +51,7 @@ static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_attr_str(w, f, "scene_name", r->scene_name);
     bad |= sb_h5w_attr_str(w, f, "scene_path", r->scene_path);
     bad |= sb_h5w_attr_str(w, f, "scene_json", r->scene_json);
+    if (r->obstacle_meshes[0]) bad |= sb_h5w_attr_str(w, f, "obstacle_meshes", r->obstacle_meshes);
     bad |= sb_h5w_attr_str(w, f, "method", r->method);
     bad |= sb_h5w_attr_str(w, f, "solver", r->solver);
     bad |= sb_h5w_attr_str(w, f, "method_info", r->method_info);

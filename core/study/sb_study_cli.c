@@ -46,7 +46,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
 {
     const char *file = NULL, *dir = NULL;
     sb_sweep_options o = { 1, 0, 0 };
-    int plan_only = 0, task = -1;
+    int plan_only = 0, task = -1, allow_unsealed = 0;
     const char *emit = NULL, *emit_out = NULL;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -60,10 +60,11 @@ int sb_study_cmd_sweep(int argc, char **argv)
         else if (!strcmp(a, "--max-runs")) { if (parse_count(a, v, 1, &o.max_runs)) return 2; i++; }
         else if (!strcmp(a, "--plan")) plan_only = 1;
         else if (!strcmp(a, "--quiet")) o.quiet = 1;
+        else if (!strcmp(a, "--allow-unsealed-reference")) allow_unsealed = 1;
         else {
             sb_escape_print(stderr, "shellbench sweep --study: unknown option or missing value \"%s\" "
                             "(--study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume] "
-                            "[--emit slurm [--out FILE]] [--task K])", a);
+                            "[--allow-unsealed-reference] [--emit slurm [--out FILE]] [--task K])", a);
             return 2;
         }
     }
@@ -88,6 +89,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
         free(st);
         return 2;
     }
+    st->allow_unsealed_reference = allow_unsealed;
     int rc;
     if (emit) {
         rc = sb_study_emit_slurm(st, file, emit_out, stdout, stderr);
@@ -117,15 +119,17 @@ int sb_study_cmd_report(int argc, char **argv)
 {
     const char *file = NULL, *dir = NULL;
     sb_study_report_options o = { NULL, NULL, 0 };
+    int allow_unsealed = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--study") && v) file = v, i++;
         else if (!strcmp(a, "--dir") && v) dir = v, i++;
         else if (!strcmp(a, "--out") && v) o.out_dir = v, i++;
         else if (!strcmp(a, "--deterministic")) o.deterministic = 1;
+        else if (!strcmp(a, "--allow-unsealed-reference")) allow_unsealed = 1;
         else {
             sb_escape_print(stderr, "shellbench report --study: unknown option or missing value \"%s\" "
-                            "(--study FILE [--out DIR] [--dir DIR] [--deterministic])", a);
+                            "(--study FILE [--out DIR] [--dir DIR] [--deterministic] [--allow-unsealed-reference])", a);
             return 2;
         }
     }
@@ -141,6 +145,7 @@ int sb_study_cmd_report(int argc, char **argv)
         free(st);
         return 2;
     }
+    st->allow_unsealed_reference = allow_unsealed;
     int rc = sb_study_report(st, &o, stderr);
     sb_study_free(st);
     free(st);

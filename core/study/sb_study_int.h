@@ -42,6 +42,11 @@ int sb_study_applicable(const sb_study *st, int m, int s, char *why, size_t len)
 int sb_study_rule_matches(const sb_study *st, int k, int i, int m, int s);
 
 /* ---- sweep (sb_study_sweep.c) ------------------------------------------ */
+/* SB_OK when the record at r->out is the planned run's: the same scene
+ * (name and problem), method, solver, resolution and levels; else an error
+ * with one sentence naming the file and the first difference
+ * (sb_study_records.c). */
+int sb_study_record_check(const sb_study *st, const sb_plan_run *r, char *why, size_t len);
 /* 1 when the run has a record or a refusal marker already. */
 int sb_study_run_done(const sb_plan_run *r);
 /* Run plan->runs[queue[0..nq)] in child processes, o->jobs at a time;

@@ -65,12 +65,13 @@ static void relative_path(const char *from_dir, const char *target, char *out, s
 }
 
 static int run_at(const char *scene, const char *method, const char *solver, int res, int levels, const char *const *sets,
-                  int n_sets, int samples, const char *out)
+                  int n_sets, int samples, const char *out, int makes_reference)
 {
     sb_run_request q;
     memset(&q, 0, sizeof q);
     q.scene = scene, q.method = method, q.solver = solver, q.res = res, q.levels = levels, q.out = out;
     q.sets = sets, q.n_sets = n_sets, q.sample_n = samples, q.resume = 1;
+    q.makes_reference = makes_reference;   /* the scene's reference is this run's output, replaced */
     return sb_run_execute(&q, stdout, stderr, NULL);
 }
 
@@ -184,7 +185,7 @@ int sb_study_cmd_reference(int argc, char **argv)
     sb_escape_print(stdout, "reference of %s: %s/%s on %d level%s, res %d (%ld dofs), %s -> %s", sc->name, mt->name, solver, levels,
            levels > 1 ? "s" : "", res, got, REF_GTOL, out);
     fflush(stdout);
-    int code = run_at(sc->path, mt->name, solver, res, levels, sets, n_sets, samples, out);
+    int code = run_at(sc->path, mt->name, solver, res, levels, sets, n_sets, samples, out, 1);
     if (code != 0) {
         fprintf(stderr, "shellbench reference: the reference run %s (exit %d): no reference written%s\n",
                 code == 1 ? "did not converge" : "failed", code, code == 1 ? " (its record is left for inspection)" : "");
@@ -209,13 +210,13 @@ int sb_study_cmd_reference(int argc, char **argv)
         int lv = levels;
         while (lv > 1 && cres % (1 << (lv - 1))) lv--;
         if (stype->flags & SB_SOLVER_NEEDS_HIERARCHY && lv < 2) lv = 2;
-        code = run_at(sc->path, mt->name, solver, cres, lv, sets, n_sets, samples, check_out);
+        code = run_at(sc->path, mt->name, solver, cres, lv, sets, n_sets, samples, check_out, 0);
         if (code == 2 && (lv > 1 || strcmp(solver, "tr"))) {
             /* the method refuses the hierarchy at half the resolution: the
              * check is about the discretization, so single-level TR will do */
             fprintf(stderr, "shellbench reference: the self-check with %s on %d levels was refused; "
                             "running it with tr on 1 level\n", solver, lv);
-            code = run_at(sc->path, mt->name, "tr", cres, 1, sets, n_sets, samples, check_out);
+            code = run_at(sc->path, mt->name, "tr", cres, 1, sets, n_sets, samples, check_out, 0);
         }
         if (code == 0) {
             int n = 0;

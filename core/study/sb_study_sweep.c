@@ -45,6 +45,7 @@ int sb_study_run_one(const sb_study *st, const sb_plan_run *r, FILE *err)
     q.quiet = 1;
     q.sample_n = st->samples;
     q.resume = 1;
+    q.allow_unsealed_reference = st->allow_unsealed_reference;
     return sb_run_execute(&q, stdout, err, NULL);
 }
 
@@ -207,11 +208,26 @@ int sb_study_sweep(const sb_study *st, const sb_sweep_options *o, FILE *out, FIL
     }
     int *queue = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *queue), nq = 0, recorded = 0, refused = 0, other = 0;
     if (!queue) { sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
+    int misplaced = 0;
+    char why[3072];
     for (int k = 0; k < plan.n; k++) {
         const sb_plan_run *r = &plan.runs[k];
         if (r->state != SB_PLAN_RUN) { other++; continue; }
+        if (exists(r->out) && sb_study_record_check(st, r, why, sizeof why) == SB_ERR_INPUT) {
+            /* another run's record in this run's place: neither counted nor overwritten */
+            fprintf(err, "shellbench sweep: %s\n", why);
+            misplaced++;
+            continue;
+        }
         if (sb_study_run_done(r)) { recorded++; continue; }
         queue[nq++] = k;
+    }
+    if (misplaced) {
+        fprintf(err, "shellbench sweep: %d record%s of study %s %s not the planned run%s: nothing run\n", misplaced,
+                misplaced > 1 ? "s" : "", st->name, misplaced > 1 ? "are" : "is", misplaced > 1 ? "s" : "");
+        free(queue);
+        sb_plan_free(&plan);
+        return SB_EXIT_INPUT;
     }
     int total_new = nq;
     if (o->max_runs > 0 && nq > o->max_runs) nq = o->max_runs;
