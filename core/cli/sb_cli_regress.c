@@ -86,50 +86,6 @@ static int dir_of(const char *file, char *buf, size_t len)
     return buf[0] ? mkdir_p(buf) : 0;
 }
 
-/* A timing verdict (slower, faster) is confirmed by measuring the case again
- * (k fresh repeats with their own calibration) and judging the new samples:
- * it stands only when both measurements agree, so a passing disturbance of
- * the machine (a false positive at level alpha) must strike twice (alpha^2).
- * The case keeps the confirming samples. */
-static int confirm_changes(const sb_study *st, const sb_regress_run_options *o, sb_regress_set *now,
-                           const sb_regress_set *base, const sb_regress_rules *ru, int *regressions)
-{
-    const char **ids = malloc((size_t)(now->n ? now->n : 1) * sizeof *ids);
-    int n = 0;
-    if (!ids) return 3;
-    for (int k = 0; k < now->n; k++)
-        if (now->c[k].verdict == SB_VERDICT_SLOWER || now->c[k].verdict == SB_VERDICT_FASTER) ids[n++] = now->c[k].id;
-    if (n == 0) { free(ids); return 0; }
-    if (!o->quiet) printf("confirming %d timing verdict%s with %d more repeats\n", n, n > 1 ? "s" : "", o->repeat);
-    sb_regress_run_options o2 = *o;
-    o2.n_only = n, o2.only = ids;
-    sb_regress_set again;
-    memset(&again, 0, sizeof again);
-    int rc = sb_regress_measure(st, &o2, &again, stdout, stderr);
-    if (!rc) {
-        sb_regress_judge(&again, base, ru);
-        for (int j = 0; j < again.n; j++) {
-            sb_regress_case *c = (sb_regress_case *)sb_regress_set_find(now, again.c[j].id), *a = &again.c[j];
-            if (!c) continue;
-            char first[200];
-            snprintf(first, sizeof first, "first measurement %s x%.3f p = %.3g", sb_verdict_name(c->verdict), c->ratio, c->p);
-            if (a->verdict == c->verdict) {
-                snprintf(a->detail + strlen(a->detail), sizeof a->detail - strlen(a->detail), "; confirmed (%s)", first);
-            } else {
-                char d[512];
-                snprintf(d, sizeof d, "%.300s; not confirmed (%.150s)", a->detail, first);
-                snprintf(a->detail, sizeof a->detail, "%s", d);
-                if (a->verdict == SB_VERDICT_SLOWER || a->verdict == SB_VERDICT_FASTER) a->verdict = SB_VERDICT_SAME;
-            }
-            *regressions += sb_verdict_is_regression(a->verdict) - sb_verdict_is_regression(c->verdict);
-            *c = *a;
-        }
-    }
-    sb_regress_set_free(&again);
-    free(ids);
-    return rc;
-}
-
 int sb_cli_regress(int argc, char **argv)
 {
     const char *suite = "bench/nightly/nightly.json", *baseline = "bench/nightly/baseline.json",
@@ -208,7 +164,7 @@ int sb_cli_regress(int argc, char **argv)
     snprintf(records, sizeof records, "%s", st->records);
     int regressions = sb_regress_judge(&now, have_base ? &base : NULL, &ru);
     /* a new baseline is being made: the verdicts against the old one are for information */
-    if (!rc && confirm && have_base && !update) rc = confirm_changes(st, &o, &now, &base, &ru, &regressions);
+    if (!rc && confirm && have_base && !update) rc = sb_regress_confirm(st, &o, &now, &base, &ru, &regressions, stdout, stderr);
     sb_study_free(st);
     free(st);
     if (rc) {
