@@ -86,6 +86,35 @@ static int dir_of(const char *file, char *buf, size_t len)
     return buf[0] ? mkdir_p(buf) : 0;
 }
 
+/* The files the command writes, checked before any run: DIR a directory
+ * (or makeable), DIR/report.md, the history (NULL: not written) and the
+ * baseline (NULL: not written) new or regular files in writable
+ * directories.  0, or -1 with *opt the option they come from and a
+ * sentence. */
+static int check_outputs(const char *outdir, const char *history, const char *baseline, const char **opt, char *err,
+                         size_t len)
+{
+    char report[1100];
+    sb_output_kind kind;
+    *opt = "--out";
+    if (sb_output_check_dir(outdir, "the report and plots", err, len)) return -1;
+    snprintf(report, sizeof report, "%s/report.md", outdir);
+    if (sb_output_check(report, "report", &kind, err, len)) return -1;
+    *opt = "--history";
+    if (history && (sb_output_check(history, "history file", &kind, err, len) ||
+                    sb_output_check_file_dir(history, "history file", err, len)))
+        return -1;
+    *opt = "--baseline";
+    if (baseline && (sb_output_check(baseline, "baseline", &kind, err, len) ||
+                     sb_output_check_file_dir(baseline, "baseline", err, len)))
+        return -1;
+    if (baseline && kind == SB_OUTPUT_DISCARD) {
+        snprintf(err, len, "will not write the baseline to the null device %s (--update-baseline writes it)", baseline);
+        return -1;
+    }
+    return 0;
+}
+
 int sb_cli_regress(int argc, char **argv)
 {
     const char *suite = "bench/nightly/nightly.json", *baseline = "bench/nightly/baseline.json",
@@ -128,6 +157,14 @@ int sb_cli_regress(int argc, char **argv)
         i += takes;
     }
     char err[2048];
+    /* every output before any run (docs/cli.md "Output safety"): the report
+     * and plots, the history, the baseline to write; the records below */
+    const char *opt = NULL;
+    if (check_outputs(outdir, no_history ? NULL : history, update ? baseline : NULL, &opt, err, sizeof err)) {
+        sb_escape_controls(err, sizeof err);
+        fprintf(stderr, "shellbench regress: %s: %s\n", opt, err);
+        return 2;
+    }
     /* the baseline first: a broken one is an input error before minutes of runs */
     sb_regress_set base, now;
     memset(&base, 0, sizeof base);
@@ -136,7 +173,8 @@ int sb_cli_regress(int argc, char **argv)
     struct stat stt;
     if (stat(baseline, &stt) == 0) {
         if (sb_regress_baseline_read(baseline, &base, err, sizeof err)) {
-            fprintf(stderr, "shellbench regress: %s\n", err);
+            sb_escape_controls(err, sizeof err);
+            fprintf(stderr, "shellbench regress: --baseline: %s\n", err);
             return 2;
         }
         have_base = 1;
@@ -147,13 +185,25 @@ int sb_cli_regress(int argc, char **argv)
     sb_study *st = malloc(sizeof *st);
     if (!st) return 3;
     if (sb_study_load(suite, NULL, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_controls(err, sizeof err);
+        fprintf(stderr, "shellbench regress: --suite: %s\n", err);
+        free(st);
+        sb_regress_set_free(&base);
+        return 2;
+    }
+    /* the records, history plots and pictures; one invocation at a time */
+    sb_output_lock lock;
+    if ((opt = "--suite", sb_regress_prepare_outputs(st, o.repeat, outdir, &lock, err, sizeof err))) {
+        sb_escape_controls(err, sizeof err);
+        fprintf(stderr, "shellbench regress: %s: %s\n", opt, err);
+        sb_study_free(st);
         free(st);
         sb_regress_set_free(&base);
         return 2;
     }
     int rc = sb_regress_measure(st, &o, &now, stdout, stderr);
     if (rc) {
+        sb_output_lock_release(&lock);
         sb_study_free(st);
         free(st);
         sb_regress_set_free(&base);
@@ -168,6 +218,7 @@ int sb_cli_regress(int argc, char **argv)
     sb_study_free(st);
     free(st);
     if (rc) {
+        sb_output_lock_release(&lock);
         sb_regress_set_free(&base);
         sb_regress_set_free(&now);
         return rc;
@@ -210,6 +261,7 @@ int sb_cli_regress(int argc, char **argv)
             regressions = 0;   /* the new baseline is this run: nothing regressed against it */
         }
     }
+    sb_output_lock_release(&lock);
     sb_regress_set_free(&base);
     sb_regress_set_free(&now);
     if (rc) return rc;

@@ -17,38 +17,13 @@
 
 #define FAIL(...) do { snprintf(err, errlen, __VA_ARGS__); goto fail; } while (0)
 
-/* The directory exists and is writable, or can be made: its nearest
- * existing ancestor is a writable directory. */
+/* The directory exists and is writable, or can be made (sb_output.h). */
 static int check_dir(const char *dir, char *err, size_t errlen)
 {
-    char p[1024];
-    struct stat st;
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
-        snprintf(err, errlen, "sweep: --dir %s is too long", dir);
-        return SB_ERR_INPUT;
-    }
-    for (;;) {
-        if (stat(p, &st) == 0) {
-            if (!S_ISDIR(st.st_mode)) {
-                snprintf(err, errlen, "sweep: cannot write records into %s: %s is not a directory", dir, p);
-                return SB_ERR_INPUT;
-            }
-            if (access(p, W_OK | X_OK) != 0) {
-                snprintf(err, errlen, "sweep: cannot write records into %s: %s is not writable (%s)", dir, p,
-                         strerror(errno));
-                return SB_ERR_INPUT;
-            }
-            return SB_OK;
-        }
-        if (!strcmp(p, ".") || !strcmp(p, "/")) {
-            snprintf(err, errlen, "sweep: cannot write records into %s: %s", dir, strerror(errno));
-            return SB_ERR_INPUT;
-        }
-        char *slash = strrchr(p, '/');
-        if (!slash) snprintf(p, sizeof p, ".");          /* relative: the current directory decides */
-        else if (slash == p) p[1] = 0;                   /* the root */
-        else *slash = 0;
-    }
+    char msg[1800];
+    if (sb_output_check_dir(dir, "records", msg, sizeof msg) == SB_OK) return SB_OK;
+    snprintf(err, errlen, "sweep: %s", msg);
+    return SB_ERR_INPUT;
 }
 
 /* One (method, solver, levels) with its parameters; SB_OK, SB_ERR_UNSUPPORTED

@@ -12,6 +12,7 @@
  * Both are written to a temporary file and renamed into place. */
 #include "sb_regress.h"
 #include "sb_gsl.h"
+#include "sb_output.h"
 
 #include <errno.h>
 #include <jansson.h>
@@ -200,7 +201,10 @@ int sb_regress_baseline_read(const char *path, sb_regress_set *s, char *err, siz
 {
     memset(s, 0, sizeof *s);
     json_error_t je;
-    json_t *root = json_load_file(path, 0, &je);
+    FILE *f = sb_input_open(path, "baseline", err, errlen);
+    if (!f) return SB_ERR_INPUT;
+    json_t *root = json_loadf(f, 0, &je);
+    fclose(f);
     if (!root) {
         snprintf(err, errlen, "%s:%d:%d: %s", path, je.line, je.column, je.text);
         return SB_ERR_INPUT;

@@ -5,6 +5,7 @@
 
 #include "sb_regress.h"
 #include "sb_study.h"
+#include "sb_output.h"
 
 #define SB_REGRESS_MAX_SETS 16
 
@@ -42,6 +43,18 @@ typedef struct sb_regress_run_options {
  * round) into now (empty on entry).  Returns 0, SB_EXIT_INPUT when the plan
  * or a run is refused as input (a message on err), SB_EXIT_INTERNAL. */
 int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_regress_set *now, FILE *out, FILE *err);
+
+/* Before any run: the suite's records directory can be written, every
+ * history plot and picture the report will draw into dir and every record
+ * RECORDS/repK/ID (K = 1..repeat) is a new path or a regular file (not a
+ * symbolic link, FIFO, directory: sb_output_check), and no lock file there
+ * is anything but a regular file; then the invocation takes the lock
+ * RECORDS.lock (one invocation at a time on these records) and removes the
+ * lock files a killed invocation's runs left under RECORDS (a live
+ * writer's is an error).  SB_OK with *lock held (release it at the end),
+ * or SB_ERR_INPUT with a sentence. */
+int sb_regress_prepare_outputs(const sb_study *st, int repeat, const char *dir, sb_output_lock *lock, char *err,
+                               size_t errlen);
 
 /* A timing verdict (slower, faster) of now is confirmed by measuring the
  * case again (o->repeat fresh repeats with their own calibration) and

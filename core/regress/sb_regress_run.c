@@ -16,6 +16,9 @@
 #include "sb_sysinfo.h"
 #include "sb_gsl.h"
 #include "sb_record.h"
+#include "sb_output.h"
+
+#include <dirent.h>
 
 #include <errno.h>
 #include <math.h>
@@ -52,15 +55,104 @@ static int selected(const sb_regress_run_options *o, const char *id)
     return 0;
 }
 
+/* the outputs of an earlier invocation; its lock only when nobody holds it
+ * (a live writer's lock is left to refuse the run) */
 static void remove_outputs(const char *out)
 {
-    static const char *const suffix[] = { "", ".partial", ".log", ".lock" };
+    static const char *const suffix[] = { "", ".partial", ".log" };
     char p[1200];
     for (size_t k = 0; k < sizeof suffix / sizeof *suffix; k++) {
         snprintf(p, sizeof p, "%s%s", out, suffix[k]);
         unlink(p);
     }
     if (sb_record_xdmf_path(out, p, sizeof p) == SB_OK) unlink(p);
+    sb_output_lock_clear_stale(out, p, sizeof p);
+}
+
+/* Every lock file under dir (RECORDS/repK/SCENE/...: depth <= 4) whose
+ * writer is gone is removed (an invocation killed with its runs leaves
+ * them); one a live process holds is an error. */
+static int clear_stale_locks(const char *dir, int depth, char *err, size_t errlen)
+{
+    DIR *d = opendir(dir);
+    if (!d) return SB_OK;
+    struct dirent *e;
+    int rc = SB_OK;
+    while (rc == SB_OK && (e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        char p[2048];
+        if (snprintf(p, sizeof p, "%s/%s", dir, e->d_name) >= (int)sizeof p) continue;
+        struct stat st;
+        if (lstat(p, &st) != 0) continue;
+        size_t n = strlen(p);
+        if (n > 5 && !strcmp(p + n - 5, ".lock")) {
+            p[n - 5] = 0;
+            rc = sb_output_lock_clear_stale(p, err, errlen);
+        } else if (S_ISDIR(st.st_mode) && depth > 0) {
+            rc = clear_stale_locks(p, depth - 1, err, errlen);
+        }
+    }
+    closedir(d);
+    return rc;
+}
+
+int sb_regress_prepare_outputs(const sb_study *st, int repeat, const char *dir, sb_output_lock *lock, char *err,
+                               size_t errlen)
+{
+    sb_output_lock_init(lock);
+    sb_plan plan;
+    char msg[1200];
+    if (sb_study_plan(st, &plan, msg, sizeof msg)) {
+        snprintf(err, errlen, "%s: %s", st->path, msg);
+        return SB_ERR_INPUT;
+    }
+    int rc = sb_output_check_dir(st->records, "the suite's records", err, errlen);
+    for (int k = 0; k < plan.n && rc == SB_OK; k++) {
+        const sb_plan_run *r = &plan.runs[k];
+        if (r->state != SB_PLAN_RUN) continue;
+        const char *id = case_id(st, r);
+        char path[2048];
+        sb_output_kind kind;
+        sb_regress_plot_path(dir, id, "png", path, sizeof path);
+        rc = sb_output_check(path, "history plot", &kind, err, errlen);
+        if (rc == SB_OK) {
+            sb_regress_plot_path(dir, id, "svg", path, sizeof path);
+            rc = sb_output_check(path, "history plot", &kind, err, errlen);
+        }
+        if (rc == SB_OK) {
+            sb_regress_picture_path(dir, id, path, sizeof path);
+            rc = sb_output_check(path, "picture", &kind, err, errlen);
+        }
+        for (int rep = 1; rep <= repeat && rc == SB_OK; rep++) {
+            snprintf(path, sizeof path, "%s/rep%d/%s", st->records, rep, id);
+            rc = sb_output_check(path, "record", &kind, err, errlen);
+            if (rc == SB_OK && kind == SB_OUTPUT_DISCARD) {
+                snprintf(err, errlen, "will not write record %s: it is the null device", path);
+                rc = SB_ERR_INPUT;
+            }
+            if (rc == SB_OK) rc = sb_output_check_lockfile(path, err, errlen);
+        }
+    }
+    sb_plan_free(&plan);
+    if (rc) return SB_ERR_INPUT;
+    /* one invocation at a time on these records: RECORDS.lock beside them */
+    char parent[1100];
+    snprintf(parent, sizeof parent, "%s/", st->records);
+    for (char *q = parent + 1; *q; q++)
+        if (*q == '/') {
+            *q = 0;
+            if (mkdir(parent, 0777) && errno != EEXIST) {
+                snprintf(err, errlen, "cannot create the records directory %s: %s", parent, strerror(errno));
+                return SB_ERR_INPUT;
+            }
+            *q = '/';
+        }
+    if (sb_output_lock_take(lock, st->records, err, errlen)) return SB_ERR_INPUT;
+    if (clear_stale_locks(st->records, 4, err, errlen)) {
+        sb_output_lock_release(lock);
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
 }
 
 typedef struct slot {

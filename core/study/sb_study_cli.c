@@ -84,7 +84,8 @@ int sb_study_cmd_sweep(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_controls(err, sizeof err);
+        fprintf(stderr, "shellbench sweep: --study: %s\n", err);
         free(st);
         return 2;
     }
@@ -137,7 +138,8 @@ int sb_study_cmd_report(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_controls(err, sizeof err);
+        fprintf(stderr, "shellbench report: --study: %s\n", err);
         free(st);
         return 2;
     }
