@@ -102,11 +102,11 @@ static int check_outputs(const char *outdir, const char *history, const char *ba
     if (sb_output_check(report, "report", &kind, err, len)) return -1;
     *opt = "--history";
     if (history && (sb_output_check(history, "history file", &kind, err, len) ||
-                    sb_output_check_file_dir(history, "history file", err, len)))
+                    sb_output_check_file_dir(history, "history file", 0, err, len)))
         return -1;
     *opt = "--baseline";
     if (baseline && (sb_output_check(baseline, "baseline", &kind, err, len) ||
-                     sb_output_check_file_dir(baseline, "baseline", err, len)))
+                     sb_output_check_file_dir(baseline, "baseline", 0, err, len)))
         return -1;
     if (baseline && kind == SB_OUTPUT_DISCARD) {
         snprintf(err, len, "will not write the baseline to the null device %s (--update-baseline writes it)", baseline);

@@ -139,6 +139,7 @@ int sb_sweep_validate(const sb_sweep_axes *ax, sb_sweep_plan *plan, char *err, s
                         sb_output_kind kind;
                         if (sb_output_check(it->out, "record", &kind, msg, sizeof msg) || kind == SB_OUTPUT_DISCARD)
                             FAIL("sweep: %s", kind == SB_OUTPUT_DISCARD ? "a record path is the null device" : msg);
+                        if (sb_output_check_lockfile(it->out, msg, sizeof msg)) FAIL("sweep: %s", msg);
                         plan->n++;
                     }
     if (plan->n == 0) FAIL("sweep: no run is possible: %s", plan->left_out);

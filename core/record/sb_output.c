@@ -120,7 +120,7 @@ int sb_output_check_dir(const char *dir, const char *what, char *err, size_t err
     }
 }
 
-int sb_output_check_file_dir(const char *path, const char *what, char *err, size_t errlen)
+int sb_output_check_file_dir(const char *path, const char *what, int must_exist, char *err, size_t errlen)
 {
     char dir[4096];
     if (snprintf(dir, sizeof dir, "%s", path ? path : "") >= (int)sizeof dir) {
@@ -131,6 +131,11 @@ int sb_output_check_file_dir(const char *path, const char *what, char *err, size
     if (!slash) snprintf(dir, sizeof dir, ".");
     else if (slash == dir) dir[1] = 0;
     else *slash = 0;
+    struct stat st;
+    if (must_exist && stat(dir, &st) != 0 && errno == ENOENT) {
+        snprintf(err, errlen, "cannot write %s %s: its directory %s does not exist", what, path, dir);
+        return SB_ERR_INPUT;
+    }
     char w[300];
     snprintf(w, sizeof w, "the %s %s", what, path);
     return sb_output_check_dir(dir, w, err, errlen);

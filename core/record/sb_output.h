@@ -32,8 +32,9 @@ int sb_output_check(const char *path, const char *what, sb_output_kind *kind, ch
  * output that cannot be written. */
 int sb_output_check_dir(const char *dir, const char *what, char *err, size_t errlen);
 /* sb_output_check_dir on the directory of the file `path` ("." without a
- * slash); the sentence names `what` and the file. */
-int sb_output_check_file_dir(const char *path, const char *what, char *err, size_t errlen);
+ * slash); the sentence names `what` and the file.  must_exist: the
+ * directory is not made by the writer, so it must exist now. */
+int sb_output_check_file_dir(const char *path, const char *what, int must_exist, char *err, size_t errlen);
 
 /* The lock file OUT.lock of out_path is absent or a regular file (a
  * symbolic link, FIFO or directory there is refused with a sentence):
