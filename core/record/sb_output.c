@@ -101,7 +101,7 @@ int sb_output_check_dir(const char *dir, const char *what, char *err, size_t err
             }
             return SB_OK;
         }
-        if (errno != ENOENT) {
+        if (errno != ENOENT && errno != ENOTDIR) {   /* ENOTDIR: the ancestor that is a file is named below */
             snprintf(err, errlen, "cannot write %s into %s: %s: %s", what, dir, p, strerror(errno));
             return SB_ERR_INPUT;
         }
