@@ -139,11 +139,7 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err)
          : code == SB_EXIT_STOPPED ? "stopped" : "internal error (log kept)";
 }
 
-/* Before the first run: every record of the queue, its log, refusal note
- * and lock file can be written (new or regular files, not symbolic links,
- * in a directory that is writable or can be made).  0, or -1 with a
- * sentence on err. */
-static int check_outputs(const sb_plan *plan, const int *queue, int nq, FILE *err)
+int sb_study_check_outputs(const sb_plan *plan, const int *queue, int nq, FILE *err)
 {
     char msg[2400], p[1100];
     for (int k = 0; k < nq; k++) {
@@ -175,7 +171,7 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
                        FILE *out, FILE *err, int *failed)
 {
     *failed = 0;
-    if (check_outputs(plan, queue, nq, err)) return SB_EXIT_INPUT;
+    if (sb_study_check_outputs(plan, queue, nq, err)) return SB_EXIT_INPUT;
     int jobs = o->jobs > 0 ? o->jobs : 1, next = 0, running = 0, done = 0, n_conv = 0, n_not = 0, n_refused = 0;
     child *ch = calloc((size_t)jobs, sizeof *ch);
     if (!ch) return SB_EXIT_INTERNAL;
