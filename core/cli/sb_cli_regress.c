@@ -9,7 +9,9 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 const char sb_cli_regress_help[] =
     "usage: shellbench regress [--suite FILE] [--baseline FILE] [--history FILE] [--out DIR]\n"
@@ -228,14 +230,27 @@ int sb_cli_regress(int argc, char **argv)
         fprintf(stderr, "shellbench regress: cannot create %s: %s\n", outdir, strerror(errno));
         rc = 3;
     } else {
+        /* written to a new temporary file and renamed onto the report: never
+         * through a link that appeared since the check */
+        char tmp[1200];
         snprintf(report, sizeof report, "%s/report.md", outdir);
-        FILE *f = fopen(report, "w");
+        snprintf(tmp, sizeof tmp, "%s.tmp.%ld", report, (long)getpid());
+        err[0] = 0;
+        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+        FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+        if (!f && fd >= 0) close(fd);
         if (f) {
             sb_regress_markdown(f, &now, have_base ? &base : NULL, &ru, baseline);
             sb_regress_pictures(f, &now, records, outdir, stderr);
             if (fclose(f)) f = NULL;
         }
-        if (!f) fprintf(stderr, "shellbench regress: cannot write %s: %s\n", report, strerror(errno)), rc = 3;
+        sb_output_kind kind;
+        if (f && (sb_output_check(report, "report", &kind, err, sizeof err) || rename(tmp, report))) f = NULL;
+        if (!f) {
+            fprintf(stderr, "shellbench regress: cannot write %s: %s\n", report, err[0] ? err : strerror(errno));
+            unlink(tmp);
+            rc = 3;
+        }
     }
     sb_regress_markdown(stdout, &now, have_base ? &base : NULL, &ru, baseline);
     if (!no_history) {

@@ -15,6 +15,7 @@
 #include "sb_output.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
@@ -266,7 +267,10 @@ int sb_regress_history_append(const sb_regress_set *s, const char *path, char *e
 {
     struct stat stt;
     int fresh = stat(path, &stt) != 0 || stt.st_size == 0;
-    FILE *f = fopen(path, "a");
+    /* appended, never through a symbolic link (O_NOFOLLOW) */
+    int fd = open(path, O_WRONLY | O_APPEND | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+    FILE *f = fd >= 0 ? fdopen(fd, "a") : NULL;
+    if (!f && fd >= 0) close(fd);
     if (!f) {
         snprintf(err, errlen, "cannot append to %s: %s", path, strerror(errno));
         return SB_ERR_IO;
