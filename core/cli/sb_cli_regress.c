@@ -195,9 +195,9 @@ int sb_cli_regress(int argc, char **argv)
     }
     /* the records, history plots and pictures; one invocation at a time */
     sb_output_lock lock;
-    if ((opt = "--suite", sb_regress_prepare_outputs(st, o.repeat, outdir, &lock, err, sizeof err))) {
+    if (sb_regress_prepare_outputs(st, o.repeat, outdir, &lock, err, sizeof err)) {
         sb_escape_controls(err, sizeof err);
-        fprintf(stderr, "shellbench regress: %s: %s\n", opt, err);
+        fprintf(stderr, "shellbench regress: %s\n", err);
         sb_study_free(st);
         free(st);
         sb_regress_set_free(&base);

@@ -186,6 +186,7 @@ int sb_output_lock_clear_stale(const char *out_path, char *err, size_t errlen)
 FILE *sb_input_open(const char *path, const char *what, char *err, size_t errlen)
 {
     struct stat st;
+    memset(&st, 0, sizeof st);
     if (!path || !path[0]) {
         snprintf(err, errlen, "empty %s path", what);
         return NULL;
