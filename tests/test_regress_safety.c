@@ -13,7 +13,8 @@
  *   locks    digest refuses a record whose lock a writer holds; a sweep
  *            refuses a record whose .lock is a symbolic link before any run;
  *            the lock files a killed regress leaves are removed by the next
- *            one, and a second regress on the same records is refused.
+ *            one, and a second regress on the same records is refused;
+ *            sb_output_lock_clear_stale removes only a lock nobody holds.
  * Every command that could hang runs under `timeout`; nothing here depends on
  * how fast the machine is. */
 #include "cli_sh.h"
@@ -400,13 +401,41 @@ SB_TEST(killed_regress_leaves_no_lock_behind)
     sb_output_lock_release(&lk);
 }
 
+/* the library side: a stale lock file is removed, a held one is not, a linked one is refused */
+SB_TEST(stale_lock_helpers)
+{
+    char rec[400], lock[500];
+    snprintf(rec, sizeof rec, "%s/stale.h5", tmpdir);
+    snprintf(lock, sizeof lock, "%s.lock", rec);
+    write_file(lock, "999999999\n");   /* a writer that is gone */
+    CHECK_EQ_INT(sb_output_check_lockfile(rec, err, sizeof err), SB_OK);
+    CHECK_EQ_INT(sb_output_lock_clear_stale(rec, err, sizeof err), SB_OK);
+    CHECK(!exists(lock));
+    CHECK_EQ_INT(sb_output_lock_clear_stale(rec, err, sizeof err), SB_OK);   /* none: nothing to do */
+    sb_output_lock lk;
+    CHECK_EQ_INT(sb_output_lock_take(&lk, rec, err, sizeof err), SB_OK);
+    char want[64];
+    snprintf(want, sizeof want, "process, %ld", (long)getpid());
+    CHECK_EQ_INT(sb_output_lock_clear_stale(rec, err, sizeof err), SB_ERR_INPUT);
+    CHECK_MSG(strstr(err, "being written") && strstr(err, want), "%s", err);
+    CHECK(exists(lock));
+    sb_output_lock_release(&lk);
+    CHECK(symlink("/dev/null", lock) == 0);
+    CHECK_EQ_INT(sb_output_check_lockfile(rec, err, sizeof err), SB_ERR_INPUT);
+    CHECK_MSG(strstr(err, "symbolic link") && strstr(err, lock), "%s", err);
+    CHECK_EQ_INT(sb_output_lock_clear_stale(rec, err, sizeof err), SB_ERR_INPUT);
+    CHECK(is_link(lock));
+    unlink(lock);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_regress_safety_XXXXXX");
     if (!mkdtemp(tmpdir)) return 3;
     static const sb_test_case cases[] = {
         SB_CASE(regress_refuses_links), SB_CASE(fifo_inputs_refused_at_once), SB_CASE(outputs_checked_before_work),
-        SB_CASE(digest_respects_the_lock), SB_CASE(sweep_refuses_linked_lock), SB_CASE(killed_regress_leaves_no_lock_behind),
+        SB_CASE(digest_respects_the_lock), SB_CASE(sweep_refuses_linked_lock), SB_CASE(stale_lock_helpers),
+        SB_CASE(killed_regress_leaves_no_lock_behind),
         SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
