@@ -129,7 +129,8 @@ static int cmd_report(int argc, char **argv)
     if (!rc && plot) {   /* the plot's path and format, before any work */
         sb_output_kind kind;
         if (sb_output_check(plot, "plot", &kind, err, sizeof err) ||
-            (kind != SB_OUTPUT_DISCARD && sb_report_plot_format(plot, NULL, err, sizeof err))) {
+            (kind != SB_OUTPUT_DISCARD && (sb_report_plot_format(plot, NULL, err, sizeof err) ||
+                                           sb_output_check_file_dir(plot, "plot", 1, err, sizeof err)))) {
             sb_escape_controls(err, sizeof err);
             fprintf(stderr, "shellbench report: %s\n", err);
             rc = 2;

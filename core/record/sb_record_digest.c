@@ -148,7 +148,22 @@ static int write_digest(const char *path, const char *tmp, int drop_state, char 
     return bad ? -1 : 0;
 }
 
+static int digest_locked(const char *path, int drop_state, int *already, char *err, size_t errlen);
+
+/* The record is rewritten under its writer's lock (OUT.lock, sb_output.h):
+ * a run that is writing it, or another digest, makes this one refuse. */
 int sb_record_digest(const char *path, int drop_state, int *already, char *err, size_t errlen)
+{
+    sb_output_lock lk;
+    *already = 0;
+    if (access(path, F_OK) != 0) return digest_locked(path, drop_state, already, err, errlen);   /* says why */
+    if (sb_output_lock_take(&lk, path, err, errlen)) return SB_ERR_INPUT;
+    int rc = digest_locked(path, drop_state, already, err, errlen);
+    sb_output_lock_release(&lk);
+    return rc;
+}
+
+static int digest_locked(const char *path, int drop_state, int *already, char *err, size_t errlen)
 {
     *already = 0;
     sb_h5r r = { path, err, errlen, NULL, NULL };

@@ -134,6 +134,13 @@ static void file_name(const char *id, char *buf, size_t len)
     if (dot && dot[3] == 0) *dot = 0;
 }
 
+void sb_regress_plot_path(const char *dir, const char *id, const char *ext, char *buf, size_t len)
+{
+    char stem[300];
+    file_name(id, stem, sizeof stem);
+    snprintf(buf, len, "%s/history-%s.%s", dir, stem, ext);
+}
+
 static int plot_case(const char *history, const char *id, const char *dir, const char *gnuplot, char *why, size_t len)
 {
     FILE *h = fopen(history, "r");
@@ -166,10 +173,9 @@ static int plot_case(const char *history, const char *id, const char *dir, const
     fprintf(g.body, " using 1:2:3:4:xtic(5) with yerrorlines lw 2 pt 7, ");
     sb_gp_quoted(g.body, dat);
     fprintf(g.body, " using 1:2:6 with labels offset 0,1 font ',7'\n");
-    char stem[300], png[900], svg[900];
-    file_name(id, stem, sizeof stem);
-    snprintf(png, sizeof png, "%s/history-%s.png", dir, stem);
-    snprintf(svg, sizeof svg, "%s/history-%s.svg", dir, stem);
+    char png[900], svg[900];
+    sb_regress_plot_path(dir, id, "png", png, sizeof png);
+    sb_regress_plot_path(dir, id, "svg", svg, sizeof svg);
     return sb_gp_finish(&g, png, svg, 720, 400, why, len);
 }
 

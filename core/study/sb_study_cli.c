@@ -85,7 +85,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        sb_escape_print(stderr, "%s", err);
+        sb_escape_print(stderr, "shellbench sweep: --study: %s", err);
         free(st);
         return 2;
     }
@@ -141,7 +141,7 @@ int sb_study_cmd_report(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        sb_escape_print(stderr, "%s", err);
+        sb_escape_print(stderr, "shellbench report: --study: %s", err);
         free(st);
         return 2;
     }

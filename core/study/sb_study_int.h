@@ -54,6 +54,11 @@ int sb_study_run_done(const sb_plan_run *r);
 int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue, int nq, const sb_sweep_options *o,
                        FILE *out, FILE *err, int *failed);
 /* One run in a child process (messages into OUT.log); the child's pid, or -1. */
+/* Before the first run: every record of the queue, its log, refusal note
+ * and lock file can be written (new or regular files, not symbolic links,
+ * in a directory that is writable or can be made).  0, or -1 with a
+ * sentence on err (sb_study_sweep.c; also the MPI scheduler's). */
+int sb_study_check_outputs(const sb_plan *plan, const int *queue, int nq, FILE *err);
 pid_t sb_study_start_child(const sb_study *st, const sb_plan_run *r, FILE *err);
 /* What a finished child (exit code) leaves: OUT.refused for a refusal, its
  * log shown (and removed unless it failed); the outcome's word. */

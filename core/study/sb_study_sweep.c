@@ -140,9 +140,39 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err)
          : code == SB_EXIT_STOPPED ? "stopped" : "internal error (log kept)";
 }
 
+int sb_study_check_outputs(const sb_plan *plan, const int *queue, int nq, FILE *err)
+{
+    char msg[2400], p[1100];
+    for (int k = 0; k < nq; k++) {
+        const sb_plan_run *r = &plan->runs[queue[k]];
+        sb_output_kind kind;
+        int bad = sb_output_check(r->out, "record", &kind, msg, sizeof msg);
+        if (!bad && kind == SB_OUTPUT_DISCARD)
+            bad = 1, snprintf(msg, sizeof msg, "will not write record %s: it is the null device", r->out);
+        if (!bad) bad = sb_output_check_file_dir(r->out, "record", 0, msg, sizeof msg);
+        if (!bad) bad = sb_output_check_lockfile(r->out, msg, sizeof msg);
+        if (!bad) {
+            log_path(r, p, sizeof p);
+            bad = sb_output_check(p, "run log", &kind, msg, sizeof msg);
+        }
+        if (!bad) {
+            sb_plan_refused_path(r->out, p, sizeof p);
+            bad = sb_output_check(p, "refusal note", &kind, msg, sizeof msg);
+        }
+        if (bad) {
+            sb_escape_controls(msg, sizeof msg);
+            fprintf(err, "shellbench sweep: %s (nothing was run)\n", msg);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue, int nq, const sb_sweep_options *o,
                        FILE *out, FILE *err, int *failed)
 {
+    *failed = 0;
+    if (sb_study_check_outputs(plan, queue, nq, err)) return SB_EXIT_INPUT;
     int jobs = o->jobs > 0 ? o->jobs : 1, next = 0, running = 0, done = 0, n_conv = 0, n_not = 0, n_refused = 0;
     child *ch = calloc((size_t)jobs, sizeof *ch);
     if (!ch) return SB_EXIT_INTERNAL;
