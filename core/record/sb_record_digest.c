@@ -152,11 +152,25 @@ static int digest_locked(const char *path, int drop_state, int *already, char *e
 
 /* The record is rewritten under its writer's lock (OUT.lock, sb_output.h):
  * a run that is writing it, or another digest, makes this one refuse. */
+static void record_dir(const char *path, char *dir, size_t len)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash) snprintf(dir, len, ".");
+    else if (slash == path) snprintf(dir, len, "/");
+    else snprintf(dir, len, "%.*s", (int)(slash - path), path);
+}
+
 int sb_record_digest(const char *path, int drop_state, int *already, char *err, size_t errlen)
 {
     sb_output_lock lk;
+    char dir[4200];
     *already = 0;
-    if (access(path, F_OK) != 0) return digest_locked(path, drop_state, already, err, errlen);   /* says why */
+    record_dir(path, dir, sizeof dir);
+    /* a missing record or an unwritable directory: nothing will be written,
+     * so no lock is taken (its file could not be made either); digest_locked
+     * says why after reading what it can */
+    if (access(path, F_OK) != 0 || access(dir, W_OK | X_OK) != 0)
+        return digest_locked(path, drop_state, already, err, errlen);
     if (sb_output_lock_take(&lk, path, err, errlen)) return SB_ERR_INPUT;
     int rc = digest_locked(path, drop_state, already, err, errlen);
     sb_output_lock_release(&lk);
@@ -183,10 +197,7 @@ static int digest_locked(const char *path, int drop_state, int *already, char *e
     /* the digest is written beside the record and renamed onto it: its
      * directory must be writable, which is checked before any copying */
     char dir[4200];
-    const char *slash = strrchr(path, '/');
-    if (!slash) snprintf(dir, sizeof dir, ".");
-    else if (slash == path) snprintf(dir, sizeof dir, "/");
-    else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    record_dir(path, dir, sizeof dir);
     if (access(dir, W_OK | X_OK) != 0) {
         snprintf(err, errlen, "cannot digest %s: its directory %s is not writable (%s); the digest is written beside "
                  "the record and renamed onto it: make the directory writable or digest a copy elsewhere", path, dir,
