@@ -250,6 +250,34 @@ static void measure_lanczos(sb_problem *p, sb_matrix *A, int kmax, cond_row *r, 
     for (int i = 0; i < 8; i++) free(h[i]);
 }
 
+/* Where the extreme eigenvectors of H live: the share of |v|^2 on ghost
+ * control points (reference position outside the domain [0,a] x [0,b]),
+ * and on the out-of-plane (z) components.  Printed as comment lines. */
+static void describe_modes(const sb_matrix *A, const double *X, double a, double b)
+{
+    const int n = A->pat->n;
+    double *D = dense_of(A), *w = malloc((size_t)n * sizeof *w);
+    if (D && w && sb_eig_dense_sym_vec(n, D, w) == SB_OK) {
+        const int which[4] = { 0, 1, 2, n - 1 };
+        for (int k = 0; k < 4; k++) {
+            const double *v = D + (size_t)which[k] * n;
+            double ghost = 0, z = 0, corner = 0;
+            for (int i = 0; i < n / 3; i++) {
+                double x = X[3 * i], y = X[3 * i + 1], e = 1e-9;
+                double m = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
+                int ox = x < -e || x > a + e, oy = y < -e || y > b + e;
+                if (ox || oy) ghost += m;
+                if (ox && oy) corner += m;
+                z += v[3 * i + 2] * v[3 * i + 2];
+            }
+            printf("# mode,lambda_%d,%.10g,ghost %.3f,corner ghosts %.3f,z %.3f\n", which[k] + 1, w[which[k]], ghost,
+                   corner, z);
+        }
+    }
+    free(D);
+    free(w);
+}
+
 static int bench_cond_parts(int argc, char **argv)
 {
     if (argc < 3) {
@@ -258,7 +286,7 @@ static int bench_cond_parts(int argc, char **argv)
         return 2;
     }
     const char *scene_name = argv[1];
-    int res = atoi(argv[2]), dense_max = 1100, kmax = 150, both = 0, trace = 0;
+    int res = atoi(argv[2]), dense_max = 1100, kmax = 150, both = 0, trace = 0, modes = 0;
     const char *tag = "paper";
     sb_context ctx, ctx2;
     sb_context_init(&ctx);
@@ -284,6 +312,7 @@ static int bench_cond_parts(int argc, char **argv)
         else if (!strncmp(argv[i], "lanczos=", 8)) kmax = atoi(argv[i] + 8);
         else if (!strcmp(argv[i], "both")) both = 1;
         else if (!strcmp(argv[i], "trace")) trace = 1;
+        else if (!strcmp(argv[i], "modes")) modes = 1;
         else if (!strcmp(argv[i], "header"))
             printf("scene,setting,res,dofs,h,variant,lambda_min,lambda_max,cond2,cond1,how,steps_min,steps_max,"
                    "relres_min,relres_max,step_converged,gnorm\n");
@@ -366,6 +395,7 @@ static int bench_cond_parts(int argc, char **argv)
             if (pass == 0 && !(both && n <= dense_max)) break;
         }
     }
+    if (modes && n <= dense_max) describe_modes(&Hp, x, sc.domain.size[0], sc.domain.size[1]);
     sb_matrix_free(&Hp); sb_matrix_free(&Kf); sb_matrix_free(&Ke); sb_matrix_free(&M); sb_matrix_free(&A);
     free(x); free(x0); free(v0); free(g);
     st->free(ss);

@@ -23,17 +23,18 @@ hdr=header
 one() { "$COND" parts "$@" $hdr >> "$TMP" || echo "failed: $*" >&2; hdr=; }
 C=bench/rmtr/cond_scenes/trampoline
 for r in 4 8 16 32 64 128; do [ "$r" -le "$MAX" ] || continue
-  x=; [ "$r" = 16 ] && x="both trace"                      # 1,083 dofs: dense and Lanczos side by side
+  x=; [ "$r" -le 16 ] && x=modes; [ "$r" = 16 ] && x="both trace modes"                    # 1,083 dofs: dense and Lanczos side by side
   [ "$r" -ge 32 ] && x="trace"
   one trampoline "$r" tag=paper $x
-  [ "$r" -le 64 ] && one "$C"_rho_volumetric.json "$r" tag=rho_volumetric $([ "$r" -ge 32 ] && echo trace)
-  [ "$r" -le 32 ] && one "$C"_k_per_area.json "$r" tag=k_per_area
+  [ "$r" -le 64 ] && one "$C"_rho_volumetric.json "$r" tag=rho_volumetric $([ "$r" -ge 32 ] && echo trace || echo modes)
+  # beta_rule=paper: beta = h^-sigma literally, not scaled with the material (else k/tau is the same problem as rho tau)
+  [ "$r" -le 32 ] && one "$C"_k_per_area.json "$r" tag=k_per_area method.beta_rule=paper
   [ "$r" -le 16 ] && { one "$C"_clamped.json "$r" tag=clamped; one "$C"_dt_frame.json "$r" tag=dt_frame
-                       one "$C"_tau_in_m.json "$r" tag=tau_in_m; one trampoline "$r" tag=mass_lumped method.mass=lumped; }
+                       one "$C"_tau_in_m.json "$r" tag=tau_in_m method.beta_rule=paper; one trampoline "$r" tag=mass_lumped method.mass=lumped; }
 done
 for s in 3 4 5 6 7; do                                    # Fig. 9 right: beta = h^-sigma at 1,083 dofs
   one trampoline 16 tag=sigma$s method.sigma=$s
   one "$C"_rho_volumetric.json 16 tag=rho_volumetric-sigma$s method.sigma=$s
-  one "$C"_k_per_area.json 16 tag=k_per_area-sigma$s method.sigma=$s
+  one "$C"_k_per_area.json 16 tag=k_per_area-sigma$s method.sigma=$s method.beta_rule=paper
 done
 mv "$TMP" "$OUT" && echo "wrote $OUT"

@@ -17,23 +17,27 @@ extern void dstev_(const char *jobz, const int *n, double *d, double *e, double 
 extern void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
 extern void dpotri_(const char *uplo, const int *n, double *a, const int *lda, int *info);
 
-int sb_eig_dense_sym(int n, double *A, double *w)
+static int eig_dense(const char *jobz, int n, double *A, double *w)
 {
     if (n <= 0) return SB_ERR_INPUT;
     int info = 0, lwork = -1, liwork = -1, iwq = 0;
     double wq = 0;
-    dsyevd_("N", "U", &n, A, &n, w, &wq, &lwork, &iwq, &liwork, &info);   /* workspace query */
+    dsyevd_(jobz, "U", &n, A, &n, w, &wq, &lwork, &iwq, &liwork, &info);   /* workspace query */
     if (info) return SB_ERR_INTERNAL;
     lwork = (int)wq + 1;
     liwork = iwq > 1 ? iwq : 1;
     double *work = malloc((size_t)lwork * sizeof *work);
     int *iwork = malloc((size_t)liwork * sizeof *iwork);
     if (!work || !iwork) { free(work); free(iwork); return SB_ERR_NOMEM; }
-    dsyevd_("N", "U", &n, A, &n, w, work, &lwork, iwork, &liwork, &info);
+    dsyevd_(jobz, "U", &n, A, &n, w, work, &lwork, iwork, &liwork, &info);
     free(work);
     free(iwork);
     return info ? SB_ERR_INTERNAL : SB_OK;
 }
+
+int sb_eig_dense_sym(int n, double *A, double *w) { return eig_dense("N", n, A, w); }
+
+int sb_eig_dense_sym_vec(int n, double *A, double *w) { return eig_dense("V", n, A, w); }
 
 /* ||A||_1 of a full symmetric matrix: the largest absolute column sum */
 static double norm1(int n, const double *A)

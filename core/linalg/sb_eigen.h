@@ -20,6 +20,8 @@
 /* All eigenvalues of the symmetric n x n matrix A (column-major, full
  * storage; destroyed), ascending, into w[n].  SB_OK or SB_ERR_*. */
 int sb_eig_dense_sym(int n, double *A, double *w);
+/* The same with the orthonormal eigenvectors: column j of A is that of w[j]. */
+int sb_eig_dense_sym_vec(int n, double *A, double *w);
 
 /* 1-norm condition number ||A||_1 ||A^-1||_1 of a symmetric positive
  * definite A (column-major, full; destroyed) by Cholesky and the explicit
