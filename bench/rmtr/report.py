@@ -964,7 +964,9 @@ print("  beside them (at 6 levels on the re-entrant corner only), the perturbed-
 print("  paper's configuration with room to converge on the trampoline at 3 levels and drooping at 2; the")
 print("  10-iteration rule is left out there (see below).  `full` mode (caps 40,000 per step, 2,000 for the paper's")
 print("  configuration) adds TR at 13,467 dofs, the paper's configuration at 4 levels, all configurations at 5 and")
-print("  6 levels on every scene; it was not run.  Rows without a")
+print("  6 levels on every scene; it was not run (the trampoline's TR rows at 13,467 dofs, the re-entrant corner's")
+print("  TR on RMTR's own meshes and TR (shift) at 51,483 dofs with gtol 1e-6 are made by bench/rmtr/hyp.sh; TR on")
+print("  the hard scenes at 13,467 dofs, thousands of 13,467-dof factorizations each, is not run).  Rows without a")
 print("  record read \"not run\".")
 
 
