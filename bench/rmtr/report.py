@@ -148,7 +148,7 @@ print("## Table 3 — single-level TR (dogleg), nonlinear iterations\n")
 print("\"ours\" uses the paper's dogleg (Cauchy point on an indefinite Hessian); \"ours, shift\" uses our default")
 print("(`solver.indefinite=shift`: Newton point of H + τI on an indefinite Hessian).  dofs: the paper's column")
 print("(the square's; the paper gives none for the L-shaped re-entrant corner) / ours.  At 51,483 dofs ||g||")
-if rows.get("trshift-trampoline-r128-gtol1e-6") is not None:
+if rows.get("trshift-trampoline-r128-gtol1e-6") is not None and not unfinished(rows["trshift-trampoline-r128-gtol1e-6"]):
     print("stalls near 2e-7 for every solver: the row gives TR (shift) also with run.gtol = 1e-6, the tolerance")
     print("Table 4's RMTR row at 51,483 dofs uses (marked).\n")
 else:
@@ -165,9 +165,9 @@ for s in SCENES:
         qi = int(q["iterations"]) if ok(q) else None
         qg = rows.get("trshift-%s-r%d-gtol1e-6" % (s, 4 << k))
         qcell, qst = num(qi), status(q)
-        if qg is not None and not ok(q):
+        if qg is not None and not unfinished(qg) and not ok(q):
             qcell = "%s (gtol 1e-6)" % num(it_or_none(qg))
-            qst = "%s; %s with gtol 1e-7" % (status(qg), status(q) + (" (%s)" % q["reason"] if q else ""))
+            qst = "%s; %s with gtol 1e-7" % (status(qg), status(q))
         print("| %s | %s / %s | %s | %s | %s | %s | %s | %s |" % (NAMES[s], num(d), num(int((r or q)["dofs"])),
               num(T3[s][k]), num(it) if r else "not run", ratio(it, T3[s][k]), status(r), qcell, qst))
 
