@@ -155,7 +155,7 @@ int main(int argc, char **argv)
  * history of H as comment lines ("# trace ...").
  *
  *   bench_cond parts SCENE RES [method.K=V | solver.K=V | run.K=V ...]
- *              [tag=NAME] [dense_max=N] [lanczos=KMAX] [both] [trace] [header] */
+ *              [tag=NAME] [dense_max=N] [lanczos=KMAX] [both] [trace] [modes] [only=MATRIX] [header] */
 #include "sb_eigen.h"
 
 typedef struct cond_op { sb_matrix *A; sb_problem *p; } cond_op;
@@ -287,6 +287,7 @@ static int bench_cond_parts(int argc, char **argv)
     }
     const char *scene_name = argv[1];
     int res = atoi(argv[2]), dense_max = 1100, kmax = 150, both = 0, trace = 0, modes = 0;
+    const char *only = NULL;   /* only=NAME: measure that matrix alone (e.g. only=H at 51,483 dofs) */
     const char *tag = "paper";
     sb_context ctx, ctx2;
     sb_context_init(&ctx);
@@ -313,6 +314,7 @@ static int bench_cond_parts(int argc, char **argv)
         else if (!strcmp(argv[i], "both")) both = 1;
         else if (!strcmp(argv[i], "trace")) trace = 1;
         else if (!strcmp(argv[i], "modes")) modes = 1;
+        else if (!strncmp(argv[i], "only=", 5)) only = argv[i] + 5;
         else if (!strcmp(argv[i], "header"))
             printf("scene,setting,res,dofs,h,variant,lambda_min,lambda_max,cond2,cond1,how,steps_min,steps_max,"
                    "relres_min,relres_max,step_converged,gnorm\n");
@@ -376,6 +378,7 @@ static int bench_cond_parts(int argc, char **argv)
     const double h = sc.domain.size[0] / res;
     for (size_t v = 0; v < sizeof V / sizeof V[0]; v++) {
         if (!dynamic && V[v].cm != 0 && V[v].ce == 0) continue;
+        if (only && strcmp(only, V[v].name)) continue;
         sb_matrix_zero(&A);
         sb_matrix_axpy(&A, V[v].ce, &Ke);
         if (V[v].cp != 0) { sb_matrix_axpy(&A, V[v].cp, &Kf); sb_matrix_axpy(&A, -V[v].cp, &Ke); }

@@ -25,6 +25,7 @@ C=bench/rmtr/cond_scenes/trampoline
 for r in 4 8 16 32 64 128; do [ "$r" -le "$MAX" ] || continue
   x=; [ "$r" -le 16 ] && x=modes; [ "$r" = 16 ] && x="both trace modes"                    # 1,083 dofs: dense and Lanczos side by side
   [ "$r" -ge 32 ] && x="trace"
+  [ "$r" -ge 128 ] && x="trace only=H"                    # 51,483 dofs: H alone (minutes per matrix)
   one trampoline "$r" tag=paper $x
   [ "$r" -le 64 ] && one "$C"_rho_volumetric.json "$r" tag=rho_volumetric $([ "$r" -ge 32 ] && echo trace || echo modes)
   # beta_rule=paper: beta = h^-sigma literally, not scaled with the material (else k/tau is the same problem as rho tau)
