@@ -308,7 +308,7 @@ if paper_runs:
     print("models, 10 unpreconditioned ST-CG smoother iterations, Cauchy dogleg, plain start) runs with a cap of")
     print("20,000 per step.  The paper says its runs reach ||g|| <= 5e-5 in practice (its Eq. 7.1 then stops on")
     print("|f_{i-1} - f_i| < 1e-12 once the radius exceeds 1e15); the columns give the first step's V-cycles to")
-    print("||g|| < 1e-3 and < 5e-5 as well as to its stop, and the V-cycle after which the radius first exceeds 1e15")
+    print("‖g‖ < 1e-3 and < 5e-5 as well as to its stop, and the V-cycle after which the radius first exceeds 1e15")
     print("(from there on the trust region never binds: the V-cycles are a linear multigrid iteration on the")
     print("Newton system, and their count is set by the smoother).\n")
     print("| scene | levels | dofs | paper | ours (5 steps) | ours / paper | step 1: to 1e-3 / 5e-5 / stop | step 1: radius > 1e15 from | assembly WU | s | status |")
@@ -322,7 +322,7 @@ if paper_runs:
         big = next((k + 1 for k, x in enumerate(d1) if x > 1e15), None)
         first = lambda tol: next((k + 1 for k, gn in enumerate(s1) if gn < tol), None)
         its = it_or_none(r)
-        stop = num(len(s1)) if not unfinished(r) else "%s so far (||g|| %.2g at the checkpoint)" % (
+        stop = num(len(s1)) if not unfinished(r) else "%s so far (‖g‖ %.2g at the checkpoint)" % (
             num(len(s1)), s1[-1] if s1 else float("nan"))
         print("| %s | %d | %s | %s | %s | %s | %s / %s / %s | %s | %s | %s | %s |" % (
             NAMES[sc], l, r["dofs"], num(T4[sc][l - 2]), num(its), ratio(its, T4[sc][l - 2]),
@@ -909,7 +909,7 @@ if hr:
     print("< 1e-12 once Delta > 1e15) can stop a step: the regime the paper describes (\"in practice ||g|| <= 5e-5")
     print("is satisfied\", i.e. its runs did not reach 1e-7).  \"k per area\": the unit reading under which our")
     print("||g|| stalls near 1e-6 (cond_scenes/trampoline_k_per_area.json, beta = h^-5 literally).\n")
-    print("| scene reading | rho (4.2) | gtol | dofs | iterations (5 steps) | paper (Table 3) | status | steps done | last ||g|| | min ||g|| in the last step |")
+    print("| scene reading | rho (4.2) | gtol | dofs | iterations (5 steps) | paper (Table 3) | status | steps done | last ‖g‖ | min ‖g‖ in the last step |")
     print("|---|---|--:|--:|--:|--:|---|--:|--:|--:|")
     order = sorted(hr, key=lambda k: (list(HYP_KIND).index(k.split("-")[0]), int(hr[k]["dofs"])))
     for k in order:
@@ -1110,10 +1110,10 @@ def summary():
     hk = lambda n: int(hr[n]["iterations"]) if n in hr else None
     L.append("| Table 3: TR 1,385-175,132 iterations, fails from 3,675 dofs on two scenes, at 51,483 on all | not reproduced as stated; reproduced in a "
              "different setting | the paper's TR exactly as §7 states it (plain ratio 4.2, no stall rule) converges the "
-             "trampoline in %s / %s / %s iterations at 147 / 363 / 1,083 dofs (paper 1,385 / 29,426 / 34,456): its ||g|| "
-             "reaches 1e-10 to 1e-12, Newton's rate.  The paper's runs ended above 1e-7 (\"||g|| <= 5e-5 in "
+             "trampoline in %s / %s / %s iterations at 147 / 363 / 1,083 dofs (paper 1,385 / 29,426 / 34,456): its ‖g‖ "
+             "reaches 1e-10 to 1e-12, Newton's rate.  The paper's runs ended above 1e-7 (\"‖g‖ <= 5e-5 in "
              "practice\").  With the gradient test out of reach (gtol 1e-13) the same TR takes %s and %s iterations "
-             "and fails (radius collapse: the ratio is round-off), our robust ratio %s and %s; with k per area, ||g|| "
+             "and fails (radius collapse: the ratio is round-off), our robust ratio %s and %s; with k per area, ‖g‖ "
              "stalls near 1e-6 and the paper's TR fails after %s: the paper's counts are iterations spent below the "
              "limiting gradient%s |" % (num(t3[0]), num(t3[1]), num(t3[2]), num(hk("trPg-trampoline-r4")),
                                       num(hk("trPg-trampoline-r8")), num(hk("trRg-trampoline-r4")),
