@@ -328,6 +328,9 @@ int  sb_record_read_resume(const char *path, const sb_run *expect, sb_resume_poi
 void sb_resume_point_free(sb_resume_point *rp);
 
 int  sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen);
+/* The same without the final state (x NULL, n_x 0): what a digest, which
+ * drops /final/x, still holds of the run's identity */
+int  sb_record_read_identity(const char *path, sb_record_setup *s, char *err, size_t errlen);
 
 /* Rewrite the finished record at path in place as a digest: without /steps,
  * /final/displacement, sample_ref and triangles (and /final/x with

@@ -274,7 +274,7 @@ static herr_t collect_param(hid_t loc, const char *name, const H5A_info_t *info,
     return rc ? -1 : 0;
 }
 
-int sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen)
+static int read_setup(const char *path, sb_record_setup *s, int want_x, char *err, size_t errlen)
 {
     if (!s) return SB_ERR_INPUT;
     memset(s, 0, sizeof *s);
@@ -299,13 +299,25 @@ int sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t
         if (H5Aiterate2(gp, H5_INDEX_NAME, H5_ITER_INC, &idx, collect_param, &w) < 0)
             rc = w.rc ? w.rc : sb_h5r_fail(&r, SB_ERR_IO, "cannot list the attributes of", "/params");
     }
-    if (!rc) rc = sb_h5r_dset(&r, f, "/final/x", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dx, (void **)&s->x);
-    if (!rc && dx > (hsize_t)INT32_MAX) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "implausibly long", "/final/x");
-    if (!rc) s->n_x = (int)dx;
+    if (!rc && want_x) {
+        rc = sb_h5r_dset(&r, f, "/final/x", 1, H5T_NATIVE_DOUBLE, sizeof(double), &dx, (void **)&s->x);
+        if (!rc && dx > (hsize_t)INT32_MAX) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "implausibly long", "/final/x");
+        if (!rc) s->n_x = (int)dx;
+    }
     if (gp >= 0) H5Gclose(gp);
     sb_h5r_close(&r, f);
     if (rc) sb_record_setup_free(s);
     return rc;
+}
+
+int sb_record_read_setup(const char *path, sb_record_setup *s, char *err, size_t errlen)
+{
+    return read_setup(path, s, 1, err, errlen);
+}
+
+int sb_record_read_identity(const char *path, sb_record_setup *s, char *err, size_t errlen)
+{
+    return read_setup(path, s, 0, err, errlen);
 }
 
 void sb_record_setup_free(sb_record_setup *s)

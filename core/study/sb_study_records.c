@@ -18,7 +18,7 @@ int sb_study_record_check(const sb_study *st, const sb_plan_run *r, char *why, s
 {
     sb_record_setup su;
     char msg[1536], field[256];
-    int rc = sb_record_read_setup(r->out, &su, msg, sizeof msg);
+    int rc = sb_record_read_identity(r->out, &su, msg, sizeof msg);   /* digests keep no /final/x */
     if (rc) {
         snprintf(why, len, "%s", msg);
         return rc;
