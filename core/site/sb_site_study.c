@@ -203,7 +203,7 @@ static void scene_page(sb_site *S, const sb_study_data *d, int i, const char *nm
     int *idx = malloc((size_t)(d->plan.n + 1) * sizeof *idx);
     if (ranked && idx) {
         fputs("<h2>Work-precision diagrams</h2>\n<p>Error against cost, log-log; one line per configuration through its "
-              "converged runs of the unperturbed start in increasing dofs; hollow points did not converge; circled "
+              "converged runs in increasing dofs (the unperturbed start; perturbed starts are in the table below); hollow points did not converge; circled "
               "points are on the Pareto front; dashed lines are the error targets.  Wheel: zoom, drag: pan, double "
               "click: reset; hover a point for its run, click it for the run's page.</p>\n", f);
         for (int k = 0; k < n_costs; k++) {
@@ -229,7 +229,9 @@ static void scene_page(sb_site *S, const sb_study_data *d, int i, const char *nm
         if (pk && cs && cw && er && fs && fw) {
             for (int k = 0; k < d->plan.n; k++) {
                 const sb_study_point *q = &d->pt[k];
-                if (d->plan.runs[k].scene != i || q->state != SB_POINT_RECORDED || !isfinite(q->error) || q->error <= 0) continue;
+                if (d->plan.runs[k].scene != i || d->plan.runs[k].start != 0 || q->state != SB_POINT_RECORDED || !isfinite(q->error) ||
+                    q->error <= 0)
+                    continue;
                 pk[np] = k, cs[np] = q->seconds > 0 ? q->seconds : NAN, cw[np] = q->work > 0 ? q->work : NAN, er[np] = q->error;
                 if (q->status != 0 || d->plan.runs[k].start != 0) cs[np] = cw[np] = NAN;   /* not on a front */
                 np++;

@@ -14,7 +14,10 @@
     if (v !== null) return v === "" ? NaN : parseFloat(v);
     return td.textContent.trim().toLowerCase();
   }
-  function headerKey(th, i) { return th.getAttribute("data-key") || String(i); }
+  /* a column's key: data-key, else its header text in lower case with dashes */
+  function headerKey(th, i) {
+    return th.getAttribute("data-key") || th.textContent.trim().toLowerCase().replace(/[^a-z0-9]+/g, "-").replace(/^-|-$/g, "") || String(i);
+  }
   function sortBy(table, col, desc) {
     var tb = table.tBodies[0];
     if (!tb) return;
@@ -272,14 +275,31 @@
 
   function drawPlots() {
     var plots = document.querySelectorAll(".sb-plot");
-    if (!plots.length) { document.body.setAttribute("data-plots-done", "0"); return; }
+    if (!plots.length) {
+      document.body.setAttribute("data-plots-ms", String(Math.round(performance.now())));
+      document.body.setAttribute("data-plots-done", "0");
+      return;
+    }
     var vega = vegaGlobal();
     if (!vega) { console.error("shellbench site: Vega did not load"); document.body.setAttribute("data-plots-done", "error"); return; }
     var el = document.getElementById("sb-data"), data = null;
     try { data = el ? JSON.parse(el.textContent) : null; } catch (e) { console.error("shellbench site: bad page data: " + e); }
-    var done = 0, failed = 0;
-    var jobs = Array.prototype.map.call(plots, function (div) {
-      var kind = div.getAttribute("data-plot"), spec;
+    var done = 0, failed = 0, k = 0;
+    /* one plot at a time, yielding between them: the page paints and scrolls
+     * while a long page (the nightly history) is still drawing */
+    function next() {
+      if (k >= plots.length) {
+        document.body.setAttribute("data-plots-ms", String(Math.round(performance.now())));
+        document.body.setAttribute("data-plots-done", failed ? "error" : String(done));
+        return;
+      }
+      var div = plots[k++], kind = div.getAttribute("data-plot"), spec;
+      function bad(e) {
+        failed++;
+        div.setAttribute("data-error", String(e));
+        console.error("shellbench site: plot: " + e);
+        setTimeout(next, 0);
+      }
       try {
         if (kind === "wp") spec = wpSpec(data, +div.getAttribute("data-cost"));
         else if (kind === "profile") spec = profileSpec(data.profiles[+div.getAttribute("data-index")]);
@@ -287,20 +307,18 @@
         else if (kind === "hist") spec = histSpec(data, +div.getAttribute("data-case"));
         else throw new Error("unknown plot " + kind);
         var view = new vega.View(vega.parse(spec), { renderer: "svg", container: div, hover: true });
-        return view.runAsync().then(function () {
+        view.runAsync().then(function () {
           div.setAttribute("data-series", String(div.querySelectorAll(".mark-line path").length));
           div.setAttribute("data-rendered", "1");
           done++;
-        });
+          if (done === 1) document.body.setAttribute("data-first-plot-ms", String(Math.round(performance.now())));
+          setTimeout(next, 0);
+        }, bad);
       } catch (e) {
-        return Promise.reject(e);
+        bad(e);
       }
-    });
-    Promise.all(jobs.map(function (j, i) {
-      return j.catch(function (e) { failed++; plots[i].setAttribute("data-error", String(e)); console.error("shellbench site: plot: " + e); });
-    })).then(function () {
-      document.body.setAttribute("data-plots-done", failed ? "error" : String(done));
-    });
+    }
+    next();
   }
 
   function start() {
