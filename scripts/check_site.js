@@ -132,7 +132,7 @@ async function main() {
       const before = await evaluate(q("t.getAttribute('data-first-row')"));
       await load(url(pg.path) + "?table=" + encodeURIComponent(t.id) + "&sort=" + encodeURIComponent(t.sort));
       const key = t.sort.replace(/^-/, ""), desc = t.sort.charAt(0) === "-";
-      const col = await evaluate(q(`Array.from(t.tHead.rows[0].cells).findIndex(c=>(c.getAttribute('data-key')||'')===${JSON.stringify(key)})`));
+      const col = await evaluate(q(`Array.from(t.tHead.rows[0].cells).findIndex(c=>(c.getAttribute('data-key')||c.textContent.trim().toLowerCase().replace(/[^a-z0-9]+/g,'-').replace(/^-|-$/g,''))===${JSON.stringify(key)})`));
       const vals = await evaluate(q(`Array.from(t.tBodies[0].rows).map(r=>{var c=r.cells[${col}];var v=c.getAttribute('data-v');return v===null?c.textContent.trim().toLowerCase():(v===''?null:parseFloat(v));})`));
       const after = await evaluate(q("t.getAttribute('data-first-row')"));
       const nums = (vals || []).filter((v) => v !== null);

@@ -275,12 +275,13 @@ static void para(md_ctx *m, line *L, int from, int to)
 
 static void heading_id(FILE *o, const char *s, size_t n)
 {
-    int dash = 0, any = 0;
+    int dash = 0, any = 0;   /* a dash between words, never at either end */
     for (size_t i = 0; i < n; i++) {
         unsigned char c = (unsigned char)s[i];
-        if (isalnum(c)) fputc(tolower(c), o), dash = 0, any = 1;
-        else if (c == '_' || c == '-') fputc(c, o), dash = 0, any = 1;
-        else if (!dash && any) fputc('-', o), dash = 1;
+        if (isalnum(c) || c == '_' || c == '-') {
+            if (dash && any) fputc('-', o);
+            fputc(isalnum(c) ? tolower(c) : c, o), dash = 0, any = 1;
+        } else dash = 1;
     }
 }
 
