@@ -182,7 +182,21 @@ run: $(BIN)
 # writes a new baseline.
 nightly: $(BIN)
 	@$(BLAS_ENV) $(BIN) regress $(NIGHTLY_ARGS); rc=$$?; \
-	  echo "shellbench regress: exit $$rc (0 no regression, 1 regression, 2 input error; make itself exits 2 on any failure)"; exit $$rc
+	  echo "shellbench regress: exit $$rc (0 no regression, 1 regression, 2 input error; make itself exits 2 on any failure)"; \
+	  $(BIN) site --history results/nightly/history.csv --baseline bench/nightly/baseline.json \
+	    --report results/nightly/report.md --out results/nightly/site || echo "the nightly site was not written (above)"; \
+	  exit $$rc
+
+# The static HTML site (docs/site.md): `make site` from the committed studies'
+# records, reports and nightly history into results/site (not committed);
+# `make check-site` opens a small site and the committed one in headless
+# Chromium (scripts/check_site.sh: console errors, failed loads, plots and
+# their series, sorting, filtering, escaping; screenshots; load times).
+site: $(BIN)
+	$(BIN) site --out results/site
+
+check-site: $(BIN)
+	@bash scripts/check_site.sh $(BIN) $(BUILD)/check-site
 
 bench: $(BIN) $(BENCH_BIN)
 	$(BLAS_ENV) bash bench/run_all.sh $(BUILD)

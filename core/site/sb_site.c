@@ -21,7 +21,7 @@
 #define MAX_ITEMS 128
 
 const char sb_cli_site_help[] =
-    "usage: shellbench site [--out DIR] [--study FILE]... [--history CSV] [--baseline JSON]\n"
+    "usage: shellbench site [--out DIR] [--study FILE [--dir RECORDS]]... [--history CSV] [--baseline JSON]\n"
     "                       [--report FILE.md]... [--commit-url PREFIX]\n"
     "A static, self-contained HTML site from records and digests only (docs/site.md): an index; per study\n"
     "the method-selection table (sortable, filterable), performance profiles and per-scene interactive\n"
@@ -29,6 +29,7 @@ const char sb_cli_site_help[] =
     "their Markdown.  Open DIR/index.html in a browser (file:// works; nothing is fetched from the network).\n"
     "  --out DIR          the site (default results/site); a symbolic link, FIFO, device or file there is refused\n"
     "  --study FILE       a study file (repeatable); its records are read, nothing is run\n"
+    "  --dir RECORDS      the records directory of every --study (as `report --study --dir`)\n"
     "  --history CSV      the nightly history (shellbench regress; results/nightly/history.csv)\n"
     "  --baseline JSON    the baseline drawn in the history (bench/nightly/baseline.json)\n"
     "  --report FILE.md   a Markdown report to render with its pictures (repeatable)\n"
@@ -296,7 +297,7 @@ static int mkdir_p(const char *dir)
 
 int sb_cli_site(int argc, char **argv)
 {
-    const char *out = "results/site", *history = NULL, *baseline = NULL;
+    const char *out = "results/site", *history = NULL, *baseline = NULL, *records = NULL;
     const char *studies[MAX_ITEMS];
     char (*reports)[512] = calloc(MAX_ITEMS, sizeof *reports);
     int ns = 0, nr = 0, explicit = 0;
@@ -315,6 +316,7 @@ int sb_cli_site(int argc, char **argv)
         if (!strcmp(a, "--out") && v) out = v, i++;
         else if (!strcmp(a, "--study") && v && ns < MAX_ITEMS) studies[ns++] = v, i++, explicit = 1;
         else if (!strcmp(a, "--history") && v) history = v, i++, explicit = 1;
+        else if (!strcmp(a, "--dir") && v) records = v, i++;
         else if (!strcmp(a, "--baseline") && v) baseline = v, i++;
         else if (!strcmp(a, "--report") && v && nr < MAX_ITEMS) snprintf(reports[nr++], 512, "%s", v), i++, explicit = 1;
         else if (!strcmp(a, "--commit-url") && v) {
@@ -383,7 +385,7 @@ int sb_cli_site(int argc, char **argv)
             free(st);
             if (!ok) continue;
         }
-        int rc = sb_site_study(S, studies[k], &est[nst]);
+        int rc = sb_site_study(S, studies[k], records, &est[nst]);
         if (rc == 0) nst++;
     }
     for (int k = 0; k < nr; k++)

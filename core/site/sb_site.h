@@ -92,8 +92,10 @@ typedef struct sb_site_entry {   /* a line of the index */
     char href[800], title[512], date[80], provenance[1024];
 } sb_site_entry;
 
-/* a study's pages (overview, scenes, runs) from its file; the index line in e */
-int sb_site_study(sb_site *S, const char *study_file, sb_site_entry *e);
+/* a study's pages (overview, scenes, runs) from its file (records: its
+ * records directory instead of the file's, or NULL); the index line in e;
+ * 1 for a study that is not an accuracy study (its report is rendered) */
+int sb_site_study(sb_site *S, const char *study_file, const char *records, sb_site_entry *e);
 /* the nightly history page from the history CSV and the baseline (may be NULL) */
 int sb_site_nightly(sb_site *S, const char *history, const char *baseline, sb_site_entry *e);
 

@@ -54,6 +54,15 @@ static void num_cell(FILE *f, double v, const char *fmt)
     fputs("</td>", f);
 }
 
+/* a cost and how it was reached (the bracketing dofs) */
+static void cost_cell(FILE *f, double v, const char *how)
+{
+    if (!isfinite(v)) { fputs("<td class=\"r\" data-v=\"\">—</td>", f); return; }
+    fprintf(f, "<td class=\"r\" data-v=\"%.17g\">%.3g<br><span class=\"how\">", v, v);
+    sb_html_text(f, how);
+    fputs("</span></td>", f);
+}
+
 static void label_of(const sb_study_data *d, int c, char *buf, size_t len) { sb_study_config_label(d, c, buf, len); }
 
 /* ---- the overview ------------------------------------------------------------ */
@@ -64,12 +73,19 @@ static void selection_rows(FILE *f, const sb_study_data *d, int cost)
     int nc = d->n_configs;
     double *cst = malloc((size_t)nc * sizeof *cst);
     int *ord = malloc((size_t)nc * sizeof *ord);
-    if (!cst || !ord) goto out;
+    char (*how)[96] = malloc((size_t)nc * sizeof *how);
+    if (!cst || !ord || !how) goto out;
     for (int i = 0; i < st->n_scenes; i++) {
         if (!unique_ranked(st, i)) continue;
         for (int t = 0; t < st->n_targets; t++) {
             for (int c = 0; c < nc; c++) {
-                cst[c] = sb_study_reach(d, i, c, cost, st->targets[t], NULL, NULL, NULL);
+                long lo, hi;
+                double best;
+                cst[c] = sb_study_reach(d, i, c, cost, st->targets[t], &lo, &hi, &best);
+                if (isfinite(cst[c]) && lo == 0) snprintf(how[c], sizeof how[c], "≤, already at %ld dofs", hi);
+                else if (isfinite(cst[c])) snprintf(how[c], sizeof how[c], "%ld–%ld dofs", lo, hi);
+                else if (isfinite(best)) snprintf(how[c], sizeof how[c], "best %.2g", best);
+                else snprintf(how[c], sizeof how[c], "no converged run with an error");
                 if (!sb_study_has_record(d, i, c) || isnan(cst[c])) cst[c] = INFINITY;
             }
             int nfin = sb_select_order(nc, cst, ord);
@@ -83,11 +99,11 @@ static void selection_rows(FILE *f, const sb_study_data *d, int cost)
             fputs("<td>", f);
             sb_html_text(f, a);
             fputs("</td>", f);
-            num_cell(f, nfin >= 1 ? cst[ord[0]] : NAN, "%.3g");
+            cost_cell(f, nfin >= 1 ? cst[ord[0]] : NAN, nfin >= 1 ? how[ord[0]] : "");
             fputs("<td>", f);
             sb_html_text(f, b);
             fputs("</td>", f);
-            num_cell(f, nfin >= 2 ? cst[ord[1]] : NAN, "%.3g");
+            cost_cell(f, nfin >= 2 ? cst[ord[1]] : NAN, nfin >= 2 ? how[ord[1]] : "");
             num_cell(f, nfin >= 2 ? cst[ord[1]] / cst[ord[0]] : NAN, "%.2f");
             fputs("<td>", f);
             int listed = 0;
@@ -97,6 +113,9 @@ static void selection_rows(FILE *f, const sb_study_data *d, int cost)
                 label_of(d, ord[k], l, sizeof l);
                 if (listed++) fputs("; ", f);
                 sb_html_text(f, l);
+                fputs(" <span class=\"how\">(", f);
+                sb_html_text(f, how[ord[k]]);
+                fputs(")</span>", f);
             }
             fputs(listed ? "" : "none", f);
             fputs("</td></tr>\n", f);
@@ -105,6 +124,7 @@ static void selection_rows(FILE *f, const sb_study_data *d, int cost)
 out:
     free(cst);
     free(ord);
+    free(how);
 }
 
 /* profiles as JSON: [{title, series: [{label, colour, pts: [[tau, rho]...]}]}] */
@@ -320,12 +340,12 @@ static void scene_page(sb_site *S, const sb_study_data *d, int i, const char *nm
     }
 }
 
-int sb_site_study(sb_site *S, const char *study_file, sb_site_entry *e)
+int sb_site_study(sb_site *S, const char *study_file, const char *records, sb_site_entry *e)
 {
     sb_study *st = calloc(1, sizeof *st);
     char err[2048];
     if (!st) return -1;
-    if (sb_study_load(study_file, NULL, st, err, sizeof err)) {
+    if (sb_study_load(study_file, records, st, err, sizeof err)) {
         fprintf(S->err, "shellbench site: %s\n", err);
         free(st);
         S->errors++;
