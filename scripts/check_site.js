@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // check_site.js — open a shellbench site in headless Chromium through the
-// DevTools protocol (node's built-in WebSocket: run with
-// `node --experimental-websocket` on node 20) and check every page asked for:
+// DevTools protocol (a minimal WebSocket client below: node's standard
+// library only, any node from Debian 12's 18 on) and check every page asked for:
 //   * no console error, uncaught exception or failed resource load;
 //   * every plot (.sb-plot) drawn by Vega: data-rendered="1" and, where the
 //     page says how many series it drew from its data (data-expect-series),
@@ -14,11 +14,13 @@
 // saves screenshots and prints each page's load time (navigation to plots
 // drawn; reported, never asserted).
 //
-// usage: node --experimental-websocket scripts/check_site.js SITE_DIR SHOTS_DIR SPEC.json
+// usage: node scripts/check_site.js SITE_DIR SHOTS_DIR SPEC.json
 // SPEC: {"pages": [{"path": "index.html", "shot": "index.png", "text": "...", "table": {...}}]}
 "use strict";
 const { spawn } = require("child_process");
+const crypto = require("crypto");
 const fs = require("fs");
+const http = require("http");
 const os = require("os");
 const path = require("path");
 
@@ -32,6 +34,54 @@ const chromium = process.env.SB_CHROMIUM || "/usr/bin/chromium";
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), "sb-chromium-"));
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 let failures = 0;
+
+/* RFC 6455, client side, text frames only: what the DevTools protocol needs */
+function wsConnect(url) {
+  return new Promise((resolve, reject) => {
+    const u = new URL(url);
+    const req = http.request({ host: u.hostname, port: u.port, path: u.pathname, headers: {
+      Connection: "Upgrade", Upgrade: "websocket", "Sec-WebSocket-Version": "13",
+      "Sec-WebSocket-Key": crypto.randomBytes(16).toString("base64") } });
+    req.on("error", reject);
+    req.on("response", (res) => reject(new Error("no WebSocket upgrade: HTTP " + res.statusCode)));
+    req.on("upgrade", (res, socket, head) => {
+      let buf = head, parts = [];
+      const ws = {
+        onmessage: null,
+        send(text) {
+          const data = Buffer.from(text, "utf8"), n = data.length, mask = crypto.randomBytes(4);
+          const hdr = n < 126 ? Buffer.from([0x81, 0x80 | n]) : n < 65536 ? Buffer.from([0x81, 0x80 | 126, n >> 8, n & 255])
+            : Buffer.concat([Buffer.from([0x81, 0x80 | 127, 0, 0, 0, 0]), (() => { const b = Buffer.alloc(4); b.writeUInt32BE(n); return b; })()]);
+          for (let i = 0; i < n; i++) data[i] ^= mask[i & 3];
+          socket.write(Buffer.concat([hdr, mask, data]));
+        },
+        close() { socket.destroy(); },
+      };
+      socket.on("data", (d) => {
+        buf = Buffer.concat([buf, d]);
+        for (;;) {
+          if (buf.length < 2) return;
+          const fin = buf[0] & 0x80, op = buf[0] & 15, masked = buf[1] & 0x80;
+          let len = buf[1] & 127, off = 2;
+          if (len === 126) { if (buf.length < 4) return; len = buf.readUInt16BE(2); off = 4; }
+          else if (len === 127) { if (buf.length < 10) return; len = Number(buf.readBigUInt64BE(2)); off = 10; }
+          if (masked) off += 4;
+          if (buf.length < off + len) return;
+          const payload = buf.subarray(off, off + len);
+          buf = buf.subarray(off + len);
+          if (op === 8) { socket.destroy(); return; }
+          if (op === 9) continue;   /* ping: Chromium does not send them here */
+          if (op === 1 || op === 0) {
+            parts.push(Buffer.from(payload));
+            if (fin) { const m = Buffer.concat(parts).toString("utf8"); parts = []; if (ws.onmessage) ws.onmessage({ data: m }); }
+          }
+        }
+      });
+      resolve(ws);
+    });
+    req.end();
+  });
+}
 function fail(page, msg) { failures++; console.log(`FAIL ${page}: ${msg}`); }
 function ok(page, msg) { console.log(`ok   ${page}: ${msg}`); }
 
@@ -47,11 +97,11 @@ async function main() {
   if (!port) throw new Error("chromium did not start (no DevToolsActivePort)");
   let targets = [];
   for (let i = 0; i < 50 && !targets.length; i++) {
-    targets = (await (await fetch(`http://127.0.0.1:${port}/json/list`)).json()).filter((t) => t.type === "page");
+    targets = JSON.parse(await new Promise((res, rej) => http.get(`http://127.0.0.1:${port}/json/list`, (r) => {
+      let b = ""; r.on("data", (c) => (b += c)); r.on("end", () => res(b)); }).on("error", rej))).filter((t) => t.type === "page");
     if (!targets.length) await sleep(100);
   }
-  const ws = new WebSocket(targets[0].webSocketDebuggerUrl);
-  await new Promise((res, rej) => { ws.onopen = res; ws.onerror = rej; });
+  const ws = await wsConnect(targets[0].webSocketDebuggerUrl);
   let id = 0;
   const pending = new Map(), listeners = [];
   ws.onmessage = (ev) => {

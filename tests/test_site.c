@@ -148,7 +148,7 @@ SB_TEST(small_site_and_browser)
         printf("test_site: browser check skipped: /usr/bin/chromium or node is not installed "
                "(scripts/ensure_deps.sh installs chromium; make check-site)\n");
     } else {
-        rc = sb_sh(out, sizeof out, err, sizeof err, "cd %s && node --experimental-websocket scripts/check_site.js %s/site "
+        rc = sb_sh(out, sizeof out, err, sizeof err, "cd %s && node scripts/check_site.js %s/site "
                    "%s/shots tests/site/spec.json", root, dir, dir);
         CHECK_MSG(rc == 0, "browser check failed (exit %d):\n%s%s", rc, out, err);
         if (rc == 0) printf("test_site: browser check passed\n");
