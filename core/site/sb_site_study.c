@@ -14,6 +14,20 @@
 #include <string.h>
 #include <sys/stat.h>
 
+/* The rule for run pages: every record of a study gets its page while the
+ * study has at most SB_SITE_MAX_RUN_PAGES records; a larger study gets them
+ * for the points of its work-precision diagrams only (recorded runs of the
+ * unperturbed start with an error), the others are rows of the scene's
+ * table with a link to their record. */
+#define SB_SITE_MAX_RUN_PAGES 1000
+
+static int has_page(const sb_study_data *d, int k, int all)
+{
+    const sb_study_point *q = &d->pt[k];
+    if (q->state != SB_POINT_RECORDED) return 0;
+    return all || (d->plan.runs[k].start == 0 && isfinite(q->error) && q->error > 0);
+}
+
 static int unique_ranked(const sb_study *st, int i)
 {
     return st->scenes[i].solution == SB_SOLUTION_UNIQUE && st->scenes[i].error != SB_ERRKIND_NONE;
@@ -194,7 +208,7 @@ out:
 
 /* ---- a scene page ------------------------------------------------------------------ */
 
-static void scene_page(sb_site *S, const sb_study_data *d, int i, const char *nm, int n_costs, const int *costs)
+static void scene_page(sb_site *S, const sb_study_data *d, int i, const char *nm, int n_costs, const int *costs, int all)
 {
     const sb_study *st = d->st;
     char rel[700], sn[128], title[300], h[1400];
@@ -321,12 +335,19 @@ static void scene_page(sb_site *S, const sb_study_data *d, int i, const char *nm
         num_cell(f, rec ? q->work : NAN, "%.4g");
         num_cell(f, rec ? q->error : NAN, "%.3g");
         num_cell(f, rec ? q->energy : NAN, "%.6g");
-        if (rec) {
+        if (has_page(d, k, all)) {
             char rr[700];
             run_rel(st, d, k, rr, sizeof rr);
             fputs("<td><a href=\"", f);
             sb_html_attr(f, rr + strlen("studies/") + strlen(nm) + 1);
             fputs("\">page</a></td>", f);
+        } else if (rec) {
+            char link[4200];
+            if (sb_site_link(S, rel, r->out, link, sizeof link) == 0) {
+                fputs("<td><a href=\"", f);
+                sb_html_attr(f, link);
+                fputs("\">record</a></td>", f);
+            } else fputs("<td></td>", f);
         } else fputs("<td></td>", f);
         fputs("</tr>\n", f);
     }
@@ -378,9 +399,10 @@ int sb_site_study(sb_site *S, const char *study_file, const char *records, sb_si
         if (q->build[0] && !strstr(builds, q->build) && strlen(builds) + strlen(q->build) + 3 < sizeof builds)
             snprintf(builds + strlen(builds), sizeof builds - strlen(builds), "%s%s", builds[0] ? ", " : "", q->build);
     }
-    /* one page per recorded run */
+    /* one page per recorded run (the rule above) */
+    const int all = rec <= SB_SITE_MAX_RUN_PAGES;
     for (int k = 0; k < d.plan.n; k++) {
-        if (d.pt[k].state != SB_POINT_RECORDED) continue;
+        if (!has_page(&d, k, all)) continue;
         char rr[700], back[300], sn[128], label[400], l[160];
         run_rel(st, &d, k, rr, sizeof rr);
         sb_site_slug(st->scenes[d.plan.runs[k].scene].name, sn, sizeof sn);
@@ -462,7 +484,7 @@ int sb_site_study(sb_site *S, const char *study_file, const char *records, sb_si
         free(buf);
         sb_page_close(S, &p);
     }
-    for (int i = 0; i < st->n_scenes; i++) scene_page(S, &d, i, nm, n_costs, costs);
+    for (int i = 0; i < st->n_scenes; i++) scene_page(S, &d, i, nm, n_costs, costs, all);
     snprintf(e->href, sizeof e->href, "%s", rel);
     snprintf(e->title, sizeof e->title, "study %s: %d scenes, %d records, %d run pages", st->name, st->n_scenes, rec, pages);
     snprintf(e->date, sizeof e->date, "%s", last[0] ? last : "—");
