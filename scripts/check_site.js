@@ -166,7 +166,8 @@ async function main() {
       if (!has) fail(name, `the text ${JSON.stringify(pg.text)} is not shown`); else ok(name, `shows ${JSON.stringify(pg.text)} as text`);
     }
     if (pg.shot) {
-      const s = await send("Page.captureScreenshot", { format: "png", clip: { x: 0, y: 0, width: 1200, height: pg.shotHeight || 900, scale: pg.shotScale || 0.6 }, captureBeyondViewport: true });
+      const y0 = pg.shotAt ? await evaluate(`(function(){var e=document.querySelector(${JSON.stringify(pg.shotAt)});return e?e.getBoundingClientRect().top+window.scrollY:0;})()`) : 0;
+      const s = await send("Page.captureScreenshot", { format: "png", clip: { x: 0, y: y0, width: 1200, height: pg.shotHeight || 900, scale: pg.shotScale || 0.6 }, captureBeyondViewport: true });
       fs.writeFileSync(path.join(shotsDir, pg.shot), Buffer.from(s.result.data, "base64"));
       ok(name, "screenshot " + path.join(shotsDir, pg.shot));
     }

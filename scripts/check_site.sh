@@ -30,5 +30,6 @@ node scripts/check_site.js "$OUT/small" "$OUT/shots" tests/site/spec.json
 echo "check-site: the committed results' site ($OUT/full)"
 "$BIN" site --out "$OUT/full"
 echo "check-site: size of the accuracy study's pages: $(du -sh "$OUT/full/studies/accuracy" | cut -f1) (+ $(du -sh "$OUT/full/static" | cut -f1) of scripts shared by every page); whole site $(du -sh "$OUT/full" | cut -f1)"
+echo "check-site: load average before the timed pages: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores (the times below depend on it)"
 node scripts/check_site.js "$OUT/full" "$OUT/shots-full" scripts/check_site_full.json
 echo "check-site: screenshots in $OUT/shots (committed copies: docs/img/site-*.png)"

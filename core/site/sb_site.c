@@ -198,7 +198,10 @@ static int report_page(sb_site *S, const char *md, char (*reports)[512], int n_r
             while (a < n && text[a] == ' ') a++;
             size_t b = a;
             while (b < n && text[b] != '\n') b++;
-            snprintf(title, sizeof title, "%.*s", (int)(b - a < 250 ? b - a : 250), text + a);
+            size_t t = 0;   /* the heading's text without its inline-code and emphasis marks */
+            for (size_t q = a; q < b && t + 1 < sizeof title && t < 250; q++)
+                if (text[q] != '`' && text[q] != '*') title[t++] = text[q];
+            title[t] = 0;
             break;
         }
     if (!title[0]) snprintf(title, sizeof title, "%s", md);

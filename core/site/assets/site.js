@@ -256,7 +256,8 @@
       scales: [{ name: "x", type: "linear", domain: [0.5, runs.length + 0.5], range: "width", zero: false, nice: false },
                { name: "y", type: "linear", domain: [0, hi], range: "height", zero: true, nice: true },
                { name: "v", type: "ordinal", domain: VERDICTS, range: VCOLOURS }],
-      axes: [{ orient: "bottom", scale: "x", title: "run (oldest first)", tickMinStep: 1, format: "d" },
+      axes: [{ orient: "bottom", scale: "x", title: "run # (oldest first; the Runs table gives each run's build)", tickMinStep: 1,
+               labelOverlap: true, format: "d" },
              { orient: "left", scale: "y", title: "normalized CPU", grid: true }],
       legends: [{ fill: "v", title: "verdict", orient: "right", symbolType: "circle" }],
       marks: [
