@@ -171,8 +171,42 @@ async function main() {
       fs.writeFileSync(path.join(shotsDir, pg.shot), Buffer.from(s.result.data, "base64"));
       ok(name, "screenshot " + path.join(shotsDir, pg.shot));
     }
+    if (pg.interact) {   /* the first work-precision diagram: hover names the run, the wheel zooms, a click opens the run */
+      const mouse = (type, x, y, extra) => send("Input.dispatchMouseEvent", Object.assign({ type, x, y, button: "none" }, extra || {}));
+      const pt = await evaluate(`(function(){var d=document.querySelector('.sb-plot[data-plot="wp"]');if(!d)return null;
+        d.scrollIntoView();var p=d.querySelector('.points path');if(!p)return null;var r=p.getBoundingClientRect();
+        return {x:r.left+r.width/2,y:r.top+r.height/2};})()`);
+      if (!pt) fail(name, "no point in the work-precision diagram");
+      else {
+        await mouse("mouseMoved", pt.x, pt.y);
+        await sleep(300);
+        const tip = await evaluate(`(function(){var d=document.querySelector('.sb-plot[data-plot="wp"]');
+          var e=d.querySelector('[title]');return (d.getAttribute('title')||'')+(e?e.getAttribute('title'):'');})()`) || "";
+        if (!/record/.test(tip) || !/dofs/.test(tip) || !/status/.test(tip) || !/seconds/.test(tip) || !/work units/.test(tip))
+          fail(name, "hovering a point does not name its record, dofs, error, seconds, work units and status: " + JSON.stringify(tip));
+        else ok(name, "hover: " + tip.replace(/\n/g, "; ").slice(0, 160));
+        const ticks = () => evaluate(`Array.from(document.querySelector('.sb-plot[data-plot="wp"]').querySelectorAll('.role-axis-label text')).map(t=>t.textContent).join(' ')`);
+        const t0 = await ticks();
+        await mouse("mouseWheel", pt.x, pt.y, { deltaX: 0, deltaY: -600 });
+        await sleep(400);
+        const t1 = await ticks();
+        if (t0 === t1) fail(name, "the mouse wheel did not zoom (axis labels unchanged)"); else ok(name, "wheel zoom changed the axes");
+        await evaluate("document.querySelector('.sb-plot[data-plot=\"wp\"]').dispatchEvent(new MouseEvent('dblclick',{bubbles:true}))");
+        await load(url(pg.path));
+        const p2 = await evaluate(`(function(){var d=document.querySelector('.sb-plot[data-plot="wp"]');d.scrollIntoView();
+          var p=d.querySelector('.points path');var r=p.getBoundingClientRect();return {x:r.left+r.width/2,y:r.top+r.height/2};})()`);
+        await mouse("mouseMoved", p2.x, p2.y);
+        await mouse("mousePressed", p2.x, p2.y, { button: "left", clickCount: 1 });
+        await mouse("mouseReleased", p2.x, p2.y, { button: "left", clickCount: 1 });
+        let href = "";
+        for (let i = 0; i < 60 && !/\/runs\//.test(href); i++) { await sleep(100); href = await evaluate("location.href") || ""; }
+        if (!/\/runs\/.*\.html$/.test(href)) fail(name, "clicking a point did not open its run page: " + href);
+        else ok(name, "click opened " + href.replace(/^.*\/studies\//, "studies/"));
+      }
+    }
     if (pg.table) {   /* {id, filter, sort}: the hooks change the table */
       const t = pg.table, q = (e) => `(function(){var t=document.getElementById(${JSON.stringify(t.id)});return t?${e}:null;})()`;
+      if (pg.interact) await load(url(pg.path));   /* the click left the page */
       const total = await evaluate(q("+t.getAttribute('data-rows-visible')"));
       const r2 = await load(url(pg.path) + "?table=" + encodeURIComponent(t.id) + "&filter=" + encodeURIComponent(t.filter));
       if (errors.length) fail(name + "?filter", errors.join(" | "));

@@ -167,10 +167,10 @@
           encode: { update: { width: { signal: "width" }, height: { signal: "height" } } },
           marks: [{ type: "line", from: { data: "series" }, encode: { update: {
             x: { scale: "x", field: "x" }, y: { scale: "y", field: "error" }, stroke: { scale: "colour", field: "c" }, strokeWidth: { value: 1.6 } } } }] },
-        { type: "symbol", from: { data: "pts" }, clip: true, encode: { update: {
+        { type: "symbol", from: { data: "pts" }, clip: true, interactive: false, encode: { update: {
             x: { scale: "x", field: "x" }, y: { scale: "y", field: "error" }, size: { signal: "datum.front ? 190 : 0" },
             stroke: { value: "#999" }, fill: { value: "transparent" }, strokeWidth: { value: 1.2 } } } },
-        { type: "symbol", from: { data: "pts" }, clip: true, encode: { update: {
+        { type: "symbol", name: "points", from: { data: "pts" }, clip: true, encode: { update: {
             x: { scale: "x", field: "x" }, y: { scale: "y", field: "error" }, size: { value: 46 },
             stroke: { scale: "colour", field: "c" }, strokeWidth: { value: 1.5 },
             fill: { signal: "datum.converged ? scale('colour', datum.c) : 'white'" },
