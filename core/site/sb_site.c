@@ -183,6 +183,7 @@ static int report_page(sb_site *S, const char *md, char (*reports)[512], int n_r
     }
     fclose(in);
     if (!text) return -1;
+    text[n] = 0;   /* cap > n: the converter may look one byte past a line */
     char id[512], rel[700], dir[1024], title[300] = "";
     report_id(md, id, sizeof id);
     snprintf(rel, sizeof rel, "reports/%s.html", id);

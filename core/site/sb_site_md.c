@@ -22,7 +22,7 @@ static void inline_md(md_ctx *m, const char *s, size_t n, int in_link);
 static size_t find(const char *s, size_t n, size_t i, const char *d, size_t dl)
 {
     for (; i + dl <= n; i++) {
-        if (s[i] == '\\' && s[i + 1] != '`') { i++; continue; }
+        if (s[i] == '\\' && i + 1 < n && s[i + 1] != '`') { i++; continue; }
         if (!memcmp(s + i, d, dl)) return i;
     }
     return n;
