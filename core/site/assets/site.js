@@ -285,16 +285,28 @@
     if (!vega) { console.error("shellbench site: Vega did not load"); document.body.setAttribute("data-plots-done", "error"); return; }
     var el = document.getElementById("sb-data"), data = null;
     try { data = el ? JSON.parse(el.textContent) : null; } catch (e) { console.error("shellbench site: bad page data: " + e); }
-    var done = 0, failed = 0, k = 0;
+    var done = 0, failed = 0, queue = Array.prototype.slice.call(plots);
     /* one plot at a time, yielding between them: the page paints and scrolls
-     * while a long page (the nightly history) is still drawing */
+     * while a long page (the nightly history) is still drawing; a plot that
+     * comes into view (or is scrolled to) goes to the front of the queue */
+    if (typeof IntersectionObserver === "function" && queue.length > 8) {
+      var io = new IntersectionObserver(function (entries) {
+        entries.forEach(function (en) {
+          if (!en.isIntersecting) return;
+          io.unobserve(en.target);
+          var i = queue.indexOf(en.target);
+          if (i > 0) { queue.splice(i, 1); queue.unshift(en.target); }
+        });
+      }, { rootMargin: "300px" });
+      queue.forEach(function (d) { io.observe(d); });
+    }
     function next() {
-      if (k >= plots.length) {
+      if (!queue.length) {
         document.body.setAttribute("data-plots-ms", String(Math.round(performance.now())));
         document.body.setAttribute("data-plots-done", failed ? "error" : String(done));
         return;
       }
-      var div = plots[k++], kind = div.getAttribute("data-plot"), spec;
+      var div = queue.shift(), kind = div.getAttribute("data-plot"), spec;
       function bad(e) {
         failed++;
         div.setAttribute("data-error", String(e));
