@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // check_site.js — open a shellbench site in headless Chromium through the
 // DevTools protocol (a minimal WebSocket client below: node's standard
-// library only, any node from Debian 12's 18 on) and check every page asked for:
+// library only; run here with node 20, written for Debian 12's 18 too) and check every page asked for:
 //   * no console error, uncaught exception or failed resource load;
 //   * every plot (.sb-plot) drawn by Vega: data-rendered="1" and, where the
 //     page says how many series it drew from its data (data-expect-series),
