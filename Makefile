@@ -24,7 +24,7 @@ PKGLIBS  = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CFLAGS  ?= $(OPT) -g
 # core/ is the architecture, one folder per part (docs/architecture.md):
 # base -> scene -> mesh -> problem (method + run) -> linalg -> solvers -> record -> report, render, study, regress, cli; contact
-CORE_DIRS := base scene mesh problem linalg shell solvers record report render study regress cli contact
+CORE_DIRS := base scene mesh problem linalg shell solvers record report render study regress cli contact site
 CORE_INC  := $(CORE_DIRS:%=-Icore/%)
 CFLAGS  += -std=c11 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
            $(CORE_INC) -I/usr/include/suitesparse $(PKGCF) $(SAN) $(OPENMP) -MMD -MP
@@ -86,7 +86,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short nightly
+.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short nightly site check-site
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -114,6 +114,14 @@ $(BUILD)/core/base/sb_sysinfo.o: $(BUILD)/build_id.h
 $(BUILD)/core/base/sb_sysinfo.o: CFLAGS += -include $(BUILD)/build_id.h
 .PHONY: FORCE
 FORCE:
+
+# the site's own scripts and stylesheet, embedded in the binary (docs/site.md)
+SITE_ASSETS := $(wildcard core/site/assets/*)
+$(BUILD)/gen/sb_site_assets.h: $(SITE_ASSETS) scripts/embed_assets.sh | $(DEPS_STAMP)
+	@mkdir -p $(dir $@)
+	@bash scripts/embed_assets.sh core/site/assets > $@.tmp && mv $@.tmp $@
+$(BUILD)/core/site/sb_site_assets.o: $(BUILD)/gen/sb_site_assets.h
+$(BUILD)/core/site/sb_site_assets.o: CFLAGS += -I$(BUILD)/gen
 
 $(LIB): $(LIB_OBJ)
 	@rm -f $@
@@ -185,7 +193,21 @@ run: $(BIN)
 # writes a new baseline.
 nightly: $(BIN)
 	@$(BLAS_ENV) $(BIN) regress $(NIGHTLY_ARGS); rc=$$?; \
-	  echo "shellbench regress: exit $$rc (0 no regression, 1 regression, 2 input error; make itself exits 2 on any failure)"; exit $$rc
+	  echo "shellbench regress: exit $$rc (0 no regression, 1 regression, 2 input error; make itself exits 2 on any failure)"; \
+	  $(BIN) site --history results/nightly/history.csv --baseline bench/nightly/baseline.json \
+	    --report results/nightly/report.md --out results/nightly/site || echo "the nightly site was not written (above)"; \
+	  exit $$rc
+
+# The static HTML site (docs/site.md): `make site` from the committed studies'
+# records, reports and nightly history into results/site (not committed);
+# `make check-site` opens a small site and the committed one in headless
+# Chromium (scripts/check_site.sh: console errors, failed loads, plots and
+# their series, sorting, filtering, escaping; screenshots; load times).
+site: $(BIN)
+	$(BIN) site --out results/site
+
+check-site: $(BIN)
+	@bash scripts/check_site.sh $(BIN) $(BUILD)/check-site
 
 bench: $(BIN) $(BENCH_BIN)
 	$(BLAS_ENV) bash bench/run_all.sh $(BUILD)

@@ -24,6 +24,8 @@ if [ $rc -ne 0 ] && [ $rc -ne 1 ]; then
   echo "default study: sweep exit $rc (records kept; run again to continue)" >&2
 fi
 "$BIN" report --study "$STUDY" --dir "$OUT" --out "$OUT"
+# the same as a static site (docs/site.md): open $OUT/site/index.html in a browser
+"$BIN" site --study "$STUDY" --dir "$OUT" --report "$OUT/report.md" --out "$OUT/site" || echo "default study: the site was not written (above)" >&2
 echo
-echo "records: $OUT/<scene>/*.h5   report: $OUT/report.md   ($(( $(date +%s) - start )) s)"
+echo "records: $OUT/<scene>/*.h5   report: $OUT/report.md   site: $OUT/site/index.html   ($(( $(date +%s) - start )) s)"
 exit $rc

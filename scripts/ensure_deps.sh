@@ -19,6 +19,11 @@ command -v c++ >/dev/null 2>&1                    || need+=(g++)
 command -v make >/dev/null 2>&1                   || need+=(make)
 command -v git >/dev/null 2>&1                    || need+=(git)
 command -v python3 >/dev/null 2>&1                || need+=(python3)    # benchmark report scripts (standard library only)
+# shellbench site (docs/site.md): Vega 5 draws the plots in the pages (copied into every site);
+# make check-site and the short browser check in make test: headless Chromium driven by node
+[ -e /usr/share/javascript/vega/vega-view.min.js ] || need+=(libjs-vega)
+command -v chromium >/dev/null 2>&1               || need+=(chromium)
+command -v node >/dev/null 2>&1                   || need+=(nodejs)
 # MPI sweeps (mpirun -n N shellbench sweep --study FILE; optional: the build leaves MPI out without mpicc)
 command -v mpicc >/dev/null 2>&1                  || need+=(libopenmpi-dev)
 command -v mpirun >/dev/null 2>&1                 || need+=(openmpi-bin)

@@ -19,6 +19,7 @@
 #include "sb_output.h"
 #include "sb_record.h"
 #include "sb_regress.h"
+#include "sb_site.h"
 #include "sb_render.h"
 #include "sb_run.h"
 #include "sb_scene.h"
@@ -180,7 +181,7 @@ int main(int argc, char **argv)
         { "list", sb_cli_list }, { "check", cmd_check }, { "run", cmd_run }, { "sweep", sb_cli_sweep },
         { "report", cmd_report }, { "inspect", cmd_inspect }, { "render", sb_render_main },
         { "reference", sb_study_cmd_reference }, { "regress", sb_cli_regress },
-        { "digest", sb_cli_digest },
+        { "digest", sb_cli_digest }, { "site", sb_cli_site },
     };
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++)
         if (!strcmp(cmd, cmds[i].name)) {

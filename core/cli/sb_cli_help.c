@@ -3,6 +3,7 @@
 #include "sb_cli.h"
 #include "sb_record.h"
 #include "sb_render.h"
+#include "sb_site.h"
 #include "sb_sysinfo.h"
 
 #include <string.h>
@@ -20,6 +21,7 @@ static const char overview[] =
     "  render FILE.h5 [--out FILE.png] [...]         a ray-traced picture of a record (docs/render.md)\n"
     "  regress [--update-baseline] [...]             nightly regression against a baseline (docs/regression.md)\n"
     "  digest [--drop-state] RECORD.h5...            rewrite records as what reports read (docs/reproducibility.md)\n"
+    "  site [--out DIR] [...]                        a static HTML site of studies, reports, nightly history (docs/site.md)\n"
     "  help [COMMAND], --version\n"
     "exit codes: 0 converged / ok, 1 ran but did not converge, 2 usage or input error,\n"
     "            3 internal error, 4 stopped by --stop-after-steps (resumable),\n"
@@ -144,6 +146,10 @@ int sb_cli_help(const char *cmd, FILE *f)
         }
     if (!strcmp(cmd, "digest")) {   /* beside the command (core/cli/sb_cli_digest.c) */
         fputs(sb_cli_digest_help, f);
+        return 0;
+    }
+    if (!strcmp(cmd, "site")) {   /* beside the command (core/site/sb_site.c) */
+        fputs(sb_cli_site_help, f);
         return 0;
     }
     if (!strcmp(cmd, "regress")) {   /* beside the command (core/cli/sb_cli_regress.c) */
