@@ -194,6 +194,13 @@ typedef struct sb_run {
      * a final record); its stats' history pointers are not used, the
      * boundary is n_iters / n_steps records into /history */
     const sb_resume_point *resume;
+    /* the record's own write (issue 42): when write_event is an event
+     * (SB_EV_RECORD of the final record) and write_t0 its start, the seconds
+     * from write_t0 to the moment every group is written are added to that
+     * event (finest level) and to seconds_total in the file; 0 / 0: none.
+     * Closing, checksumming, fsync and renames stay outside the file. */
+    int write_event;
+    double write_t0;
 } sb_run;
 
 /* Call first thing in main() of a program that reads records it did not
@@ -212,7 +219,9 @@ void sb_run_init(sb_run *run);
 /* Layout version written as the root attribute "format_version"; a reader
  * refuses files with a newer version.  The layout is documented in
  * docs/recorded_figures.md. */
-#define SB_RECORD_FORMAT_VERSION 2   /* 2: root attribute "checksum" (docs/trust.md) */
+#define SB_RECORD_FORMAT_VERSION 3   /* 2: root attribute "checksum" (docs/trust.md); 3: exclusive event
+                                        seconds, harness events, CHOLMOD per factorization, peak memory,
+                                        per-iteration and per-step seconds by part (issue 42) */
 #define SB_RECORD_FORMAT_NAME "shellbench-run"
 /* Record status of a checkpoint (run.checkpoint): the run was still going. */
 #define SB_STATUS_UNFINISHED 2
