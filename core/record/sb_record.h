@@ -254,6 +254,10 @@ typedef struct sb_record_summary {
     int levels, steps, iterations, status, reason;
     double work_assembly, work_qp, seconds;
     double seconds_event[SB_EV_COUNT];
+    /* exclusive seconds per event (format 3, /stats/events_self_seconds) and
+     * what no event covers; has_self 0 for older records (then both are 0) */
+    int has_self;
+    double seconds_self[SB_EV_COUNT], seconds_unattributed;
     int has_error;
     double error_rms, error_max, error_probe;
     char error_kind[16];
