@@ -82,6 +82,42 @@ static int run(const char *dir, const char *tag, const char *args)
                  sb_test_bin(), args, dir, tag);
 }
 
+/* sb_stats_begin / sb_stats_event: an event's exclusive seconds are its
+ * inclusive ones minus those of the events closed inside it (also a plain
+ * sb_now() leaf, also inside an event begun and never closed). */
+SB_TEST(exclusive_seconds_of_nested_events)
+{
+    sb_stats s;
+    sb_stats_init(&s);
+    volatile double sink = 0;
+    double a = sb_stats_begin(&s);
+    for (int i = 0; i < 20000; i++) sink += i;
+    double b = sb_stats_begin(&s);
+    for (int i = 0; i < 20000; i++) sink += i;
+    double c = sb_now();                                 /* a leaf timed the old way */
+    for (int i = 0; i < 20000; i++) sink += i;
+    sb_stats_event(&s, 0, SB_EV_SOLVE, c);
+    sb_stats_event(&s, 0, SB_EV_FACTORIZE, b);
+    double d = sb_stats_begin(&s);                       /* begun, never closed (an error path) */
+    double e = sb_stats_begin(&s);
+    for (int i = 0; i < 20000; i++) sink += i;
+    sb_stats_event(&s, 1, SB_EV_HESSIAN, e);
+    (void)d;
+    sb_stats_event(&s, 0, SB_EV_QP, a);
+    const sb_event_stat *q = &s.ev[0][SB_EV_QP], *f = &s.ev[0][SB_EV_FACTORIZE], *v = &s.ev[0][SB_EV_SOLVE],
+                        *h = &s.ev[1][SB_EV_HESSIAN];
+    CHECK_EQ_INT(s.depth, 0);
+    CHECK_NEAR(v->self, v->seconds, 0);
+    CHECK_NEAR(h->self, h->seconds, 0);
+    CHECK_NEAR(f->self, f->seconds - v->seconds, 1e-15);
+    CHECK_NEAR(q->self, q->seconds - f->seconds - h->seconds, 1e-15);
+    CHECK(q->self >= 0 && f->self >= 0);
+    /* the exclusive seconds add up to the outermost event's inclusive ones */
+    CHECK_NEAR(q->self + f->self + v->self + h->self, q->seconds, 1e-14);
+    CHECK_NEAR(sb_stats_self_total(&s, SB_EV_HESSIAN), h->self, 0);
+    CHECK(sb_peak_rss() > 1e5);
+}
+
 /* The record's exclusive event seconds against seconds_total; its
  * per-step and per-iteration parts against their own step's and
  * iteration's seconds. */
@@ -309,6 +345,7 @@ SB_TEST(older_records_still_read)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
+        SB_CASE(exclusive_seconds_of_nested_events),
         SB_CASE(every_second_is_attributed),
         SB_CASE(cholmod_figures_per_factorization),
         SB_CASE(memory_estimate_within_30_percent_of_peak),

@@ -106,10 +106,12 @@ void sb_stats_event(sb_stats *s, int level, sb_event e, double t0)
     double child = 0.0;
     if (level < 0 || level >= SB_MAX_LEVELS) level = 0;
     if (s->depth < 0 || s->depth > SB_STATS_DEPTH) s->depth = 0;
-    /* the open event this closes (abandoned ones above it are dropped) */
+    /* the open event this closes; ones begun above it and never closed (an
+     * error path) are dropped, the events closed inside them counting as
+     * this one's */
     for (int k = s->depth - 1; k >= 0; k--)
         if (s->open_t0[k] == t0) {
-            child = s->open_child[k];
+            for (int j = k; j < s->depth; j++) child += s->open_child[j];
             s->depth = k;
             break;
         }
