@@ -184,6 +184,9 @@ int sb_run_resume(run_state *R, int quiet)
     rec->resumed = log;
     rec->resumed.count++;
     list_append(rec->resumed.steps, sizeof rec->resumed.steps, item);
+    /* this process's set-up includes reading the checkpoint (and restoring
+     * a mesh), so that no second of it is left unattributed (issue 42) */
+    setup = sb_now() - R->t_start;
     rec->resumed.setup_seconds += setup;
     rec->resumed.lost_seconds += fmax(ck_seconds - rp.seconds, 0.0);
     if (strcmp(ck_build, rec->build_id) && !strstr(rec->resumed.builds, ck_build)) {
