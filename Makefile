@@ -154,15 +154,26 @@ BLAS_ENV = OPENBLAS_NUM_THREADS=1 OPENBLAS_CORETYPE=$(SB_BLAS_CORE)
 # HDF5's own leak on malformed files is suppressed (tests/lsan.supp)
 LSAN_ENV = LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0
 
-# Each test binary writes its own result file; the summary sums them.
+# Each test binary writes its own result file (and its wall seconds, for the
+# summary's list of the slowest); the summary sums them.
 $(BUILD)/tests/%.result: $(BUILD)/tests/% $(BIN) $(MPI_BIN)
-	@SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) $(BLAS_ENV) $(LSAN_ENV) \
+	@t0=$$(date +%s.%N); SB_BIN=$(abspath $(BIN)) SB_ROOT=$(CURDIR) $(BLAS_ENV) $(LSAN_ENV) \
 	  $(abspath $<) > $@.log 2>&1; echo $$? > $@.rc; tail -n 1 $@.log > $@; \
+	  echo "$$t0 $$(date +%s.%N)" | awk '{printf "%.1f\n", $$2 - $$1}' > $@.seconds; \
 	  if [ "$$(cat $@.rc)" != 0 ]; then echo "--- $< failed:"; grep -E 'FAIL|not ok|rror|Sanitizer' $@.log | head -n 30; fi
 
-test: $(BIN) $(MPI_BIN) $(TEST_BIN)
-	@rm -f $(BUILD)/tests/*.result
-	@$(MAKE) --no-print-directory -k $(TEST_OK) || true
+# `make test` builds and runs the independent test binaries TEST_JOBS at a
+# time (default: the machine's cores), the slowest first so that the last
+# ones do not run alone; no test depends on how fast it runs
+# (docs/benchmarks.md "Tests").
+TEST_JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+TEST_SLOW := test_contact_self test_rmtr test_sweep_mpi test_regress test_cli_records test_assembly
+TEST_ORDER := $(filter $(TEST_SLOW:%=$(BUILD)/tests/%.result),$(TEST_OK)) \
+              $(filter-out $(TEST_SLOW:%=$(BUILD)/tests/%.result),$(TEST_OK))
+test:
+	@$(MAKE) --no-print-directory -j$(TEST_JOBS) $(BIN) $(MPI_BIN) $(TEST_BIN)
+	@rm -f $(BUILD)/tests/*.result $(BUILD)/tests/*.result.seconds
+	@$(MAKE) --no-print-directory -j$(TEST_JOBS) -k $(TEST_ORDER) || true
 	@bash scripts/test_summary.sh $(BUILD)/tests
 
 run: $(BIN)

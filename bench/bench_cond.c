@@ -7,7 +7,16 @@
  *
  *   bench_cond [SCENE] [MAX_RES]          cond against dofs (default trampoline, 32)
  *   bench_cond SCENE RES sigma            cond against the penalty exponent
- *                                         sigma = 3..7 at one resolution (Fig. 9 right) */
+ *                                         sigma = 3..7 at one resolution (Fig. 9 right)
+ *   bench_cond parts SCENE RES [KEY=VAL ...] [trace]
+ *                                         issue 43: the 2-norm condition number of H
+ *                                         and of its parts, one CSV line per matrix
+ *                                         (see bench_cond_parts below)
+ *
+ * The first two modes are kept as they made results/rmtr/cond*.md (power
+ * and inverse iteration: estimates from inside the spectrum).  `parts`
+ * measures it properly: exact eigenvalues by LAPACK at small sizes, Lanczos
+ * with residual bounds above. */
 #include "sb_context.h"
 #include "sb_scene.h"
 #include "sb_solver.h"
@@ -97,8 +106,11 @@ static int measure(const char *scene_name, int res, double sigma, int *n_out, do
     return 0;
 }
 
+static int bench_cond_parts(int argc, char **argv);
+
 int main(int argc, char **argv)
 {
+    if (argc > 1 && !strcmp(argv[1], "parts")) return bench_cond_parts(argc - 1, argv + 1);
     const char *scene_name = argc > 1 ? argv[1] : "trampoline";
     int max_res = argc > 2 ? atoi(argv[2]) : 32;
     int n, conv, rc;
@@ -121,4 +133,286 @@ int main(int argc, char **argv)
         fflush(stdout);
     }
     return 0;
+}
+
+/* ---- bench_cond parts: the condition number of H and of its parts (issue 43) ----
+ *
+ * At the converged first step of SCENE at RES elements per side (lsnewton,
+ * the paper's stopping rule), the Hessian of the incremental potential
+ *     H = M/dt^2 + K_el + K_pen        (DESIGN.md; RMTR paper (3.2), (3.6))
+ * with M the consistent mass, K_el the Hessian of the shell energy (denim,
+ * Eq. 3.3-3.4, plus the linear gravity term, whose Hessian is 0) and K_pen
+ * the Hessian of the boundary penalty beta/2 ||x - b||^2 (Eq. 3.6, beta =
+ * h^-sigma).  K_pen is found as K(beta) - K(beta = 0): a second copy of the
+ * method with method.beta_scale = 0 evaluated at the same x.  Every matrix
+ * is measured in the 2-norm, cond_2 = lambda_max / lambda_min (symmetric):
+ *   n <= dense_max: every eigenvalue by LAPACK dsyevd (exact to round-off),
+ *                   and cond_1 = ||A||_1 ||A^-1||_1 by Cholesky + inverse;
+ *   above:          Lanczos with full reorthogonalization, lambda_max on A,
+ *                   lambda_min on A^-1 through the CHOLMOD factor
+ *                   (shift-invert), each Ritz value with its residual bound.
+ * Output: one CSV line per matrix; `trace` adds the Lanczos convergence
+ * history of H as comment lines ("# trace ...").
+ *
+ *   bench_cond parts SCENE RES [method.K=V | solver.K=V | run.K=V ...]
+ *              [tag=NAME] [dense_max=N] [lanczos=KMAX] [both] [trace] [modes] [only=MATRIX] [header] */
+#include "sb_eigen.h"
+
+typedef struct cond_op { sb_matrix *A; sb_problem *p; } cond_op;
+
+static int op_mult(void *c, const double *x, double *y)
+{
+    sb_matrix_symv(((cond_op *)c)->A, x, y);
+    return SB_OK;
+}
+
+static int op_solve(void *c, const double *x, double *y)
+{
+    return sb_problem_solve(((cond_op *)c)->p, 0, x, y);
+}
+
+/* the n x n full column-major copy of a symmetric pattern matrix (upper CSC) */
+static double *dense_of(const sb_matrix *A)
+{
+    const sb_pattern *P = A->pat;
+    const int n = P->n;
+    double *D = calloc((size_t)n * n, sizeof *D);
+    if (!D) return NULL;
+    for (int j = 0; j < n; j++)
+        for (long q = P->colptr[j]; q < P->colptr[j + 1]; q++) {
+            int i = P->rowind[q];
+            D[i + (size_t)j * n] = A->val[q];
+            D[j + (size_t)i * n] = A->val[q];
+        }
+    return D;
+}
+
+typedef struct cond_row {
+    double lmin, lmax, cond1, rel_min, rel_max;
+    int steps_min, steps_max, dense;
+} cond_row;
+
+static void measure_dense(const sb_matrix *A, cond_row *r)
+{
+    const int n = A->pat->n;
+    double *D = dense_of(A), *w = malloc((size_t)n * sizeof *w);
+    r->dense = 1;
+    r->lmin = r->lmax = r->cond1 = NAN;
+    if (D && w && sb_eig_dense_sym(n, D, w) == SB_OK) {
+        r->lmin = w[0];
+        r->lmax = w[n - 1];
+    }
+    free(D);
+    D = dense_of(A);
+    if (D && r->lmin > 0) r->cond1 = sb_cond1_dense_spd(n, D);
+    free(D);
+    free(w);
+}
+
+/* Lanczos: lambda_max on A; lambda_min on A^-1 when A factors (positive
+ * definite), else the smallest Ritz value of A itself (then an estimate
+ * from inside the spectrum, flagged by its residual) */
+static void measure_lanczos(sb_problem *p, sb_matrix *A, int kmax, cond_row *r, FILE *trace, const char *name)
+{
+    const int n = A->pat->n;
+    cond_op c = { A, p };
+    double *h[8];
+    for (int i = 0; i < 8; i++) h[i] = calloc((size_t)kmax, sizeof(double));
+    sb_lanczos_result a = { 0, 0, 0, 0, 0, h[0], h[1], h[2], h[3] };
+    sb_lanczos_result b = { 0, 0, 0, 0, 0, h[4], h[5], h[6], h[7] };
+    r->dense = 0;
+    r->cond1 = NAN;
+    r->lmax = r->lmin = NAN;
+    if (sb_lanczos_extreme(n, op_mult, &c, kmax, 1e-10, NULL, &a) == SB_OK) {
+        r->lmax = a.theta_max;
+        r->rel_max = a.res_max / fabs(a.theta_max);
+        r->steps_max = a.steps;
+    }
+    sb_matrix *H = sb_problem_hessian(p, 0);
+    memcpy(H->val, A->val, (size_t)A->pat->nnz * sizeof *H->val);
+    if (sb_problem_factor(p, 0, 0.0) == SB_OK &&
+        sb_lanczos_extreme(n, op_solve, &c, kmax, 1e-10, NULL, &b) == SB_OK && b.theta_max > 0) {
+        r->lmin = 1.0 / b.theta_max;                       /* 1 / largest eigenvalue of A^-1 */
+        r->rel_min = b.res_max / b.theta_max;              /* relative, same for lambda and 1/lambda to first order */
+        r->steps_min = b.steps;
+    } else {
+        r->lmin = a.theta_min;                             /* not positive definite */
+        r->rel_min = a.res_min / fmax(fabs(a.theta_min), 1e-300);
+        r->steps_min = -a.steps;
+    }
+    if (trace) {
+        for (int k = 0; k < a.steps || k < b.steps; k++)
+            fprintf(trace, "# trace,%s,%d,%.10g,%.3g,%.10g,%.3g\n", name, k + 1,
+                    k < a.steps ? h[0][k] : NAN, k < a.steps ? h[1][k] / fabs(h[0][k]) : NAN,
+                    k < b.steps && h[4][k] > 0 ? 1.0 / h[4][k] : NAN,
+                    k < b.steps && h[4][k] > 0 ? h[5][k] / h[4][k] : NAN);
+    }
+    for (int i = 0; i < 8; i++) free(h[i]);
+}
+
+/* Where the extreme eigenvectors of H live: the share of |v|^2 on ghost
+ * control points (reference position outside the domain [0,a] x [0,b]),
+ * and on the out-of-plane (z) components.  Printed as comment lines. */
+static void describe_modes(const sb_matrix *A, const double *X, double a, double b)
+{
+    const int n = A->pat->n;
+    double *D = dense_of(A), *w = malloc((size_t)n * sizeof *w);
+    if (D && w && sb_eig_dense_sym_vec(n, D, w) == SB_OK) {
+        const int which[4] = { 0, 1, 2, n - 1 };
+        for (int k = 0; k < 4; k++) {
+            const double *v = D + (size_t)which[k] * n;
+            double ghost = 0, z = 0, corner = 0;
+            for (int i = 0; i < n / 3; i++) {
+                double x = X[3 * i], y = X[3 * i + 1], e = 1e-9;
+                double m = v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
+                int ox = x < -e || x > a + e, oy = y < -e || y > b + e;
+                if (ox || oy) ghost += m;
+                if (ox && oy) corner += m;
+                z += v[3 * i + 2] * v[3 * i + 2];
+            }
+            printf("# mode,lambda_%d,%.10g,ghost %.3f,corner ghosts %.3f,z %.3f\n", which[k] + 1, w[which[k]], ghost,
+                   corner, z);
+        }
+    }
+    free(D);
+    free(w);
+}
+
+static int bench_cond_parts(int argc, char **argv)
+{
+    if (argc < 3) {
+        fprintf(stderr, "usage: bench_cond parts SCENE RES [method.K=V ...] [tag=NAME] [dense_max=N] "
+                        "[lanczos=KMAX] [both] [trace] [header]\n");
+        return 2;
+    }
+    const char *scene_name = argv[1];
+    int res = atoi(argv[2]), dense_max = 1100, kmax = 150, both = 0, trace = 0, modes = 0;
+    const char *only = NULL;   /* only=NAME: measure that matrix alone (e.g. only=H at 51,483 dofs) */
+    const char *tag = "paper";
+    sb_context ctx, ctx2;
+    sb_context_init(&ctx);
+    sb_context_init(&ctx2);
+    sb_scene sc;
+    char path[1024], err[2048], perr[256];
+    if (sb_scene_resolve(scene_name, path, sizeof path) || sb_scene_load(path, &sc, err, sizeof err)) {
+        fprintf(stderr, "bench_cond: cannot load scene %s: %s\n", scene_name, err);
+        return 2;
+    }
+    const sb_method_type *mt = sb_method_find("rmtr");
+    const sb_solver_type *st = sb_solver_find("lsnewton");
+    sb_context *cs[2] = { &ctx, &ctx2 };
+    for (int k = 0; k < 2; k++) {
+        sb_paramset_add(&cs[k]->params, "run", sb_solve_params);
+        sb_paramset_add(&cs[k]->params, "solver", st->params);
+        sb_paramset_add(&cs[k]->params, "method", mt->params);
+        if (sb_paramset_set(&cs[k]->params, "run.stop=paper", perr, sizeof perr)) goto bad;
+    }
+    for (int i = 3; i < argc; i++) {
+        if (!strncmp(argv[i], "tag=", 4)) tag = argv[i] + 4;
+        else if (!strncmp(argv[i], "dense_max=", 10)) dense_max = atoi(argv[i] + 10);
+        else if (!strncmp(argv[i], "lanczos=", 8)) kmax = atoi(argv[i] + 8);
+        else if (!strcmp(argv[i], "both")) both = 1;
+        else if (!strcmp(argv[i], "trace")) trace = 1;
+        else if (!strcmp(argv[i], "modes")) modes = 1;
+        else if (!strncmp(argv[i], "only=", 5)) only = argv[i] + 5;
+        else if (!strcmp(argv[i], "header"))
+            printf("scene,setting,res,dofs,h,variant,lambda_min,lambda_max,cond2,cond1,how,steps_min,steps_max,"
+                   "relres_min,relres_max,step_converged,gnorm\n");
+        else if (sb_paramset_set(&ctx.params, argv[i], perr, sizeof perr) ||
+                 sb_paramset_set(&ctx2.params, argv[i], perr, sizeof perr)) goto bad;
+    }
+    if (sb_paramset_set(&ctx2.params, "method.beta_scale=0", perr, sizeof perr)) goto bad;
+    void *ms = calloc(1, mt->state_size), *ms2 = calloc(1, mt->state_size), *ss = calloc(1, st->state_size);
+    sb_method_config cfg = { res, 1, &ctx.params, &ctx, 0 }, cfg2 = { res, 1, &ctx2.params, &ctx2, 0 };
+    sb_problem *p = NULL;
+    if (mt->create(ms, &sc, &cfg) || mt->create(ms2, &sc, &cfg2) || sb_problem_create(&ctx, mt, ms, &sc, &p) ||
+        st->alloc(ss, p, &ctx.params)) {
+        fprintf(stderr, "bench_cond: set-up failed: %s %s\n", ctx.err, ctx2.err);
+        return 3;
+    }
+    const int n = sb_problem_n(p, 0);
+    double *x = malloc(n * sizeof(double)), *x0 = malloc(n * sizeof(double)), *v0 = calloc(n, sizeof(double));
+    double *g = malloc(n * sizeof(double));
+    mt->initial(ms, 0, x);
+    sb_step_info si;
+    memset(&si, 0, sizeof si);
+    si.step = 1; si.n_steps = sc.time.steps; si.dt = sc.time.dt; si.t = sc.time.dt;
+    for (int i = 0; i < sc.n_loads; i++) si.load_factor[i] = sb_load_factor(&sc, &sc.loads[i], 1);
+    for (int i = 0; i < sc.n_bcs; i++) si.motion_factor[i] = sb_bc_motion_factor(&sc, &sc.bcs[i], 1);
+    sb_problem_begin_step(p, &si, x, v0, x0);
+    mt->set_step(ms2, &si);
+    int it;
+    double f, gn;
+    sb_reason why = sb_solve_step(st, ss, p, &ctx.params, 1, x0, &it, &f, &gn);
+    /* H of the problem (inertia included), and its parts */
+    sb_problem_eval(p, 0, x0, &f, g, sb_problem_hessian(p, 0));
+    gn = sb_norm2(n, g);
+    const sb_pattern *pat = sb_problem_hessian(p, 0)->pat;
+    sb_matrix Hp, Kf, Ke, M, A;
+    sb_matrix_init(&Hp, pat); sb_matrix_init(&Kf, pat); sb_matrix_init(&Ke, pat);
+    sb_matrix_init(&M, pat); sb_matrix_init(&A, pat);
+    memcpy(Hp.val, sb_problem_hessian(p, 0)->val, (size_t)pat->nnz * sizeof(double));
+    double e;
+    sb_matrix_zero(&Kf); sb_matrix_zero(&Ke); sb_matrix_zero(&M);
+    mt->energy(ms, 0, x0, &e, NULL, &Kf);                     /* K_el + K_pen */
+    mt->energy(ms2, 0, x0, &e, NULL, &Ke);                    /* K_el (beta = 0) */
+    const int dynamic = sc.time.mode == SB_TIME_DYNAMIC;
+    const double idt2 = dynamic ? 1.0 / (sc.time.dt * sc.time.dt) : 0.0;
+    if (dynamic) mt->mass(ms, 0, &M);
+    /* check: the problem's H is M/dt^2 + K_el + K_pen to round-off */
+    sb_matrix_zero(&A);
+    sb_matrix_axpy(&A, 1.0, &Kf);
+    sb_matrix_axpy(&A, idt2, &M);
+    sb_matrix_axpy(&A, -1.0, &Hp);
+    double chk = sb_matrix_norm_max(&A) / sb_matrix_norm_max(&Hp);
+    if (!(chk < 1e-12)) fprintf(stderr, "bench_cond: H differs from M/dt^2 + K by %.3g (relative)\n", chk);
+    /* variants: coefficients of K_el, K_pen = Kf - Ke, M/dt^2 */
+    static const struct { const char *name; double ce, cp, cm; } V[] = {
+        { "H", 1, 1, 1 },              /* the paper's H (Fig. 9): M/dt^2 + K_el + K_pen */
+        { "H-pen", 1, 0, 1 },          /* without the penalty: M/dt^2 + K_el */
+        { "K", 1, 1, 0 },              /* without the mass: K_el + K_pen (quasi-static) */
+        { "K_el", 1, 0, 0 },           /* the shell alone */
+        { "M/dt2", 0, 0, 1 },          /* the mass term alone */
+        { "K_pen", 0, 1, 0 },          /* the penalty alone (singular: boundary only) */
+    };
+    const double h = sc.domain.size[0] / res;
+    for (size_t v = 0; v < sizeof V / sizeof V[0]; v++) {
+        if (!dynamic && V[v].cm != 0 && V[v].ce == 0) continue;
+        if (only && strcmp(only, V[v].name)) continue;
+        sb_matrix_zero(&A);
+        sb_matrix_axpy(&A, V[v].ce, &Ke);
+        if (V[v].cp != 0) { sb_matrix_axpy(&A, V[v].cp, &Kf); sb_matrix_axpy(&A, -V[v].cp, &Ke); }
+        if (V[v].cm != 0) sb_matrix_axpy(&A, V[v].cm * idt2, &M);
+        for (int pass = 0; pass < 2; pass++) {
+            cond_row r;
+            memset(&r, 0, sizeof r);
+            if (pass == 0 && n <= dense_max) measure_dense(&A, &r);
+            else if (pass == 1 || n > dense_max) measure_lanczos(p, &A, kmax, &r, trace && v == 0 ? stdout : NULL, V[v].name);
+            else continue;
+            double cond2 = r.lmin > 0 ? r.lmax / r.lmin : NAN;
+            printf("%s,%s,%d,%d,%.6g,%s,%.10g,%.10g,%.6g,%.6g,%s,%d,%d,%.3g,%.3g,%d,%.3g\n", sc.name, tag, res, n, h,
+                   V[v].name, r.lmin, r.lmax, cond2, r.cond1, r.dense ? "dense" : "lanczos", r.dense ? 0 : r.steps_min,
+                   r.dense ? 0 : r.steps_max, r.dense ? 0.0 : r.rel_min, r.dense ? 0.0 : r.rel_max,
+                   sb_reason_converged(why), gn);
+            fflush(stdout);
+            if (pass == 0 && !(both && n <= dense_max)) break;
+        }
+    }
+    if (modes && n <= dense_max) describe_modes(&Hp, x, sc.domain.size[0], sc.domain.size[1]);
+    sb_matrix_free(&Hp); sb_matrix_free(&Kf); sb_matrix_free(&Ke); sb_matrix_free(&M); sb_matrix_free(&A);
+    free(x); free(x0); free(v0); free(g);
+    st->free(ss);
+    free(ss);
+    sb_problem_free(p);
+    mt->destroy(ms);
+    mt->destroy(ms2);
+    free(ms);
+    free(ms2);
+    sb_scene_free(&sc);
+    sb_context_free(&ctx);
+    sb_context_free(&ctx2);
+    return 0;
+bad:
+    fprintf(stderr, "bench_cond: %s\n", perr);
+    return 2;
 }

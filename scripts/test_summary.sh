@@ -15,6 +15,9 @@ for r in "$dir"/*.result; do
   fi
 done
 n=$(ls "$dir"/*.result 2>/dev/null | wc -l)
+slow=$(for t in "$dir"/*.result.seconds; do [ -e "$t" ] && printf '%s %s\n' "$(cat "$t")" "$(basename "${t%.result.seconds}")"; done |
+       sort -rn | head -n 5 | awk '{printf "%s%s %s s", (NR > 1 ? ", " : ""), $2, $1}')
+[ -n "$slow" ] && echo "slowest test binaries (wall seconds): $slow"
 echo "test binaries: $n, crashed: $crashed"
 echo "$p passed, $f failed"
 [ "$f" = 0 ]

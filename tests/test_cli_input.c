@@ -32,6 +32,9 @@ static int terminal_safe(const char *s)
     for (; *p; p++) {
         if (*p == '\n') continue;
         if (*p < 0x20 || *p == 0x7F || *p == 0x9B || (p[0] == 0xC2 && p[1] >= 0x80 && p[1] < 0xA0)) return 0;
+        /* bidi embeddings, overrides and isolates: U+202A..U+202E, U+2066..U+2069 */
+        if (p[0] == 0xE2 && ((p[1] == 0x80 && p[2] >= 0xAA && p[2] <= 0xAE) || (p[1] == 0x81 && p[2] >= 0xA6 && p[2] <= 0xA9)))
+            return 0;
     }
     return 1;
 }
@@ -100,6 +103,11 @@ SB_TEST(escape_function)
     CHECK_MSG(sb_escape_controls(s, sizeof s) == 3 && strcmp(s, "\\u009b31m \\ufeff \\xff") == 0, "%s", s);
     snprintf(s, sizeof s, "caf\xC3\xA9 \xE2\x80\x96g\xE2\x80\x96");   /* UTF-8 text is kept */
     CHECK(sb_escape_controls(s, sizeof s) == 0 && strcmp(s, "caf\xC3\xA9 \xE2\x80\x96g\xE2\x80\x96") == 0);
+    /* issue 37 item 12: the right-to-left override and the other bidi controls */
+    snprintf(s, sizeof s, "a\xE2\x80\xAE" "b\xE2\x80\xAA\xE2\x81\xA6\xE2\x81\xA9" "c");
+    CHECK_MSG(sb_escape_controls(s, sizeof s) == 4 && strcmp(s, "a\\u202eb\\u202a\\u2066\\u2069c") == 0, "%s", s);
+    snprintf(s, sizeof s, "\xE2\x80\xA9\xE2\x80\xAF\xE2\x81\xA5\xE2\x81\xAA");   /* neighbours are kept */
+    CHECK_MSG(sb_escape_controls(s, sizeof s) == 0, "%s", s);
     char small[8];
     snprintf(small, sizeof small, "\x01\x02\x03");   /* truncated to whole escapes' bytes */
     sb_escape_controls(small, sizeof small);
@@ -159,6 +167,93 @@ SB_TEST(scene_from_stdin)
     CHECK(strstr(err, "not found") != NULL);
 }
 
+/* out and err together: terminal-safe, and the name shown escaped */
+static void echoed_escaped(sb_test_state *T, int ec, int want_ec, const char *what)
+{
+    static char both[sizeof out + sizeof err];
+    snprintf(both, sizeof both, "%s%s", out, err);
+    CHECK_MSG(ec == want_ec, "%s: exit %d", what, ec);
+    CHECK_MSG(terminal_safe(both) && strstr(both, "\\x1b[31m") && strstr(both, "\\u202e"), "%s: %s", what, both);
+}
+
+/* issue 37 item 12: every message that echoes input escapes it, with an
+ * escape sequence and U+202E (right-to-left override) in each name */
+SB_TEST(every_echo_escaped)
+{
+    const char *bin = sb_test_bin(), *root = sb_test_root();
+    const char *E = "X\x1b[31mY\xE2\x80\xAEZ", *J = "X\\u001b[31mY\\u202eZ";   /* raw, and as JSON text */
+    char p[512];
+    /* a missing record: inspect, render */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s inspect '%s/%s.h5'", bin, tmpdir, E), 2, "inspect");
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s render '%s/%s.h5' --out %s/x.png", bin, tmpdir, E,
+                            tmpdir), 2, "render");
+    /* render's option values */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s render r.h5 --color '%s'", bin, E), 2, "render --color");
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s render r.h5 --camera '%s'", bin, E), 2, "render --camera");
+    /* reference of a scene name */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s reference '%s'", tmpdir, bin, E), 2, "reference");
+    /* a study file's name; a study's keys and values; its records directory on stdout */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s sweep --study '%s/%s.json' --plan", bin, tmpdir, E), 2,
+                   "sweep --study FILE");
+    static const char *const study[] = {
+        "{\"study\": \"s\", \"%s\": 1, \"records\": \"%s/r\", \"scenes\": [{\"scene\": \"trampoline\", \"solution\": "
+        "\"unique\"}], \"methods\": [\"bhem\"], \"solvers\": [\"tr\"], \"res\": [4]}",
+        "{\"study\": \"s\", \"records\": \"%s/r\", \"scenes\": [{\"scene\": \"trampoline\", \"solution\": \"unique\"}], "
+        "\"methods\": [\"%s\"], \"solvers\": [\"tr\"], \"res\": [4]}",
+        "{\"study\": \"s\", \"records\": \"%s/r\", \"scenes\": [{\"scene\": \"trampoline\", \"solution\": \"unique\"}], "
+        "\"methods\": [\"bhem\"], \"solvers\": [\"tr\"], \"res\": [4], \"set\": {\"method.hessian\": \"%s\"}}",
+        "{\"study\": \"s\", \"records\": \"%s/r%s\", \"scenes\": [{\"scene\": \"trampoline\", \"solution\": \"unique\"}], "
+        "\"methods\": [\"bhem\"], \"solvers\": [\"tr\"], \"res\": [4]}",
+    };
+    for (int k = 0; k < 4; k++) {
+        char text[1024];
+        if (k == 0) snprintf(text, sizeof text, study[k], J, tmpdir);
+        else if (k == 3) snprintf(text, sizeof text, study[k], tmpdir, J);
+        else snprintf(text, sizeof text, study[k], tmpdir, J);
+        snprintf(p, sizeof p, "%s/study%d.json", tmpdir, k);
+        write_file(p, text, strlen(text));
+        echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s sweep --study %s --plan", root, bin, p),
+                       k == 3 ? 0 : 2, text);
+    }
+    /* a list sweep's records directory on stdout */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s sweep --scenes tests/scenes/membrane_dynamic.json "
+                            "--methods fixture_membrane --solvers lsnewton --res 2 --dir '%s/%s'", root, bin, tmpdir, E),
+                   0, "sweep --dir");
+    /* run: the record path it names at the end, and again when resumed */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s run --scene tests/scenes/membrane_dynamic.json "
+                            "--method fixture_membrane --solver lsnewton --res 2 --out '%s/%s/a.h5'", root, bin, tmpdir, E),
+                   0, "run --out");
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s run --scene tests/scenes/membrane_dynamic.json "
+                            "--method fixture_membrane --solver lsnewton --res 2 --out '%s/%s/a.h5' --resume", root, bin,
+                            tmpdir, E), 0, "run --resume");
+    /* regress: the baseline's and the suite's names */
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s regress --suite %s/study0.json --baseline '%s/%s.json' "
+                            "--out %s/rg --no-history", bin, tmpdir, tmpdir, E, tmpdir), 2, "regress --baseline");
+    echoed_escaped(T, sb_sh(out, sizeof out, err, sizeof err, "%s regress --suite '%s/%s.json' --baseline %s/none.json "
+                            "--update-baseline --out %s/rg --no-history", bin, tmpdir, E, tmpdir, tmpdir), 2,
+                   "regress --suite");
+}
+
+/* issue 37 item 13: a message says what is wrong */
+SB_TEST(messages_say_what_is_wrong)
+{
+    const char *bin = sb_test_bin(), *root = sb_test_root();
+    /* `reference nonexist` printed `scene "nonexist": ` and nothing after */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s reference nonexist", tmpdir, bin), 2);
+    CHECK_MSG(strstr(err, "\"nonexist\" not found") && strstr(err, "bench/scenes/nonexist.json") &&
+              strstr(err, "looked in") && lines(err) == 1, "%s", err);
+    /* a FIFO given by a bare name was "not found" */
+    char p[512];
+    snprintf(p, sizeof p, "%s/fifoscene", tmpdir);
+    CHECK(mkfifo(p, 0644) == 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && SB_ROOT=%s timeout 20 %s run --scene fifoscene "
+                       "--method bhem --solver tr --out none", tmpdir, root, bin), 2);
+    CHECK_MSG(strstr(err, "FIFO") && !strstr(err, "not found"), "%s", err);
+    /* a bundled name is still found with a directory of that name in the way */
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && mkdir -p trampoline && SB_ROOT=%s %s check trampoline",
+                       tmpdir, root, bin), 0);
+}
+
 /* issue 27: a scene bundles each method at its own resolution ("methods"),
  * with its own method.* settings; --res and --set win; names and keys the
  * registry does not know are refused by check and run, naming the file */
@@ -204,7 +299,8 @@ int main(int argc, char **argv)
     if (!mkdtemp(tmpdir)) return 3;
     static const sb_test_case cases[] = {
         SB_CASE(control_characters_escaped), SB_CASE(escape_function), SB_CASE(fifo_hdf5_bom_and_streams),
-        SB_CASE(scene_from_stdin), SB_CASE(scene_method_settings), SB_END,
+        SB_CASE(scene_from_stdin), SB_CASE(scene_method_settings), SB_CASE(every_echo_escaped),
+        SB_CASE(messages_say_what_is_wrong), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[600];

@@ -4,15 +4,19 @@
  * run.max_memory, or whose Hessian could not be indexed, is refused with a
  * sentence (exit 2) for methods with an estimate op (bhem, rmtr) and without
  * one (the fixtures, measured after create); the estimate op's sizes are
- * those create() builds (bhem, rmtr, linear_fem). */
+ * those create() builds (bhem, rmtr, linear_fem, adaptive_sqrt3); issue 37
+ * item 9: adaptive_sqrt3 and a study's plan are refused by the estimate
+ * before anything is built. */
 #include "cli_sh.h"
 #include "run_json.h"
 #include "sb_context.h"
 #include "sb_memory.h"
 #include "sb_test.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static char err[8192];
 
@@ -136,6 +140,88 @@ SB_TEST(estimate_op_matches_create)
     compare(T, "linear_fem", "drooping", 16, 2);
 }
 
+/* issue 37 item 9: refusals by the estimate, before anything is built.
+ * Counted, not timed: the commands run in a 400 MB address space, where a
+ * set-up that allocates before the estimate fails with "out of memory"
+ * (exit 3) instead of the estimate's sentence. */
+SB_TEST(refused_by_the_estimate_before_set_up)
+{
+    const char *bin = sb_test_bin(), *root = sb_test_root();
+    /* adaptive_sqrt3 had no estimate op: measured after create (90 s, 6.2 GB) */
+    int ec = sb_sh(NULL, 0, err, sizeof err, "ulimit -v 400000; cd %s && %s run --scene curtain --method adaptive_sqrt3 "
+                   "--solver linearized --res 2000 --out none --set run.max_memory=2", root, bin);
+    CHECK_EQ_INT(ec, 2);
+    CHECK_MSG(strstr(err, "method adaptive_sqrt3 on scene curtain at --res 2000") && strstr(err, "needs about") &&
+              strstr(err, "run.max_memory of 2.0 GB") && !strstr(err, "out of memory"), "%s", err);
+    /* the full resolution (every triangle refined) is estimated as such */
+    ec = sb_sh(NULL, 0, err, sizeof err, "ulimit -v 400000; cd %s && %s run --scene curtain --method adaptive_sqrt3 "
+               "--solver linearized --res 200 --set method.adaptive=0 --out none --set run.max_memory=2", root, bin);
+    CHECK_EQ_INT(ec, 2);
+    CHECK_MSG(strstr(err, "needs about") && !strstr(err, "out of memory"), "%s", err);
+    /* a study's plan at bhem res 4096 set bhem up (21 s, 5 GB) before saying "out of memory" */
+    char study[512], text[512], out[8192];
+    snprintf(study, sizeof study, "/tmp/sb_sizes_%d.json", (int)getpid());
+    snprintf(text, sizeof text, "{\"study\": \"big\", \"records\": \"/tmp/sb_sizes_%d\", \"scenes\": [{\"scene\": "
+             "\"trampoline\", \"solution\": \"unique\"}], \"methods\": [\"bhem\"], \"solvers\": [\"tr\"], "
+             "\"res\": [4, 4096]}", (int)getpid());
+    FILE *f = fopen(study, "w");
+    CHECK(f != NULL);
+    if (f) fputs(text, f), fclose(f);
+    ec = sb_sh(out, sizeof out, err, sizeof err, "ulimit -v 400000; cd %s && %s sweep --study %s --plan", root, bin, study);
+    CHECK_MSG(ec == 0, "exit %d: %s", ec, err);
+    CHECK_MSG(strstr(out, "res    4") && strstr(out, "refused: method bhem on scene trampoline at res 4096 with 1 level") &&
+              (strstr(out, "needs about") || strstr(out, "CHOLMOD")), "%s / %s", out, err);
+    /* and under a study's own run.max_memory */
+    snprintf(text, sizeof text, "{\"study\": \"big\", \"records\": \"/tmp/sb_sizes_%d\", \"scenes\": [{\"scene\": "
+             "\"trampoline\", \"solution\": \"unique\"}], \"methods\": [\"bhem\"], \"solvers\": [\"tr\"], "
+             "\"res\": [4, 128], \"set\": {\"run.max_memory\": 0.5}}", (int)getpid());
+    f = fopen(study, "w");
+    if (f) fputs(text, f), fclose(f);
+    ec = sb_sh(out, sizeof out, err, sizeof err, "ulimit -v 400000; cd %s && %s sweep --study %s --plan", root, bin, study);
+    CHECK_MSG(ec == 0 && strstr(out, "at res 128 with 1 level needs about") && strstr(out, "run.max_memory of 500 MB"),
+              "%s / %s", out, err);
+    remove(study);
+}
+
+/* adaptive_sqrt3's estimate op against create: the base mesh exactly, the
+ * full resolution within 10 % (boundary splits add a few vertices; an odd
+ * generation splits fewer triangles than all) */
+SB_TEST(adaptive_sqrt3_estimate_matches_create)
+{
+    char path[1024], msg[2048];
+    sb_scene sc;
+    CHECK(sb_scene_resolve("curtain", path, sizeof path) == SB_OK && sb_scene_load(path, &sc, msg, sizeof msg) == SB_OK);
+    /* every method of the build (not the test fixtures) is estimated before it is created */
+    for (int k = 0; k < sb_method_count(); k++)
+        if (!(sb_method_at(k)->flags & SB_METHOD_TEST_FIXTURE))
+            CHECK_MSG(sb_method_at(k)->estimate != NULL, "method %s has no estimate op", sb_method_at(k)->name);
+    const sb_method_type *mt = sb_method_find("adaptive_sqrt3");
+    CHECK(mt && mt->estimate);
+    if (!mt || !mt->estimate) return;
+    static const char *const sets[3][2] = { { "method.adaptive=1", "method.mesh=alternate" },
+                                            { "method.adaptive=0", "method.max_generation=4" },
+                                            { "method.adaptive=0", "method.max_generation=3" } };
+    for (int k = 0; k < 3; k++) {
+        sb_context ctx;
+        CHECK(sb_context_init(&ctx) == SB_OK);
+        sb_paramset_add(&ctx.params, "method", mt->params);
+        for (int j = 0; j < 2; j++) CHECK(sb_paramset_set(&ctx.params, sets[k][j], msg, sizeof msg) == SB_OK);
+        sb_method_config cfg = { 16, 1, &ctx.params, &ctx, 0 };
+        sb_method_size sz;
+        memset(&sz, 0, sizeof sz);
+        CHECK_EQ_INT(mt->estimate(&sc, &cfg, &sz), SB_OK);
+        void *ms = calloc(1, mt->state_size);
+        CHECK_EQ_INT(mt->create(ms, &sc, &cfg), SB_OK);
+        const double est = sz.nodes[0] * sz.bs, got = mt->n_dofs(ms, 0);
+        CHECK_MSG(k == 0 ? est == got : (est <= 1.1 * got && est >= 0.9 * got), "%s %s: %g dofs estimated, %g built",
+                  sets[k][0], sets[k][1], est, got);
+        mt->destroy(ms);
+        free(ms);
+        sb_context_free(&ctx);
+    }
+    sb_scene_free(&sc);
+}
+
 SB_TEST(estimate_of_absurd_sizes_is_finite_and_refused)
 {
     sb_method_size sz;
@@ -164,7 +250,8 @@ int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(res_beyond_the_scene_limit_refused), SB_CASE(memory_estimate_refuses_before_any_work),
-        SB_CASE(estimate_op_matches_create), SB_CASE(estimate_of_absurd_sizes_is_finite_and_refused), SB_END,
+        SB_CASE(estimate_op_matches_create), SB_CASE(estimate_of_absurd_sizes_is_finite_and_refused),
+        SB_CASE(refused_by_the_estimate_before_set_up), SB_CASE(adaptive_sqrt3_estimate_matches_create), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }

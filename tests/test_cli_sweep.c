@@ -135,12 +135,26 @@ SB_TEST(validate_api)
     CHECK_MSG(strstr(err, "not a directory"), "%s", err);
 }
 
+/* issue 37 item 13: `sweep --strict` counted a validation failure (exit 5:
+ * converged, a probe out of tolerance) as "failed" */
+SB_TEST(strict_counts_validation_failures_apart)
+{
+    char dir[512];
+    snprintf(dir, sizeof dir, "%s/strict", tmpdir);
+    /* bhem on 2 x 2 patches of the clamped plate: converged, validation failed */
+    int ec = sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s sweep --scenes plate_clamped --methods bhem --solvers tr "
+                   "--res 2 --strict --dir %s", sb_test_root(), sb_test_bin(), dir);
+    CHECK_EQ_INT(ec, 5);
+    CHECK_MSG(strstr(out, "validation failed") && strstr(out, "0 failed, 1 validation failed"), "%s", out);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_cli_sweep_XXXXXX");
     if (!mkdtemp(tmpdir)) return 3;
     static const sb_test_case cases[] = {
-        SB_CASE(validated_before_the_first_run), SB_CASE(path_scenes_resolutions_and_resume), SB_CASE(validate_api), SB_END,
+        SB_CASE(validated_before_the_first_run), SB_CASE(path_scenes_resolutions_and_resume), SB_CASE(validate_api),
+        SB_CASE(strict_counts_validation_failures_apart), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[600];

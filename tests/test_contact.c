@@ -21,6 +21,7 @@
 #include "sb_method.h"
 #include "sb_problem.h"
 #include "sb_solver.h"
+#include "cli_sh.h"
 #include "fd_check.h"
 #include "sb_test.h"
 
@@ -441,8 +442,81 @@ SB_TEST(obstacle_overrunning_the_start_is_a_recorded_outcome)
     size_t n = 0;
     while (fgets(line, sizeof line, p) && n + strlen(line) < sizeof out) { strcat(out, line); n += strlen(line); }
     pclose(p);
-    CHECK_MSG(strstr(out, "\"reason\": \"nonfinite\"") != NULL, "output: %s", out);
+    /* issue 37: named, with the obstacle, instead of an anonymous nonfinite */
+    CHECK_MSG(strstr(out, "\"reason\": \"obstacle_swept\"") != NULL, "output: %s", out);
+    CHECK_MSG(strstr(out, "obstacle \\\"plane_0\\\" (plane)") != NULL, "output: %s", out);
     CHECK_MSG(strstr(out, "exit 1") != NULL, "output: %s", out);
+}
+
+/* issue 37 item 5: the box of drape_box moved 0.3 m up in one step, through
+ * the cloth.  The barrier sees the box at the step's end only (above the
+ * cloth, which it then never touches): before the fix every method
+ * converged with "inside": 0 and the cloth fell as if the box had jumped
+ * through it.  Now the box's swept motion is checked against every sample
+ * point at the step's start and the run stops at step 1 with reason
+ * obstacle_swept (exit 1), the reason naming the box in the summary.  Every
+ * method with contact, each with a solver it runs. */
+SB_TEST(obstacle_moving_through_the_cloth_is_caught_barrier)
+{
+    static const char *const runs[][2] = { { "bhem", "lsnewton" }, { "linear_fem", "lsnewton" },
+                                           { "rmtr", "tr" }, { "adaptive_sqrt3", "linearized" },
+                                           { "linear_fem", "linearized" } };
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        char out[16384] = "", err[4096] = "";
+        int rc = sb_sh(out, sizeof out, err, sizeof err,
+                       "cd '%s' && '%s' run --scene tests/scenes/contact/box_jump.json --method %s --solver %s "
+                       "--out none --quiet --summary json", sb_test_root(), sb_test_bin(), runs[i][0], runs[i][1]);
+        CHECK_MSG(rc == 1, "%s/%s: exit %d, %s", runs[i][0], runs[i][1], rc, err);
+        CHECK_MSG(strstr(out, "\"reason\": \"obstacle_swept\"") != NULL, "%s/%s: %s", runs[i][0], runs[i][1], out);
+        CHECK_MSG(strstr(out, "\"stopped\": \"step 1: obstacle \\\"table\\\" (box) moves through the cloth") != NULL,
+                  "%s/%s: %s", runs[i][0], runs[i][1], out);
+        CHECK_MSG(strstr(out, "\"status\": \"converged\"") == NULL, "%s/%s: %s", runs[i][0], runs[i][1], out);
+    }
+}
+
+/* The same jump under contact.model "impulse": the methods' own responses
+ * sweep the obstacle against the cloth (relative motion over the step), so
+ * the box is caught (CCD hits > 0) and carries the cloth up; the run never
+ * converges with the cloth left below the box (here the yank tears it:
+ * strain_bound, a recorded outcome). */
+SB_TEST(obstacle_moving_through_the_cloth_is_caught_impulse)
+{
+    static const char *const methods[] = { "bhem", "linear_fem", "adaptive_sqrt3" };
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++) {
+        char out[16384] = "", err[4096] = "";
+        const int a3 = !strcmp(methods[i], "adaptive_sqrt3");
+        int rc = sb_sh(out, sizeof out, err, sizeof err,
+                       "cd '%s' && '%s' run --scene tests/scenes/contact/box_jump_impulse.json --method %s --solver %s "
+                       "--out none --quiet --summary json", sb_test_root(), sb_test_bin(), methods[i],
+                       a3 ? "linearized --set run.single_step_rtol=1e300" : "lsnewton");
+        const char *h = strstr(out, "\"ccd_hits\": ");
+        CHECK_MSG(h && atol(h + 12) > 0, "%s: exit %d, %s %s", methods[i], rc, out, err);
+        CHECK_MSG(rc == 1 || rc == 0, "%s: exit %d, %s", methods[i], rc, err);
+        /* converged: then no collision may be left unresolved */
+        if (rc == 0) CHECK_MSG(strstr(out, "\"unresolved_steps\": 0") != NULL, "%s: %s", methods[i], out);
+    }
+}
+
+/* issue 37 item 5: a cloth that starts inside an obstacle passed `check`
+ * and ended `nonfinite` without naming it.  Now `check` and `run` (either
+ * contact model) refuse it before any work (exit 2) with a sentence naming
+ * the obstacle and the point. */
+SB_TEST(cloth_starting_inside_an_obstacle_is_refused)
+{
+    char out[4096] = "", err[4096] = "";
+    int rc = sb_sh(out, sizeof out, err, sizeof err, "cd '%s' && '%s' check tests/scenes/contact/box_inside.json",
+                   sb_test_root(), sb_test_bin());
+    CHECK_MSG(rc == 2, "check: exit %d, %s", rc, out);
+    CHECK_MSG(strstr(err, "the cloth starts inside obstacle \"table\" (box)") != NULL, "check: %s", err);
+    CHECK_MSG(strstr(err, "material coordinates (") != NULL, "check: %s", err);
+    static const char *const methods[] = { "bhem", "linear_fem", "rmtr" };
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++) {
+        rc = sb_sh(out, sizeof out, err, sizeof err,
+                   "cd '%s' && '%s' run --scene tests/scenes/contact/box_inside.json --method %s --solver tr "
+                   "--out none --quiet", sb_test_root(), sb_test_bin(), methods[i]);
+        CHECK_MSG(rc == 2, "run %s: exit %d, %s", methods[i], rc, err);
+        CHECK_MSG(strstr(err, "starts inside obstacle \"table\" (box)") != NULL, "run %s: %s", methods[i], err);
+    }
 }
 
 static int sh_out(const char *cmd, char *out, size_t len)
@@ -473,14 +547,79 @@ SB_TEST(resume_with_contact_is_bit_identical)
     CHECK_EQ_INT(atoi((sh_out(cmd, out, sizeof out), out)), 4);
     snprintf(cmd, sizeof cmd, fmt, sb_test_bin(), sb_test_root(), dir, "b", "--resume");
     CHECK_EQ_INT(atoi((sh_out(cmd, out, sizeof out), out)), 0);
-    snprintf(cmd, sizeof cmd, "h5dump -d /final/x -g /final/contact '%s/a.h5' 2>&1 | tail -n +2", dir);
+    /* the state and the end-of-run contact figures (steps_between and the
+       coverage sentence count the steps this process ran, like the impulse
+       statistics: docs/contact.md) */
+#define CONTACT_ATTRS "-a /final/contact/points -a /final/contact/active -a /final/contact/inside " \
+    "-a /final/contact/steps_inside -a /final/contact/min_distance"
+    snprintf(cmd, sizeof cmd, "h5dump -d /final/x " CONTACT_ATTRS " '%s/a.h5' 2>&1 | tail -n +2", dir);
     sh_out(cmd, a, sizeof a);
-    snprintf(cmd, sizeof cmd, "h5dump -d /final/x -g /final/contact '%s/b.h5' 2>&1 | tail -n +2", dir);
+    snprintf(cmd, sizeof cmd, "h5dump -d /final/x " CONTACT_ATTRS " '%s/b.h5' 2>&1 | tail -n +2", dir);
     sh_out(cmd, b, sizeof b);
     CHECK(strlen(a) > 1000 && strstr(a, "DATA") != NULL);
     CHECK_MSG(strcmp(a, b) == 0, "final states differ after --resume");
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     CHECK_EQ_INT(system(cmd), 0);
+}
+
+/* issue 37 item 5: a thin needle (capsule, radius 2 mm) between the sample
+ * points of a falling cloth pierces it with no point inside: before, the
+ * run converged with "inside": 0 and nothing else.  Now every step end's
+ * sample triangles are checked against the analytic obstacles, and the
+ * summary and record say that the guarantee covers the sample points and
+ * what was found between them (contact.steps_between, contact.coverage); a
+ * method that does not triangulate its points (adaptive_sqrt3) says the
+ * surface between them was not checked and names the obstacles that could
+ * pass (steps_between -1).  The bundled drape_box and cloth_sphere find no
+ * crossing (their chords dip into the obstacle by less than dhat). */
+SB_TEST(crossing_between_sample_points_is_said)
+{
+    static const char *const runs[][2] = { { "linear_fem", "lsnewton" }, { "bhem", "lsnewton" }, { "rmtr", "tr" } };
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        char out[16384] = "", err[4096] = "";
+        int rc = sb_sh(out, sizeof out, err, sizeof err,
+                       "cd '%s' && '%s' run --scene tests/scenes/contact/needle_between.json --method %s --solver %s "
+                       "--out none --quiet --summary json", sb_test_root(), sb_test_bin(), runs[i][0], runs[i][1]);
+        CHECK_MSG(rc == 0, "%s: exit %d, %s", runs[i][0], rc, err);
+        const char *q = strstr(out, "\"steps_between\": ");
+        CHECK_MSG(q && atoi(q + 17) > 0, "%s: %s", runs[i][0], out);
+        CHECK_MSG(strstr(out, "had an obstacle crossing the cloth between sample points") != NULL &&
+                  strstr(out, "obstacle \\\"needle\\\" (capsule)") != NULL &&
+                  strstr(out, i == 0 ? "the result is not penetration-free" : "the result is not shown penetration-free")
+                      != NULL, "%s: %s", runs[i][0], out);
+    }
+    char out[16384] = "", err[4096] = "";
+    int rc = sb_sh(out, sizeof out, err, sizeof err,
+                   "cd '%s' && '%s' run --scene tests/scenes/contact/needle_between.json --method adaptive_sqrt3 "
+                   "--solver linearized --out none --quiet --summary json", sb_test_root(), sb_test_bin());
+    CHECK_MSG(rc == 0 || rc == 1, "adaptive_sqrt3: exit %d, %s", rc, err);
+    CHECK_MSG(strstr(out, "\"steps_between\": -1") != NULL, "adaptive_sqrt3: %s", out);
+    CHECK_MSG(strstr(out, "the surface was not checked") != NULL &&
+              strstr(out, "it is possible for \\\"needle\\\" (capsule)") != NULL, "adaptive_sqrt3: %s", out);
+    /* the impulse model (linear_fem tests analytic solids against its
+       vertices only): the same needle passes between them, and is said */
+    rc = sb_sh(out, sizeof out, err, sizeof err,
+               "cd '%s' && '%s' run --scene tests/scenes/contact/needle_between_impulse.json --method linear_fem "
+               "--solver lsnewton --out none --quiet --summary json", sb_test_root(), sb_test_bin());
+    const char *q = strstr(out, "\"steps_between\": ");
+    CHECK_MSG(rc == 0 && q && atoi(q + 17) > 0 && strstr(out, "contact.model impulse: collisions are swept") &&
+              strstr(out, "the result is not penetration-free"), "impulse: exit %d, %s", rc, out);
+    /* the record carries the sentence */
+    char dir[] = "/tmp/sb_between_XXXXXX";
+    if (!mkdtemp(dir)) { CHECK(0); return; }
+    rc = sb_sh(out, sizeof out, err, sizeof err,
+               "cd '%s' && '%s' run --scene tests/scenes/contact/needle_between.json --method linear_fem "
+               "--solver lsnewton --out '%s/r.h5' --quiet && h5dump -a /final/contact/coverage -a "
+               "/final/contact/steps_between '%s/r.h5'; rm -rf '%s'", sb_test_root(), sb_test_bin(), dir, dir, dir);
+    CHECK_MSG(rc == 0 && strstr(out, "not penetration-free") != NULL, "record: exit %d, %s %s", rc, out, err);
+    /* no crossing where the cloth only rests on the obstacle (cloth_sphere
+       at its resolution; at res 4 linear_fem's flat triangles cut the ball
+       deeper than dhat, and drape_box's cut the box's edge: both reported) */
+    rc = sb_sh(out, sizeof out, err, sizeof err,
+               "cd '%s' && '%s' run --scene cloth_sphere --method linear_fem --solver lsnewton --out none "
+               "--quiet --summary json", sb_test_root(), sb_test_bin());
+    CHECK_MSG(rc == 0 && strstr(out, "\"steps_between\": 0") != NULL && strstr(out, "no crossing found") != NULL,
+              "cloth_sphere: exit %d, %s", rc, out);
 }
 
 int main(int argc, char **argv)
@@ -489,7 +628,10 @@ int main(int argc, char **argv)
         SB_CASE(contact_energy_derivatives_every_method), SB_CASE(problem_with_contact_fd),
         SB_CASE(no_obstacles_no_contact), SB_CASE(point_dropped_on_each_obstacle_rests_at_barrier_distance),
         SB_CASE(friction_incline_stick_and_slide), SB_CASE(obstacle_overrunning_the_start_is_a_recorded_outcome),
-        SB_CASE(resume_with_contact_is_bit_identical), SB_CASE(moving_obstacle_lifts_and_drags_a_point), SB_END
+        SB_CASE(resume_with_contact_is_bit_identical), SB_CASE(moving_obstacle_lifts_and_drags_a_point),
+        SB_CASE(obstacle_moving_through_the_cloth_is_caught_barrier),
+        SB_CASE(obstacle_moving_through_the_cloth_is_caught_impulse),
+        SB_CASE(cloth_starting_inside_an_obstacle_is_refused), SB_CASE(crossing_between_sample_points_is_said), SB_END
     };
     return sb_test_main(argc, argv, cases);
 }

@@ -281,12 +281,97 @@ SB_TEST(ccd_point_triangle_degenerate_cases)
     }
 }
 
+/* issue 37: the sweep of a moving obstacle against a static point
+ * (sb_obstacle_sweep) and a triangle's depth into a solid
+ * (sb_obstacle_triangle_depth), on cases with known answers:
+ *  - a box translating 0.3 m up through a point 0.02 m above its top: first
+ *    touch at 0.02 / 0.3 of the step (exact for translations);
+ *  - a sphere (r = 0.1) carried half a turn about z on the unit circle past
+ *    the point (0, 1, 0): touch when the centre's chord to the point is r,
+ *    f = 1/2 - 2 asin(r/2) / pi (rotation: chords within tol);
+ *  - the same sphere passing the origin at distance 1: no touch (2);
+ *  - a point already inside at the step's start: 0;
+ *  - a mesh (one triangle) moving through the point: the CCD time;
+ *  - depths: a triangle 0.05 below a sphere's top (r - d), a capsule whose
+ *    axis pierces a triangle (INFINITY), a triangle cutting a box's corner
+ *    (the separating-axis depth), a triangle clear of each (<= 0). */
+SB_TEST(moving_obstacle_sweep_and_triangle_depth)
+{
+    sb_obstacle_spec o;
+    memset(&o, 0, sizeof o);
+    o.kind = SB_OBST_BOX;
+    o.center[2] = -0.12;
+    o.half[0] = 0.2; o.half[1] = 0.4; o.half[2] = 0.1;
+    o.translation[2] = 0.3;
+    o.moving = 1;
+    const double x0[3] = { 0.05, 0.1, 0.0 };
+    CHECK_NEAR(sb_obstacle_sweep(&o, 0.0, 1.0, x0, 1e-5), 0.02 / 0.3, 1e-12);
+    CHECK_NEAR(sb_obstacle_sweep(&o, 0.5, 1.0, x0, 1e-5), 0.0, 0.0);    /* inside at f = 0.5 */
+    CHECK_NEAR(sb_obstacle_sweep(&o, 0.0, 0.0, x0, 1e-5), 2.0, 0.0);    /* no motion */
+    const double x_side[3] = { 0.5, 0.1, 0.0 };
+    CHECK_NEAR(sb_obstacle_sweep(&o, 0.0, 1.0, x_side, 1e-5), 2.0, 0.0);
+
+    memset(&o, 0, sizeof o);
+    o.kind = SB_OBST_SPHERE;
+    o.center[0] = 1;
+    o.radius = 0.1;
+    o.rot_axis[2] = 1;
+    o.rot_angle = M_PI;
+    o.moving = 1;
+    const double p[3] = { 0, 1, 0 }, tol = 1e-6;
+    const double f_exact = 0.5 - 2 * asin(0.05) / M_PI;
+    /* chords within tol of the path: the time within tol / speed (speed pi per unit of f) */
+    CHECK_NEAR(sb_obstacle_sweep(&o, 0.0, 1.0, p, tol), f_exact, 2 * tol / M_PI + 1e-12);
+    const double q[3] = { 0, 0, 0 };
+    CHECK_NEAR(sb_obstacle_sweep(&o, 0.0, 1.0, q, tol), 2.0, 0.0);
+
+    /* a one-triangle mesh moving 1 m up through a point 0.25 above it */
+    double verts[9] = { -1, -1, 0, 2, -1, 0, -1, 2, 0 };
+    int tris[3] = { 0, 1, 2 };
+    memset(&o, 0, sizeof o);
+    o.kind = SB_OBST_MESH;
+    o.nv = 3; o.nt = 1; o.verts = verts; o.tris = tris;
+    o.translation[2] = 1;
+    o.moving = 1;
+    const double pm[3] = { 0.1, 0.1, 0.25 };
+    CHECK_NEAR(sb_obstacle_sweep(&o, 0.0, 1.0, pm, tol), 0.25, 1e-12);
+
+    /* depths */
+    sb_pose I;
+    memset(&o, 0, sizeof o);
+    o.kind = SB_OBST_SPHERE;
+    o.radius = 0.5;
+    sb_pose_at(&o, 0.0, &I);
+    const double ta[3] = { -1, -1, 0.45 }, tb[3] = { 1, -1, 0.45 }, tc[3] = { 0, 1, 0.45 };
+    CHECK_NEAR(sb_obstacle_triangle_depth(&o, &I, ta, tb, tc), 0.05, 1e-12);
+    const double ua[3] = { -1, -1, 0.55 }, ub[3] = { 1, -1, 0.55 }, uc[3] = { 0, 1, 0.55 };
+    CHECK(sb_obstacle_triangle_depth(&o, &I, ua, ub, uc) <= 0);
+    o.kind = SB_OBST_CAPSULE;
+    o.radius = 0.002;
+    o.a[2] = -1; o.b[2] = 0.5;
+    CHECK(isinf(sb_obstacle_triangle_depth(&o, &I, ta, tb, tc)));
+    o.b[2] = 0.4;   /* the tip 0.05 below the triangle: clear */
+    CHECK(sb_obstacle_triangle_depth(&o, &I, ta, tb, tc) <= 0);
+    o.b[2] = 0.449;   /* the cap 1 mm below, reaching 1 mm into it */
+    CHECK_NEAR(sb_obstacle_triangle_depth(&o, &I, ta, tb, tc), 0.001, 1e-12);
+    o.kind = SB_OBST_BOX;
+    o.half[0] = o.half[1] = o.half[2] = 0.5;
+    /* a horizontal triangle at z = 0.45 over the box's top face: 0.05 deep */
+    CHECK_NEAR(sb_obstacle_triangle_depth(&o, &I, ta, tb, tc), 0.05, 1e-12);
+    CHECK(sb_obstacle_triangle_depth(&o, &I, ua, ub, uc) <= 0);
+    /* a steep triangle cutting the box's edge x = y... at (0.5, *, 0.5): the
+       plane x + z = 0.9 leaves the corner region 0.1 / sqrt(2) deep */
+    const double va[3] = { 0.9, -2, 0 }, vb[3] = { 0.9, 2, 0 }, vc[3] = { -0.1, 0, 1 };
+    CHECK_NEAR(sb_obstacle_triangle_depth(&o, &I, va, vb, vc), 0.1 / sqrt(2.0), 1e-12);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(barrier_and_mollifier_derivatives), SB_CASE(signed_distance_derivatives),
         SB_CASE(signed_distance_values), SB_CASE(point_triangle_distance_regions),
-        SB_CASE(time_of_impact_closed_form), SB_CASE(ccd_point_triangle_degenerate_cases), SB_END
+        SB_CASE(time_of_impact_closed_form), SB_CASE(ccd_point_triangle_degenerate_cases),
+        SB_CASE(moving_obstacle_sweep_and_triangle_depth), SB_END
     };
     return sb_test_main(argc, argv, cases);
 }

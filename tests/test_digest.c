@@ -20,7 +20,7 @@ static char tmpdir[256];
 
 static long size_of(const char *dir, const char *name)
 {
-    char p[512];
+    char p[1100];
     struct stat st;
     snprintf(p, sizeof p, "%s/%s", dir, name);
     return stat(p, &st) == 0 ? (long)st.st_size : -1;
@@ -96,7 +96,8 @@ SB_TEST(checkpoints_non_records_and_bad_options_are_refused)
     char err[2048];
     CHECK_EQ_INT(make_record("p.h5", "--stop-after-steps 1"), 4);
     CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s digest p.h5.partial", tmpdir, sb_test_bin()), 2);
-    CHECK(strstr(err, "checkpoint") != NULL);
+    /* issue 37 item 13: it said "checkpoint ... (file truncated, corrupt or not a shellbench record)" */
+    CHECK_MSG(strstr(err, "checkpoint") && strstr(err, "--resume") && !strstr(err, "corrupt"), "%s", err);
     CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cd %s && echo hello > not.h5", tmpdir), 0);
     CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s digest not.h5", tmpdir, sb_test_bin()), 2);
     CHECK(strstr(err, "not.h5") != NULL);
@@ -108,13 +109,40 @@ SB_TEST(checkpoints_non_records_and_bad_options_are_refused)
     CHECK(size_of(tmpdir, "not.h5") == 6);
 }
 
+/* issue 37 item 13: a record in a directory the user cannot write said
+ * "HDF5 failed copying it" after the copy; the directory is named first.
+ * As root (who may write anywhere) the digest runs as nobody (setpriv). */
+SB_TEST(an_unwritable_directory_is_named_before_any_work)
+{
+    char err[2048], dir[512];
+    snprintf(dir, sizeof dir, "%s/ro", tmpdir);
+    CHECK_EQ_INT(make_record("ro.h5", ""), 0);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "mkdir -p %s && mv %s/ro.h5 %s/ && chmod 644 %s/ro.h5 && chmod 555 %s && "
+                       "chmod 755 %s", dir, tmpdir, dir, dir, dir, tmpdir), 0);
+    const char *as = "";
+    if (geteuid() == 0) {
+        if (sb_sh(NULL, 0, NULL, 0, "command -v setpriv >/dev/null") != 0) {
+            printf("# skipped: running as root without setpriv\n");
+            return;
+        }
+        as = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+    }
+    const long before = size_of(dir, "ro.h5");
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "%s%s digest %s/ro.h5", as, sb_test_bin(), dir), 2);
+    CHECK_MSG(strstr(err, "directory") && strstr(err, "not writable") && strstr(err, "/ro") && !strstr(err, "HDF5"),
+              "%s", err);
+    CHECK_EQ_INT(size_of(dir, "ro.h5"), before);
+    CHECK(sb_sh(NULL, 0, NULL, 0, "chmod 755 %s", dir) == 0);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_test_digest_%d", (int)getpid());
     mkdir(tmpdir, 0755);
     static const sb_test_case cases[] = {
         SB_CASE(a_digest_reports_as_the_same_run), SB_CASE(a_study_picture_of_a_digest_without_state_stands),
-        SB_CASE(checkpoints_non_records_and_bad_options_are_refused), SB_END,
+        SB_CASE(checkpoints_non_records_and_bad_options_are_refused),
+        SB_CASE(an_unwritable_directory_is_named_before_any_work), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];

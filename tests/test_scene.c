@@ -657,6 +657,99 @@ SB_TEST(resolve_names)
     CHECK_EQ_INT(sb_scene_resolve("trampoline", path, 4), SB_ERR_IO);   /* does not fit */
 }
 
+/* issue 37 item 14: a probe at theta = 0 of a full annulus whose `start` is
+ * clamped and `end` loaded lies on both lips of the slit; it read the
+ * clamped lip silently (and the run exited 0 with validation failed).  Now
+ * the point is refused at scene resolution with a sentence, and "on" names
+ * the lip: the probe's grid parameter moves to that side (t = 0 or 1), and
+ * a run reads each lip's own displacement. */
+#define SLIT_HEAD \
+    "{\"name\": \"s\", \"domain\": {\"type\": \"annulus_sector\", \"r_in\": 0.5, \"r_out\": 1.0, \"theta\": [0, 360]}," \
+    "\"material\": {\"model\": \"stvk\", \"young\": 1e7, \"poisson\": 0.3, \"thickness\": 0.01, \"density\": 10}," \
+    "\"time\": {\"mode\": \"quasi_static\", \"steps\": 1},"
+#define SLIT_COND \
+    "\"loads\": [{\"type\": \"line\", \"on\": [\"end\"], \"force_per_length\": [0, 0, 0.01]}]," \
+    "\"boundary\": [{\"type\": \"clamped\", \"on\": [\"start\"]}],"
+
+SB_TEST(probe_on_slit_lips)
+{
+    sb_scene sc;
+    char err[2048];
+    /* ambiguous: refused, naming the probe, both lips and "on" */
+    int r = sb_scene_parse_string(SLIT_HEAD SLIT_COND "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0]}]}", "slit.json",
+                                  &sc, err, sizeof err);
+    CHECK_MSG(r != 0, "an ambiguous probe on the slit's lips was accepted");
+    if (!r) sb_scene_free(&sc);
+    CHECK_MSG(strstr(err, "at /probes/0/at: probe \"p\" at (0.75, 0) lies on both lips of a slit") != NULL &&
+              strstr(err, "\"on\": \"start\" or \"on\": \"end\"") != NULL, "%s", err);
+    /* "on" names the lip: t = 1 for end, t = 0 for start */
+    static const char *const lips[] = { "start", "end" };
+    for (int k = 0; k < 2; k++) {
+        char text[2048];
+        snprintf(text, sizeof text, SLIT_HEAD SLIT_COND "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0], \"on\": \"%s\"}]}",
+                 lips[k]);
+        r = sb_scene_parse_string(text, "slit.json", &sc, err, sizeof err);
+        CHECK_MSG(r == 0, "%s", err);
+        if (r) continue;
+        CHECK_NEAR(sc.probes[0].st[1], (double)k, 0.0);
+        CHECK_NEAR(sc.probes[0].st[0], 0.5, 1e-12);
+        sb_scene_free(&sc);
+    }
+    /* "on" must name an edge the point lies on */
+    r = sb_scene_parse_string(SLIT_HEAD SLIT_COND "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0], \"on\": \"outer\"}]}",
+                              "slit.json", &sc, err, sizeof err);
+    CHECK_MSG(r != 0 && strstr(err, "at /probes/0/on: probe \"p\" at (0.75, 0) does not lie on edge \"outer\""), "%s", err);
+    if (!r) sb_scene_free(&sc);
+    r = sb_scene_parse_string(SLIT_HEAD SLIT_COND "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0], \"on\": \"top\"}]}",
+                              "slit.json", &sc, err, sizeof err);
+    CHECK_MSG(r != 0 && strstr(err, "unknown edge \"top\" (expected one of: inner, outer, start, end)"), "%s", err);
+    if (!r) sb_scene_free(&sc);
+    /* a closed seam (no condition on start or end) is one curve: no ambiguity */
+    r = sb_scene_parse_string(SLIT_HEAD "\"loads\": [{\"type\": \"gravity\", \"acceleration\": [0, 0, -1]}],"
+                              "\"boundary\": [{\"type\": \"clamped\", \"on\": [\"inner\"]}],"
+                              "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0]}]}", "closed.json", &sc, err, sizeof err);
+    CHECK_MSG(r == 0, "%s", err);
+    if (!r) sb_scene_free(&sc);
+    r = sb_scene_parse_string(SLIT_HEAD "\"loads\": [{\"type\": \"gravity\", \"acceleration\": [0, 0, -1]}],"
+                              "\"boundary\": [{\"type\": \"clamped\", \"on\": [\"inner\"]}],"
+                              "\"probes\": [{\"name\": \"p\", \"at\": [0.75, 0], \"on\": \"end\"}]}", "closed.json", &sc, err,
+                              sizeof err);
+    CHECK_MSG(r == 0, "%s", err);   /* either edge of a closed seam */
+    if (!r) sb_scene_free(&sc);
+    /* a disc's centre, where the lips meet and every method merges them */
+    r = sb_scene_parse_string("{\"name\": \"s\", \"domain\": {\"type\": \"annulus_sector\", \"r_in\": 0, \"r_out\": 1.0,"
+                              " \"theta\": [0, 360]},"
+                              "\"material\": {\"model\": \"stvk\", \"young\": 1e7, \"poisson\": 0.3, \"thickness\": 0.01,"
+                              " \"density\": 10}, \"time\": {\"mode\": \"quasi_static\", \"steps\": 1}," SLIT_COND
+                              "\"probes\": [{\"name\": \"c\", \"at\": [0, 0]}]}", "disc.json", &sc, err, sizeof err);
+    CHECK_MSG(r == 0, "%s", err);
+    if (!r) sb_scene_free(&sc);
+    /* end to end: each probe reads its own lip (start clamped: no motion; end loaded upward) */
+    if (!sb_test_bin()[0]) return;
+    static const char *const methods[] = { "bhem", "linear_fem" };
+    for (int m = 0; m < 2; m++) {
+        char cmd[2048], out[16384] = "";
+        snprintf(cmd, sizeof cmd, "cd '%s' && '%s' run --scene tests/scenes/annulus_slit_lips.json --method %s "
+                 "--solver lsnewton --out none --quiet --summary json 2>&1", sb_test_root(), sb_test_bin(), methods[m]);
+        FILE *f = popen(cmd, "r");
+        CHECK(f != NULL);
+        if (!f) continue;
+        size_t n = fread(out, 1, sizeof out - 1, f);
+        out[n] = '\0';
+        pclose(f);
+        double d[2][3] = { { NAN, NAN, NAN }, { NAN, NAN, NAN } };
+        for (int k = 0; k < 2; k++) {
+            char key[64];
+            snprintf(key, sizeof key, "\"%s_lip\": {", lips[k]);
+            const char *q = strstr(out, key);
+            q = q ? strstr(q, "\"displacement\": [") : NULL;
+            if (q && sscanf(q + 17, "%lf, %lf, %lf", &d[k][0], &d[k][1], &d[k][2]) != 3) d[k][2] = NAN;
+        }
+        CHECK_MSG(fabs(d[0][2]) < 1e-12, "%s: the clamped lip moved: %g (%s)", methods[m], d[0][2], out);
+        CHECK_MSG(d[1][2] > 1e-3, "%s: the loaded lip reads %g (%s)", methods[m], d[1][2], out);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
@@ -665,7 +758,7 @@ int main(int argc, char **argv)
         SB_CASE(cli_check), SB_CASE(json_pointer_positions),
         SB_CASE(parser_features), SB_CASE(schedules_go_and_come_back), SB_CASE(parser_rejections),
         SB_CASE(pathological_inputs), SB_CASE(random_damage_never_crashes),
-        SB_CASE(resolve_names), SB_END
+        SB_CASE(resolve_names), SB_CASE(probe_on_slit_lips), SB_END
     };
     return sb_test_main(argc, argv, cases);
 }

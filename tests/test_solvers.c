@@ -60,6 +60,19 @@ SB_TEST(rosenbrock_tr_dogleg)
     CHECK(o.gnorm < 1e-7);
 }
 
+/* the paper's ratio (Eq. 4.2 as a plain quotient, solver.rho=paper, issue 43) with the paper's dogleg:
+ * it converges where the gradient test is reachable; a bad choice is an input error */
+SB_TEST(rosenbrock_tr_paper_ratio)
+{
+    const char *sets[] = { "method.n=20", "solver.rho=paper", "solver.indefinite=cauchy", "run.stall_iter=0" };
+    outcome o = run("fixture_rosenbrock", "tr", 4, sets);
+    CHECK_EQ_INT(o.exit_code, 0);
+    CHECK(o.f < 1e-14);
+    CHECK(o.gnorm < 1e-7);
+    const char *bad[] = { "solver.rho=exact" };
+    CHECK_EQ_INT(run("fixture_rosenbrock", "tr", 1, bad).exit_code, 2);
+}
+
 SB_TEST(rosenbrock_tr_stcg)
 {
     const char *sets[] = { "method.n=20", "solver.trs=stcg" };
@@ -201,7 +214,7 @@ SB_TEST(bad_parameter_is_input_error)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
-        SB_CASE(rosenbrock_tr_dogleg), SB_CASE(rosenbrock_tr_stcg), SB_CASE(rosenbrock_lsnewton),
+        SB_CASE(rosenbrock_tr_dogleg), SB_CASE(rosenbrock_tr_paper_ratio), SB_CASE(rosenbrock_tr_stcg), SB_CASE(rosenbrock_lsnewton),
         SB_CASE(quadratic_convex_all_newton_solvers_one_step), SB_CASE(quadratic_ill_conditioned_1e10),
         SB_CASE(quadratic_damped_converges_linearly), SB_CASE(saddle_tr_escapes), SB_CASE(saddle_tr_cauchy_escapes), SB_CASE(tr_ratio_roundoff), SB_CASE(saddle_tr_stcg_escapes),
         SB_CASE(saddle_lsnewton_shifts_and_escapes), SB_CASE(saddle_damped_records_not_posdef),

@@ -188,13 +188,11 @@ if [ "$MODE" = large ]; then   # the hard scenes at 13,467 and 51,483 dofs, chea
       run "rmtrdL-$s-l6-gtol1e-6" "$s" rmtr 128 6 --set method.penalty_h=level --set run.gtol=1e-6
   done
 fi
-# Fig. 9 (left): condition number against dofs, trampoline
+# Fig. 9: condition numbers, exact (LAPACK) to 1,083 dofs and by Lanczos above,
+# with the issue-43 hypotheses (bench/rmtr/cond.sh -> results/rmtr/cond_parts.csv)
 COND=$(dirname "$BIN")/bench/bench_cond
 [ -x "$COND" ] || COND=build/bench/bench_cond
-if [ -x "$COND" ]; then
-  "$COND" trampoline $([ "$MODE" = full ] && echo 128 || echo 32) > results/rmtr/cond.md.tmp && mv results/rmtr/cond.md.tmp results/rmtr/cond.md
-  "$COND" trampoline 16 sigma > results/rmtr/cond_sigma.md.tmp && mv results/rmtr/cond_sigma.md.tmp results/rmtr/cond_sigma.md
-fi
+[ -x "$COND" ] && bash bench/rmtr/cond.sh "$COND" $([ "$MODE" = quick ] && echo 32 || echo 64)
 # where each record's final state strains the material (report section
 # "How far the final states leave the convex range of the denim law")
 "$BIN" inspect --format csv "$OUT"/*.h5 $(ls "$OUT"/*.h5.partial 2>/dev/null) > results/rmtr/material.csv.tmp &&

@@ -7,6 +7,7 @@
 #define SB_COMMON_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 enum {
     SB_OK = 0,
@@ -52,6 +53,11 @@ typedef enum {
                                 physical solution (NOT converged) */
     SB_REASON_SINGLE_STEP_RESIDUAL, /* linearized: the single step left ||g|| above
                                 run.single_step_rtol times the step's force scale (NOT converged) */
+    /* added by issue 37 */
+    SB_REASON_OBSTACLE_SWEPT, /* a moving obstacle's motion over the step sweeps through a contact
+                                sample point (or overruns it): the barrier, which sees the obstacle at
+                                the step's end only, cannot keep the cloth on its side; the step is
+                                not solved (NOT converged; docs/contact.md) */
     SB_REASON_COUNT
 } sb_reason;
 
@@ -63,12 +69,18 @@ int sb_reason_converged(sb_reason r);
 /* Rewrite the NUL-terminated message s (buffer of cap bytes) so that it is
  * safe to print on a terminal and stays one line: control characters
  * become \n, \r, \t or \xNN, C1 controls (U+0080..U+009F) and the
- * invisible byte-order mark \uNNNN, invalid UTF-8 bytes \xNN; truncated to
+ * invisible byte-order mark \uNNNN, the bidirectional embeddings, overrides
+ * and isolates (U+202A..U+202E, U+2066..U+2069, which reorder what follows
+ * them on the line) \uNNNN, invalid UTF-8 bytes \xNN; truncated to
  * cap.  Returns the number of characters escaped.  Every message that can
  * carry text from a scene file or a command line passes through it. */
 size_t sb_escape_controls(char *s, size_t cap);
 /* s copied into buf (len bytes) and escaped likewise; returns buf. */
 const char *sb_escape_copy(const char *s, char *buf, size_t len);
+/* One message line: the printf-formatted text escaped as a whole (so every
+ * piece of input it echoes is), then a newline, on f.  For messages that
+ * are meant to be one line (not usage texts); at most 4095 bytes. */
+void sb_escape_print(FILE *f, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 #define SB_MAX_LEVELS 8
 #define SB_NAME_LEN 64

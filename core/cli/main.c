@@ -37,20 +37,25 @@ static int wants_help(int argc, char **argv)
 /* Results on stdout, errors on stderr. */
 static int cmd_check(int argc, char **argv)
 {
-    if (argc < 1) {
+    int bad = 0, allow_unsealed = 0, n_scenes = 0;
+    for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--allow-unsealed-reference")) allow_unsealed = 1;
+        else n_scenes++;
+    }
+    if (n_scenes < 1) {
         fprintf(stderr, "shellbench check: no scene given (see `shellbench help check`)\n");
         return 2;
     }
-    int bad = 0;
     for (int i = 0; i < argc; i++) {
+        if (!strcmp(argv[i], "--allow-unsealed-reference")) continue;
         sb_scene sc;
         char err[2048], path[1024];
         const char *file = sb_scene_resolve(argv[i], path, sizeof path) == SB_OK ? path : argv[i];
         if (sb_scene_load(file, &sc, err, sizeof err)) {
-            fprintf(stderr, "%s\n", err);
+            sb_escape_print(stderr, "%s", err);
             bad = 1;
         } else if (sb_run_scene_methods_check(&sc, err, sizeof err) ||
-                   sb_reference_check(&sc, NULL, 0, err, sizeof err)) {   /* a reference file must be usable */
+                   sb_reference_check(&sc, NULL, 0, allow_unsealed, err, sizeof err)) {   /* a reference file must be usable */
             char e[1100];
             fprintf(stderr, "%s: %s\n", sb_escape_copy(file, e, sizeof e), err);
             sb_scene_free(&sc);
@@ -124,7 +129,8 @@ static int cmd_report(int argc, char **argv)
     if (!rc && plot) {   /* the plot's path and format, before any work */
         sb_output_kind kind;
         if (sb_output_check(plot, "plot", &kind, err, sizeof err) ||
-            (kind != SB_OUTPUT_DISCARD && sb_report_plot_format(plot, NULL, err, sizeof err))) {
+            (kind != SB_OUTPUT_DISCARD && (sb_report_plot_format(plot, NULL, err, sizeof err) ||
+                                           sb_output_check_file_dir(plot, "plot", 1, err, sizeof err)))) {
             sb_escape_controls(err, sizeof err);
             fprintf(stderr, "shellbench report: %s\n", err);
             rc = 2;

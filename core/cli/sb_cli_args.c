@@ -65,6 +65,7 @@ int sb_cli_parse_run(int argc, char **argv, sb_cli_run *c, int sweep)
         if (!strcmp(a, "--quiet")) { c->req.quiet = 1; continue; }
         if (!strcmp(a, "--resume")) { c->req.resume = 1; continue; }
         if (!strcmp(a, "--strict")) { c->req.strict = 1; continue; }   /* docs/trust.md: exit 5 */
+        if (!strcmp(a, "--allow-unsealed-reference")) { c->req.allow_unsealed_reference = 1; continue; }
         if (!strcmp(a, "--progress")) { c->req.progress = 1; continue; }
         if (!strcmp(a, "--no-progress")) { c->req.progress = -1; continue; }
         if (!sweep && !strcmp(a, "--scene")) { NEED_VALUE(); c->req.scene = v; }

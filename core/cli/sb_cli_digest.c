@@ -55,7 +55,7 @@ int sb_cli_digest(int argc, char **argv)
         const long a = file_size(argv[i]);
         before += b;
         after += a;
-        printf("%s: %s%ld -> %ld bytes\n", argv[i], already ? "already a digest, " : "", b, a);
+        sb_escape_print(stdout, "%s: %s%ld -> %ld bytes", argv[i], already ? "already a digest, " : "", b, a);
     }
     if (nf == 0) {
         fprintf(stderr, "shellbench digest: no record given (see `shellbench help digest`)\n");

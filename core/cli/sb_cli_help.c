@@ -42,10 +42,13 @@ static const char run_help[] =
     "  --summary json        the run's summary as JSON on stdout\n"
     "  --samples N           sample grid per side for errors and the surface, 2..2001 (default 21)\n"
     "  --resume              continue from the checkpoint FILE.h5.partial (same scene, method, solver,\n"
-    "                        sizes and parameters); a finished record: nothing to do\n"
+    "                        sizes, parameters and obstacle meshes); a finished record: nothing to do,\n"
+    "                        exit by its recorded verdict (with --strict: 5 when its validation failed)\n"
     "  --stop-after-steps K  stop after step K with a checkpoint (exit 4; continue with --resume)\n"
     "  --strict              a converged run whose expected probe values are out of tolerance exits 5\n"
     "                        (validation failed, docs/trust.md)\n"
+    "  --allow-unsealed-reference  use the scene's reference record even without a checksum (a record\n"
+    "                        of format version 1); refused otherwise (exit 2, docs/trust.md)\n"
     "  --quiet               no step lines, no progress line\n"
     "  --progress            the progress line also off a terminal (one line a second)\n"
     "  --no-progress         no progress line on a terminal\n"
@@ -65,22 +68,28 @@ static const char sweep_help[] =
     "  --set KEY=VALUE       a parameter for every run, repeatable\n"
     "  --dir DIR             where the records go (default results/sweep): DIR/SCENE-METHOD-SOLVER-rRES-lL.h5\n"
     "  --samples N           sample grid per side, 2..2001\n"
-    "  --resume              skip runs whose record exists (reported as skipped), continue checkpoints\n"
-    "  --strict              as for run: a converged run whose validation failed counts as exit 5\n"
+    "  --resume              skip runs whose record exists (reported as skipped, with its recorded\n"
+    "                        verdict, which counts for the exit code), continue checkpoints\n"
+    "  --strict              as for run: a converged run whose validation failed counts as exit 5,\n"
+    "                        also when it is skipped\n"
+    "  --allow-unsealed-reference   as for run\n"
     "  --progress, --no-progress, --quiet   as for run; the progress line shows runs done and time left\n"
     "exit code: the worst of its runs.\n"
     "usage: shellbench sweep --study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume]\n"
     "A study file (docs/study.md), checked whole before any run (FILE:LINE:COL); runs what is not\n"
     "recorded (--resume is implied), N at a time in child processes; refusals leave RECORD.refused;\n"
-    "--max-runs stops resumably (exit 4); --plan prints the runs and runs nothing.\n"
+    "--max-runs stops resumably (exit 4); --plan prints the runs and runs nothing;\n"
+    "--allow-unsealed-reference as for run.  A record in a run's place that is not that run's\n"
+    "(scene, method, solver, resolution, levels) is refused: nothing is run (exit 2).\n"
     "  mpirun -n N shellbench sweep --study FILE   the runs over N MPI ranks, longest expected first\n"
     "  --emit slurm [--out FILE]   write an sbatch job array of the runs not recorded (default\n"
     "                        RECORDS/STUDY.sbatch); --task K runs its task K (docs/regression.md)\n";
 
 static const char check_help[] =
-    "usage: shellbench check SCENE...\n"
+    "usage: shellbench check [--allow-unsealed-reference] SCENE...\n"
     "Validates scene files (or bundled names): \"FILE: ok (NAME)\" on stdout for each good one,\n"
     "\"FILE:LINE:COL: at /POINTER: what is wrong\" on stderr for each bad one; exit 2 if any is bad.\n"
+    "A scene's reference record must fit it and carry a checksum (--allow-unsealed-reference: or not).\n"
     "Regular files and the standard input (/dev/stdin) are read; FIFOs and devices are refused.\n";
 
 static const char report_help[] =
@@ -95,7 +104,8 @@ static const char report_help[] =
     "usage: shellbench report --study FILE [--out DIR] [--dir DIR] [--deterministic]\n"
     "The study's report.md: method selection, work-precision diagrams, performance profiles, the\n"
     "nonconvex scenes by energy, convergence plots (docs/study.md); --deterministic leaves out\n"
-    "wall-clock figures (the same records give the same bytes).\n";
+    "wall-clock figures (the same records give the same bytes); --allow-unsealed-reference: a scene's\n"
+    "reference record without a checksum is used.\n";
 
 static const char reference_help[] =
     "usage: shellbench reference SCENE [--method M] [--solver S] [--res N | --dofs N] [--levels L]\n"

@@ -9,7 +9,9 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 const char sb_cli_regress_help[] =
     "usage: shellbench regress [--suite FILE] [--baseline FILE] [--history FILE] [--out DIR]\n"
@@ -20,7 +22,9 @@ const char sb_cli_regress_help[] =
     "calibration pass per round, compares every case with the baseline and gives a verdict per case:\n"
     "same, faster, slower (CPU time / calibration, Mann-Whitney U test p < A and a change of at least\n"
     "E), changed (iterations, work units, nnz, flops, status, reason; energy and probes to R), failed,\n"
-    "new.  Writes DIR/report.md and DIR/history-CASE.png, appends the history.\n"
+    "new.  Writes DIR/report.md and DIR/history-CASE.png, appends the history.  Every file it writes is\n"
+    "checked before the first run (symbolic links, FIFOs, directories refused: exit 2); the suite and the\n"
+    "baseline are read only from regular files; RECORDS.lock keeps a second invocation off the records.\n"
     "  --suite FILE          the suite (default bench/nightly/nightly.json)\n"
     "  --baseline FILE       the baseline (default bench/nightly/baseline.json)\n"
     "  --history FILE        the history (default results/nightly/history.csv)\n"
@@ -86,48 +90,33 @@ static int dir_of(const char *file, char *buf, size_t len)
     return buf[0] ? mkdir_p(buf) : 0;
 }
 
-/* A timing verdict (slower, faster) is confirmed by measuring the case again
- * (k fresh repeats with their own calibration) and judging the new samples:
- * it stands only when both measurements agree, so a passing disturbance of
- * the machine (a false positive at level alpha) must strike twice (alpha^2).
- * The case keeps the confirming samples. */
-static int confirm_changes(const sb_study *st, const sb_regress_run_options *o, sb_regress_set *now,
-                           const sb_regress_set *base, const sb_regress_rules *ru, int *regressions)
+/* The files the command writes, checked before any run: DIR a directory
+ * (or makeable), DIR/report.md, the history (NULL: not written) and the
+ * baseline (NULL: not written) new or regular files in writable
+ * directories.  0, or -1 with *opt the option they come from and a
+ * sentence. */
+static int check_outputs(const char *outdir, const char *history, const char *baseline, const char **opt, char *err,
+                         size_t len)
 {
-    const char **ids = malloc((size_t)(now->n ? now->n : 1) * sizeof *ids);
-    int n = 0;
-    if (!ids) return 3;
-    for (int k = 0; k < now->n; k++)
-        if (now->c[k].verdict == SB_VERDICT_SLOWER || now->c[k].verdict == SB_VERDICT_FASTER) ids[n++] = now->c[k].id;
-    if (n == 0) { free(ids); return 0; }
-    if (!o->quiet) printf("confirming %d timing verdict%s with %d more repeats\n", n, n > 1 ? "s" : "", o->repeat);
-    sb_regress_run_options o2 = *o;
-    o2.n_only = n, o2.only = ids;
-    sb_regress_set again;
-    memset(&again, 0, sizeof again);
-    int rc = sb_regress_measure(st, &o2, &again, stdout, stderr);
-    if (!rc) {
-        sb_regress_judge(&again, base, ru);
-        for (int j = 0; j < again.n; j++) {
-            sb_regress_case *c = (sb_regress_case *)sb_regress_set_find(now, again.c[j].id), *a = &again.c[j];
-            if (!c) continue;
-            char first[200];
-            snprintf(first, sizeof first, "first measurement %s x%.3f p = %.3g", sb_verdict_name(c->verdict), c->ratio, c->p);
-            if (a->verdict == c->verdict) {
-                snprintf(a->detail + strlen(a->detail), sizeof a->detail - strlen(a->detail), "; confirmed (%s)", first);
-            } else {
-                char d[512];
-                snprintf(d, sizeof d, "%.300s; not confirmed (%.150s)", a->detail, first);
-                snprintf(a->detail, sizeof a->detail, "%s", d);
-                if (a->verdict == SB_VERDICT_SLOWER || a->verdict == SB_VERDICT_FASTER) a->verdict = SB_VERDICT_SAME;
-            }
-            *regressions += sb_verdict_is_regression(a->verdict) - sb_verdict_is_regression(c->verdict);
-            *c = *a;
-        }
+    char report[1100];
+    sb_output_kind kind;
+    *opt = "--out";
+    if (sb_output_check_dir(outdir, "the report and plots", err, len)) return -1;
+    snprintf(report, sizeof report, "%s/report.md", outdir);
+    if (sb_output_check(report, "report", &kind, err, len)) return -1;
+    *opt = "--history";
+    if (history && (sb_output_check(history, "history file", &kind, err, len) ||
+                    sb_output_check_file_dir(history, "history file", 0, err, len)))
+        return -1;
+    *opt = "--baseline";
+    if (baseline && (sb_output_check(baseline, "baseline", &kind, err, len) ||
+                     sb_output_check_file_dir(baseline, "baseline", 0, err, len)))
+        return -1;
+    if (baseline && kind == SB_OUTPUT_DISCARD) {
+        snprintf(err, len, "will not write the baseline to the null device %s (--update-baseline writes it)", baseline);
+        return -1;
     }
-    sb_regress_set_free(&again);
-    free(ids);
-    return rc;
+    return 0;
 }
 
 int sb_cli_regress(int argc, char **argv)
@@ -172,6 +161,14 @@ int sb_cli_regress(int argc, char **argv)
         i += takes;
     }
     char err[2048];
+    /* every output before any run (docs/cli.md "Output safety"): the report
+     * and plots, the history, the baseline to write; the records below */
+    const char *opt = NULL;
+    if (check_outputs(outdir, no_history ? NULL : history, update ? baseline : NULL, &opt, err, sizeof err)) {
+        sb_escape_controls(err, sizeof err);
+        fprintf(stderr, "shellbench regress: %s: %s\n", opt, err);
+        return 2;
+    }
     /* the baseline first: a broken one is an input error before minutes of runs */
     sb_regress_set base, now;
     memset(&base, 0, sizeof base);
@@ -180,24 +177,34 @@ int sb_cli_regress(int argc, char **argv)
     struct stat stt;
     if (stat(baseline, &stt) == 0) {
         if (sb_regress_baseline_read(baseline, &base, err, sizeof err)) {
-            fprintf(stderr, "shellbench regress: %s\n", err);
+                sb_escape_print(stderr, "shellbench regress: --baseline: %s", err);
             return 2;
         }
         have_base = 1;
     } else if (!update) {
-        fprintf(stderr, "shellbench regress: no baseline %s: make one with --update-baseline\n", baseline);
+        sb_escape_print(stderr, "shellbench regress: no baseline %s: make one with --update-baseline", baseline);
         return 2;
     }
     sb_study *st = malloc(sizeof *st);
     if (!st) return 3;
     if (sb_study_load(suite, NULL, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_print(stderr, "shellbench regress: --suite: %s", err);
+        free(st);
+        sb_regress_set_free(&base);
+        return 2;
+    }
+    /* the records, history plots and pictures; one invocation at a time */
+    sb_output_lock lock;
+    if (sb_regress_prepare_outputs(st, o.repeat, outdir, &lock, err, sizeof err)) {
+        sb_escape_print(stderr, "shellbench regress: %s", err);
+        sb_study_free(st);
         free(st);
         sb_regress_set_free(&base);
         return 2;
     }
     int rc = sb_regress_measure(st, &o, &now, stdout, stderr);
     if (rc) {
+        sb_output_lock_release(&lock);
         sb_study_free(st);
         free(st);
         sb_regress_set_free(&base);
@@ -208,32 +215,46 @@ int sb_cli_regress(int argc, char **argv)
     snprintf(records, sizeof records, "%s", st->records);
     int regressions = sb_regress_judge(&now, have_base ? &base : NULL, &ru);
     /* a new baseline is being made: the verdicts against the old one are for information */
-    if (!rc && confirm && have_base && !update) rc = confirm_changes(st, &o, &now, &base, &ru, &regressions);
+    if (!rc && confirm && have_base && !update) rc = sb_regress_confirm(st, &o, &now, &base, &ru, &regressions, stdout, stderr);
     sb_study_free(st);
     free(st);
     if (rc) {
+        sb_output_lock_release(&lock);
         sb_regress_set_free(&base);
         sb_regress_set_free(&now);
         return rc;
     }
     char dir[1024], report[1100];
     if (mkdir_p(outdir)) {
-        fprintf(stderr, "shellbench regress: cannot create %s: %s\n", outdir, strerror(errno));
+        sb_escape_print(stderr, "shellbench regress: cannot create %s: %s", outdir, strerror(errno));
         rc = 3;
     } else {
+        /* written to a new temporary file and renamed onto the report: never
+         * through a link that appeared since the check */
+        char tmp[1200];
         snprintf(report, sizeof report, "%s/report.md", outdir);
-        FILE *f = fopen(report, "w");
+        snprintf(tmp, sizeof tmp, "%s.tmp.%ld", report, (long)getpid());
+        err[0] = 0;
+        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+        FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+        if (!f && fd >= 0) close(fd);
         if (f) {
             sb_regress_markdown(f, &now, have_base ? &base : NULL, &ru, baseline);
             sb_regress_pictures(f, &now, records, outdir, stderr);
             if (fclose(f)) f = NULL;
         }
-        if (!f) fprintf(stderr, "shellbench regress: cannot write %s: %s\n", report, strerror(errno)), rc = 3;
+        sb_output_kind kind;
+        if (f && (sb_output_check(report, "report", &kind, err, sizeof err) || rename(tmp, report))) f = NULL;
+        if (!f) {
+            sb_escape_print(stderr, "shellbench regress: cannot write %s: %s", report, err[0] ? err : strerror(errno));
+            unlink(tmp);
+            rc = 3;
+        }
     }
     sb_regress_markdown(stdout, &now, have_base ? &base : NULL, &ru, baseline);
     if (!no_history) {
         if (dir_of(history, dir, sizeof dir) || sb_regress_history_append(&now, history, err, sizeof err)) {
-            fprintf(stderr, "shellbench regress: %s\n", err);
+            sb_escape_print(stderr, "shellbench regress: %s", err);
             rc = 3;
         } else if (!rc) {
             sb_regress_history_plots(history, &now, outdir, NULL, stderr);
@@ -243,17 +264,18 @@ int sb_cli_regress(int argc, char **argv)
         int failed = 0;
         for (int k = 0; k < now.n; k++) failed += now.c[k].verdict == SB_VERDICT_FAILED;
         if (failed) {
-            fprintf(stderr, "shellbench regress: %d case%s failed: the baseline %s is left as it was\n", failed,
+            sb_escape_print(stderr, "shellbench regress: %d case%s failed: the baseline %s is left as it was", failed,
                     failed > 1 ? "s" : "", baseline);
             regressions = regressions ? regressions : 1;
         } else if (dir_of(baseline, dir, sizeof dir) || sb_regress_baseline_write(&now, baseline, err, sizeof err)) {
-            fprintf(stderr, "shellbench regress: %s\n", err);
+            sb_escape_print(stderr, "shellbench regress: %s", err);
             rc = 3;
         } else {
-            printf("baseline written: %s (%d cases, build %s)\n", baseline, now.n, now.prov.build);
+            sb_escape_print(stdout, "baseline written: %s (%d cases, build %s)", baseline, now.n, now.prov.build);
             regressions = 0;   /* the new baseline is this run: nothing regressed against it */
         }
     }
+    sb_output_lock_release(&lock);
     sb_regress_set_free(&base);
     sb_regress_set_free(&now);
     if (rc) return rc;

@@ -77,7 +77,7 @@ int sb_cli_sweep(int argc, char **argv)
     if (c.res_list && split_opt("--res", c.res_list, rb, sizeof rb, re, &nre)) return 2;
     for (int i = 0; c.res_list && i < nre; i++)   /* each item as `run --res` takes it */
         if (sb_cli_parse_res(re[i], &res[i], err, sizeof err)) {
-            fprintf(stderr, "shellbench sweep: %s\n", err);
+            sb_escape_print(stderr, "shellbench sweep: %s", err);
             return 2;
         }
     if (c.level_list && (split_opt("--levels", c.level_list, lb, sizeof lb, le, &nle) ||
@@ -87,22 +87,24 @@ int sb_cli_sweep(int argc, char **argv)
                          nre, res, nle, lev, c.req.n_sets, c.sets, c.dir ? c.dir : "results/sweep", c.req.sample_n };
     sb_sweep_plan plan;
     if (sb_sweep_validate(&ax, &plan, err, sizeof err)) {
-        fprintf(stderr, "shellbench %s\n", err);
+        sb_escape_print(stderr, "shellbench %s", err);
         return 2;
     }
     if (plan.n_left_out)
         fprintf(stderr, "shellbench sweep: %d combination%s left out: %s\n", plan.n_left_out,
                 plan.n_left_out > 1 ? "s" : "", plan.left_out);
     const int show = c.req.progress > 0 || (c.req.progress == 0 && isatty(STDERR_FILENO));
-    int worst = 0, n_conv = 0, n_not = 0, n_skip = 0, n_fail = 0, n_ran = 0;
+    int worst = 0, n_conv = 0, n_not = 0, n_val = 0, n_skip = 0, n_fail = 0, n_ran = 0;
     double t0 = sb_now(), ran_seconds = 0;
     for (int k = 0; k < plan.n; k++) {
         const sb_sweep_item *it = &plan.items[k];
         if (c.req.resume && access(it->out, F_OK) == 0) {
             sb_record_summary s;
             if (sb_record_read_summary(it->out, &s, err, sizeof err) == SB_OK) {
-                int code = s.status == 0 ? 0 : 1;
-                printf("%-60s skipped (recorded: %s)\n", it->out, sb_record_status_name(s.status));
+                /* the recorded verdict counts as the run's: status and, with --strict, validation */
+                int code = sb_run_recorded_exit(s.status, s.validation, c.req.strict);
+                sb_escape_print(stdout, "%-60s skipped (recorded: %s%s)", it->out, sb_record_status_name(s.status),
+                                code == SB_EXIT_VALIDATION ? ", validation failed" : "");
                 sb_record_summary_free(&s);
                 n_skip++;
                 if (code > worst) worst = code;
@@ -132,15 +134,17 @@ int sb_cli_sweep(int argc, char **argv)
         n_ran++;
         const char *what = x == 0 ? "converged" : x == 1 ? "NOT converged" : x == 2 ? "input error"
                          : x == 4 ? "stopped" : x == 5 ? "validation failed" : "internal error";
-        printf("%-60s %s\n", it->out, what);
+        sb_escape_print(stdout, "%-60s %s", it->out, what);
         fflush(stdout);
         if (x == 0) n_conv++;
         else if (x == 1) n_not++;
+        else if (x == 5) n_val++;   /* --strict: converged, but a probe missed its expected value */
         else n_fail++;
         if (x > worst) worst = x;
     }
-    printf("%d run%s in %s: %d converged, %d not converged, %d skipped (already recorded), %d failed; %.1f s\n", plan.n,
-           plan.n == 1 ? "" : "s", ax.dir, n_conv, n_not, n_skip, n_fail, sb_now() - t0);
+    sb_escape_print(stdout, "%d run%s in %s: %d converged, %d not converged, %d skipped (already recorded), %d failed, "
+                    "%d validation failed; %.1f s", plan.n, plan.n == 1 ? "" : "s", ax.dir, n_conv, n_not, n_skip, n_fail,
+                    n_val, sb_now() - t0);
     sb_sweep_plan_free(&plan);
     return worst;
 }

@@ -17,38 +17,13 @@
 
 #define FAIL(...) do { snprintf(err, errlen, __VA_ARGS__); goto fail; } while (0)
 
-/* The directory exists and is writable, or can be made: its nearest
- * existing ancestor is a writable directory. */
+/* The directory exists and is writable, or can be made (sb_output.h). */
 static int check_dir(const char *dir, char *err, size_t errlen)
 {
-    char p[1024];
-    struct stat st;
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
-        snprintf(err, errlen, "sweep: --dir %s is too long", dir);
-        return SB_ERR_INPUT;
-    }
-    for (;;) {
-        if (stat(p, &st) == 0) {
-            if (!S_ISDIR(st.st_mode)) {
-                snprintf(err, errlen, "sweep: cannot write records into %s: %s is not a directory", dir, p);
-                return SB_ERR_INPUT;
-            }
-            if (access(p, W_OK | X_OK) != 0) {
-                snprintf(err, errlen, "sweep: cannot write records into %s: %s is not writable (%s)", dir, p,
-                         strerror(errno));
-                return SB_ERR_INPUT;
-            }
-            return SB_OK;
-        }
-        if (!strcmp(p, ".") || !strcmp(p, "/")) {
-            snprintf(err, errlen, "sweep: cannot write records into %s: %s", dir, strerror(errno));
-            return SB_ERR_INPUT;
-        }
-        char *slash = strrchr(p, '/');
-        if (!slash) snprintf(p, sizeof p, ".");          /* relative: the current directory decides */
-        else if (slash == p) p[1] = 0;                   /* the root */
-        else *slash = 0;
-    }
+    char msg[1800];
+    if (sb_output_check_dir(dir, "records", msg, sizeof msg) == SB_OK) return SB_OK;
+    snprintf(err, errlen, "sweep: %s", msg);
+    return SB_ERR_INPUT;
 }
 
 /* One (method, solver, levels) with its parameters; SB_OK, SB_ERR_UNSUPPORTED
@@ -164,6 +139,7 @@ int sb_sweep_validate(const sb_sweep_axes *ax, sb_sweep_plan *plan, char *err, s
                         sb_output_kind kind;
                         if (sb_output_check(it->out, "record", &kind, msg, sizeof msg) || kind == SB_OUTPUT_DISCARD)
                             FAIL("sweep: %s", kind == SB_OUTPUT_DISCARD ? "a record path is the null device" : msg);
+                        if (sb_output_check_lockfile(it->out, msg, sizeof msg)) FAIL("sweep: %s", msg);
                         plan->n++;
                     }
     if (plan->n == 0) FAIL("sweep: no run is possible: %s", plan->left_out);

@@ -465,6 +465,33 @@ void sb_contact_measure(sb_contact *c, const double *x, sb_contact_report *r)
         r->min_distance = fmin(r->min_distance, M.dmin);
         if (M.dmin < c->dhat) r->active++;
     }
+    /* the surface between the points: each sample triangle against each
+       analytic obstacle (sb_obstacle_triangle_depth), counted when the
+       obstacle reaches deeper than dhat into it while its corners are all
+       outside (a corner inside is counted above) */
+    r->between_obstacle = -1;
+    r->between = P->nt > 0 ? 0 : -1;
+    for (int t = 0; t < P->nt; t++) {
+        double xa[3], xb[3], xc[3];
+        sb_contact_points_eval(P, P->tri[3 * t], x, xa);
+        sb_contact_points_eval(P, P->tri[3 * t + 1], x, xb);
+        sb_contact_points_eval(P, P->tri[3 * t + 2], x, xc);
+        for (int o = 0; o < c->sc->n_obstacles; o++) {
+            const sb_obstacle_spec *ob = &c->sc->obstacles[o];
+            /* deeper than dhat: the chord between points resting on a curved
+               obstacle dips into it by about h^2 / (8 R), a discretization
+               error the barrier's own scale covers; a needle between the
+               points pierces (INFINITY) */
+            if (ob->kind == SB_OBST_MESH || !(sb_obstacle_triangle_depth(ob, &c->pose[o], xa, xb, xc) > c->dhat))
+                continue;
+            if (sb_obstacle_phi(ob, &c->pose[o], xa, NULL, NULL) <= 0 || sb_obstacle_phi(ob, &c->pose[o], xb, NULL, NULL) <= 0 ||
+                sb_obstacle_phi(ob, &c->pose[o], xc, NULL, NULL) <= 0)
+                continue;
+            if (r->between_obstacle < 0) r->between_obstacle = o;
+            r->between++;
+            break;
+        }
+    }
     r->self_min_distance = INFINITY;
     if (c->self) {
         sb_self_report s;
@@ -553,4 +580,96 @@ int sb_contact_separate(sb_contact *c, int step, double *x, const unsigned char 
         left += visit_pairs(c, c->pose, xp, target, 0, meas_pair, &M) || M.dmin < target;
     }
     return left;
+}
+
+/* ---- moving obstacles against the step's start ---------------------------- */
+
+/* The barrier sees the obstacles at t_{n+1} only; an obstacle that moves
+ * through a sample point within the step would leave it on the other side
+ * unseen.  Each point at x_n is held still and the obstacle's motion over
+ * the step is swept against it (sb_obstacle_sweep: the segment of the
+ * point's relative motion in the obstacle's frame, exact for translations,
+ * chords within dhat/100 for rotations).  The earliest touch over all
+ * points and moving obstacles is reported; returns the number of points
+ * touched. */
+int sb_contact_sweep_check(const sb_contact *c, int step, const double *x_n, sb_contact_sweep_hit *hit)
+{
+    const sb_scene *sc = c->sc;
+    const sb_contact_points *P = &c->pts;
+    int n_hit = 0;
+    memset(hit, 0, sizeof *hit);
+    hit->when = 2.0;
+    hit->point = hit->obstacle = -1;
+    if (step < 1) return 0;
+    for (int o = 0; o < sc->n_obstacles; o++) {
+        const sb_obstacle_spec *ob = &sc->obstacles[o];
+        const double fa = sb_obstacle_motion_factor(sc, ob, step - 1), fb = sb_obstacle_motion_factor(sc, ob, step);
+        if (fa == fb) continue;
+        for (int p = 0; p < P->n; p++) {
+            double xp[3];
+            sb_contact_points_eval(P, p, x_n, xp);
+            const double t = sb_obstacle_sweep(ob, fa, fb, xp, 0.01 * c->dhat);
+            if (!(t <= 1)) continue;
+            n_hit++;
+            if (t < hit->when) {
+                hit->when = t;
+                hit->point = p;
+                hit->obstacle = o;
+                memcpy(hit->x, xp, sizeof hit->x);
+                hit->st[0] = P->st ? P->st[2 * p] : NAN;
+                hit->st[1] = P->st ? P->st[2 * p + 1] : NAN;
+                sb_pose B;
+                sb_pose_at(ob, fb, &B);
+                hit->ends_inside = ob->kind != SB_OBST_MESH && sb_obstacle_phi(ob, &B, xp, NULL, NULL) <= 0;
+            }
+        }
+    }
+    return n_hit;
+}
+
+/* The first sample point at x inside an analytic obstacle, or on a mesh
+ * obstacle's triangle, in the obstacles' poses of step `step`: returns the
+ * number of such points and describes the first in *hit (when = 0). */
+int sb_contact_inside_check(const sb_contact *c, int step, const double *x, sb_contact_sweep_hit *hit)
+{
+    const sb_scene *sc = c->sc;
+    const sb_contact_points *P = &c->pts;
+    int n_in = 0;
+    memset(hit, 0, sizeof *hit);
+    hit->when = 2.0;
+    hit->point = hit->obstacle = -1;
+    for (int o = 0; o < sc->n_obstacles; o++) {
+        const sb_obstacle_spec *ob = &sc->obstacles[o];
+        sb_pose A;
+        sb_pose_at(ob, sb_obstacle_motion_factor(sc, ob, step), &A);
+        for (int p = 0; p < P->n; p++) {
+            double xp[3], d;
+            sb_contact_points_eval(P, p, x, xp);
+            if (ob->kind != SB_OBST_MESH) d = sb_obstacle_phi(ob, &A, xp, NULL, NULL);
+            else {
+                double y[3];
+                sb_pose_inverse(&A, xp, y);
+                d = INFINITY;
+                for (int f = 0; f < ob->nt && d > 0; f++) {
+                    const double *a = ob->verts + 3 * ob->tris[3 * f], *b = ob->verts + 3 * ob->tris[3 * f + 1],
+                                 *cc = ob->verts + 3 * ob->tris[3 * f + 2];
+                    int out = 0;   /* only a triangle whose box holds y can have it on it */
+                    for (int i = 0; i < 3; i++)
+                        out |= y[i] < fmin(a[i], fmin(b[i], cc[i])) || y[i] > fmax(a[i], fmax(b[i], cc[i]));
+                    if (!out) d = fmin(d, sb_point_triangle_distance(y, a, b, cc, NULL, NULL));
+                }
+            }
+            if (!(d <= 0)) continue;
+            if (n_in++ == 0) {
+                hit->when = 0;
+                hit->point = p;
+                hit->obstacle = o;
+                hit->ends_inside = 1;
+                memcpy(hit->x, xp, sizeof hit->x);
+                hit->st[0] = P->st ? P->st[2 * p] : NAN;
+                hit->st[1] = P->st ? P->st[2 * p + 1] : NAN;
+            }
+        }
+    }
+    return n_in;
 }

@@ -41,11 +41,38 @@ int  sb_contact_energy(sb_contact *c, const double *x, double *f, double *g, sb_
  * point–triangle CCD for meshes). */
 double sb_contact_step_bound(sb_contact *c, const double *x, const double *d);
 
+/* A moving obstacle against the sample points at the start of a step
+ * (docs/contact.md "Moving obstacles"): the point (index, world position
+ * at x_n, grid parameter) that the obstacle's motion over step `step`
+ * touches first, the fraction of the step at which it does (0: inside at
+ * the start), and whether the point ends inside the obstacle's new pose.
+ * sb_contact_sweep_check returns the number of points touched (0: none,
+ * hit->point = -1). */
+typedef struct sb_contact_sweep_hit {
+    int point, obstacle;
+    double when;
+    double x[3], st[2];
+    int ends_inside;
+} sb_contact_sweep_hit;
+int  sb_contact_sweep_check(const sb_contact *c, int step, const double *x_n, sb_contact_sweep_hit *hit);
+/* Sample points of x inside an analytic obstacle (or on a mesh triangle)
+ * in the poses of step `step` (0: the scene's start): their number, the
+ * first in *hit. */
+int  sb_contact_inside_check(const sb_contact *c, int step, const double *x, sb_contact_sweep_hit *hit);
+
 typedef struct sb_contact_report {
     int points;              /* sample points */
     int active;              /* points within dhat of an obstacle (barrier active) */
     int inside;              /* points inside an analytic obstacle or on a mesh triangle */
     double min_distance;     /* smallest distance of a sample point to an obstacle (m) */
+    /* between the sample points (issue 37): the sample triangles into which
+     * an analytic obstacle's solid reaches deeper than dhat (or which a
+     * capsule's axis pierces) although their three corners are outside it
+     * (an obstacle crossing the cloth between the points); -1 when the
+     * method does not triangulate its points (not checked); the first such
+     * obstacle (-1: none) */
+    int between;
+    int between_obstacle;
     /* self-contact (zero / INFINITY without) */
     int self_pairs;          /* candidate pairs of the step */
     int self_active;         /* candidate pairs within dhat */

@@ -2,8 +2,13 @@
  * closed-form times of impact of the analytic obstacles, and the
  * point–triangle distance of mesh obstacles (sb_obstacle.h). */
 #include "sb_obstacle.h"
+#include "sb_geometry.h"
+#include "sb_self_geom.h"
+#include "sb_bridson.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -265,4 +270,240 @@ double sb_obstacle_toi(const sb_obstacle_spec *o, const sb_pose *P, const double
         break;
     }
     return 2.0;
+}
+
+/* ---- a static point against an obstacle moving over a step -------------- */
+
+/* The obstacle moves from factor fa to fb; seen from its rest frame the
+ * static world point x travels on y(f) = c + R(f angle)^T (x - c - f t)
+ * (sb_pose_inverse).  For a translation y is linear in f and one segment is
+ * exact.  With a rotation y is followed by chords of n pieces; a chord of a
+ * C2 curve over a piece of length h deviates from it by at most
+ * h^2/8 max|y''| (linear interpolation error), and
+ * |y''| <= th^2 |x - c - f t| + 2 th |t| (th = angle, t = translation), so
+ * n is chosen to keep that below tol (at most 4096 pieces). */
+static int sweep_pieces(const sb_obstacle_spec *o, double fa, double fb, const double x[3], double tol)
+{
+    const double th = fabs(o->rot_angle), df = fabs(fb - fa);
+    if (th == 0 || df == 0) return 1;
+    const double tn = sqrt(dot3(o->translation, o->translation));
+    double u = 0;
+    for (int i = 0; i < 3; i++) u += (x[i] - o->rot_center[i]) * (x[i] - o->rot_center[i]);
+    u = sqrt(u) + tn;   /* |x - c - f t| <= |x - c| + |t| for f in [0, 1] */
+    const double ypp = th * th * u + 2 * th * tn;
+    double n = ceil(df * sqrt(ypp / (8 * tol)));
+    if (!(n >= 1)) n = 1;
+    return n > 4096 ? 4096 : (int)n;
+}
+
+double sb_obstacle_sweep(const sb_obstacle_spec *o, double fa, double fb, const double x[3], double tol)
+{
+    if (fa == fb) return 2.0;
+    sb_pose rest, P;
+    sb_pose_at(o, 0.0, &rest);   /* identity: the rest frame */
+    const int n = sweep_pieces(o, fa, fb, x, tol);
+    double y0[3], y1[3];
+    sb_pose_at(o, fa, &P);
+    sb_pose_inverse(&P, x, y0);
+    if (o->kind != SB_OBST_MESH && sb_obstacle_phi(o, &rest, y0, NULL, NULL) <= 0) return 0.0;
+    for (int k = 0; k < n; k++) {
+        sb_pose_at(o, fa + (fb - fa) * (k + 1) / n, &P);
+        sb_pose_inverse(&P, x, y1);
+        double d[3] = { y1[0] - y0[0], y1[1] - y0[1], y1[2] - y0[2] }, t = 2.0;
+        if (o->kind != SB_OBST_MESH) {
+            t = sb_obstacle_toi(o, &rest, y0, d);
+        } else {
+            double lo[3], hi[3];
+            for (int i = 0; i < 3; i++) { lo[i] = fmin(y0[i], y1[i]); hi[i] = fmax(y0[i], y1[i]); }
+            for (int f = 0; f < o->nt; f++) {
+                const double *a = o->verts + 3 * o->tris[3 * f], *b = o->verts + 3 * o->tris[3 * f + 1],
+                             *c = o->verts + 3 * o->tris[3 * f + 2];
+                int sep = 0;
+                for (int i = 0; i < 3; i++)
+                    sep |= hi[i] < fmin(a[i], fmin(b[i], c[i])) || lo[i] > fmax(a[i], fmax(b[i], c[i]));
+                if (!sep) t = fmin(t, sb_ccd_point_triangle(y0, y1, a, a, b, b, c, c));
+            }
+        }
+        if (t <= 1) return (k + t) / n;
+        memcpy(y0, y1, sizeof y0);
+    }
+    return 2.0;
+}
+
+/* ---- the scene's reference surface against the obstacles at the start ---- */
+
+/* y within the bounding box of triangle (a, b, c) (closed): only then can it lie on it */
+static int in_tri_box(const double y[3], const double a[3], const double b[3], const double c[3])
+{
+    for (int i = 0; i < 3; i++)
+        if (y[i] < fmin(a[i], fmin(b[i], c[i])) || y[i] > fmax(a[i], fmax(b[i], c[i]))) return 0;
+    return 1;
+}
+
+int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size)
+{
+    static const char *const kinds[] = { "sphere", "plane", "box", "capsule", "mesh" };
+    if (why_size) why[0] = '\0';
+    if (sc->n_obstacles == 0) return 0;
+    /* the sample density of the scene's resolution (n samples per element
+     * side), at most 129 x 129 points */
+    int n = (sc->default_res > 0 ? sc->default_res : 8) * (sc->contact.samples > 0 ? sc->contact.samples : 1) + 1;
+    if (n > 129) n = 129;
+    if (n < 2) n = 2;
+    double *st = malloc((size_t)2 * n * n * sizeof *st);
+    if (!st) return -1;
+    const int np = sb_domain_sample_grid(&sc->domain, n, st, n * n);
+    int found = 0;
+    for (int o = 0; o < sc->n_obstacles && !found; o++) {
+        const sb_obstacle_spec *ob = &sc->obstacles[o];
+        sb_pose P;
+        sb_pose_at(ob, sb_obstacle_motion_factor(sc, ob, 0), &P);
+        double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+        for (int v = 0; ob->kind == SB_OBST_MESH && v < ob->nv; v++)
+            for (int i = 0; i < 3; i++) {
+                lo[i] = fmin(lo[i], ob->verts[3 * v + i]);
+                hi[i] = fmax(hi[i], ob->verts[3 * v + i]);
+            }
+        for (int k = 0; k < np && k < n * n && !found; k++) {
+            sb_jet3 J;
+            sb_geometry_eval_st(sc, st[2 * k], st[2 * k + 1], &J);
+            double d;
+            if (ob->kind != SB_OBST_MESH) d = sb_obstacle_phi(ob, &P, J.x, NULL, NULL);
+            else {
+                double y[3];
+                sb_pose_inverse(&P, J.x, y);
+                d = INFINITY;
+                int out = 0;   /* outside the mesh's bounding box: on none of its triangles */
+                for (int i = 0; i < 3; i++) out |= y[i] < lo[i] || y[i] > hi[i];
+                for (int f = 0; f < ob->nt && d > 0 && !out; f++)
+                    if (in_tri_box(y, ob->verts + 3 * ob->tris[3 * f], ob->verts + 3 * ob->tris[3 * f + 1],
+                                   ob->verts + 3 * ob->tris[3 * f + 2]))
+                        d = fmin(d, sb_point_triangle_distance(y, ob->verts + 3 * ob->tris[3 * f],
+                                                               ob->verts + 3 * ob->tris[3 * f + 1],
+                                                               ob->verts + 3 * ob->tris[3 * f + 2], NULL, NULL));
+            }
+            if (d <= 0) {
+                sb_jet2 xi;
+                sb_domain_map(&sc->domain, st[2 * k], st[2 * k + 1], &xi);
+                char e[SB_NAME_LEN * 4 + 8];
+                snprintf(why, why_size,
+                         "the cloth starts inside obstacle \"%s\" (%s): the reference surface's point at material "
+                         "coordinates (%.4g, %.4g) (s = %.4g, t = %.4g), (%.4g, %.4g, %.4g) m, is %s it at the "
+                         "start; contact cannot start from there (infinite barrier energy, no side to push to).  "
+                         "Move the obstacle or the cloth apart",
+                         sb_escape_copy(ob->name, e, sizeof e), kinds[ob->kind], xi.x[0], xi.x[1], st[2 * k],
+                         st[2 * k + 1], J.x[0], J.x[1], J.x[2],
+                         ob->kind == SB_OBST_MESH ? "on a triangle of" : "inside");
+                found = 1;
+            }
+        }
+    }
+    free(st);
+    return found;
+}
+
+/* ---- a cloth triangle against an analytic solid ---------------------------- */
+
+/* Triangle (a, b, c) (rest frame) against the axis-aligned box |y - m| <= h:
+ * the separating-axis test of Akenine-Möller (2001, "Fast 3D triangle-box
+ * overlap testing"): 3 box axes, the triangle's normal, 9 edge x axis
+ * products.  Returns, over the axes (each normalized), the smallest of the
+ * two translations along it that separate the projections: <= 0 when an
+ * axis separates them, else the penetration depth (the shortest
+ * translation that separates the two convex polytopes is along one of
+ * these axes). */
+static double tri_box_depth(const double a[3], const double b[3], const double c[3], const double m[3], const double h[3])
+{
+    double v[3][3], e[3][3];
+    for (int i = 0; i < 3; i++) { v[0][i] = a[i] - m[i]; v[1][i] = b[i] - m[i]; v[2][i] = c[i] - m[i]; }
+    for (int i = 0; i < 3; i++) { e[0][i] = v[1][i] - v[0][i]; e[1][i] = v[2][i] - v[1][i]; e[2][i] = v[0][i] - v[2][i]; }
+    double axes[13][3];
+    int na = 0;
+    for (int k = 0; k < 3; k++) {   /* the box's faces */
+        double u[3] = { 0, 0, 0 };
+        u[k] = 1;
+        memcpy(axes[na++], u, sizeof u);
+    }
+    double nrm[3] = { e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
+                      e[0][0] * e[1][1] - e[0][1] * e[1][0] };
+    memcpy(axes[na++], nrm, sizeof nrm);
+    for (int j = 0; j < 3; j++)
+        for (int k = 0; k < 3; k++) {   /* e_j x unit axis k */
+            double u[3] = { 0, 0, 0 }, w[3];
+            u[k] = 1;
+            w[0] = e[j][1] * u[2] - e[j][2] * u[1];
+            w[1] = e[j][2] * u[0] - e[j][0] * u[2];
+            w[2] = e[j][0] * u[1] - e[j][1] * u[0];
+            memcpy(axes[na++], w, sizeof w);
+        }
+    double depth = INFINITY;
+    for (int q = 0; q < na; q++) {
+        const double *u = axes[q], un = sqrt(dot3(u, u));
+        if (!(un > 1e-12 * (1 + sqrt(dot3(nrm, nrm))))) continue;   /* degenerate axis: no information */
+        double lo = INFINITY, hi = -INFINITY;
+        for (int k = 0; k < 3; k++) {
+            const double p = dot3(v[k], u);
+            lo = fmin(lo, p);
+            hi = fmax(hi, p);
+        }
+        const double r = h[0] * fabs(u[0]) + h[1] * fabs(u[1]) + h[2] * fabs(u[2]);
+        /* the shorter of the two pushes that separate the projections
+           [lo, hi] and [-r, r]: up by r - lo or down by hi + r */
+        depth = fmin(depth, fmin(r - lo, hi + r) / un);
+        if (depth <= 0) return depth;
+    }
+    return depth;
+}
+
+static double tri_point_distance(const double p[3], const double a[3], const double b[3], const double c[3])
+{
+    return sb_point_triangle_distance(p, a, b, c, NULL, NULL);
+}
+
+double sb_obstacle_triangle_depth(const sb_obstacle_spec *o, const sb_pose *P, const double xa[3], const double xb[3],
+                                  const double xc[3])
+{
+    double a[3], b[3], c[3];
+    sb_pose_inverse(P, xa, a);
+    sb_pose_inverse(P, xb, b);
+    sb_pose_inverse(P, xc, c);
+    switch (o->kind) {
+    case SB_OBST_SPHERE: {
+        for (int i = 0; i < 3; i++)   /* bounding-box cull */
+            if (fmin(a[i], fmin(b[i], c[i])) >= o->center[i] + o->radius ||
+                fmax(a[i], fmax(b[i], c[i])) <= o->center[i] - o->radius)
+                return 0;
+        return o->radius - tri_point_distance(o->center, a, b, c);
+    }
+    case SB_OBST_PLANE: {   /* linear: its minimum over the triangle is at a corner */
+        double m = INFINITY;
+        const double *v[3] = { a, b, c };
+        for (int k = 0; k < 3; k++) {
+            double w[3] = { v[k][0] - o->point[0], v[k][1] - o->point[1], v[k][2] - o->point[2] };
+            m = fmin(m, dot3(o->normal, w));
+        }
+        return -m;
+    }
+    case SB_OBST_BOX:
+        return tri_box_depth(a, b, c, o->center, o->half);
+    case SB_OBST_CAPSULE: {
+        for (int i = 0; i < 3; i++)
+            if (fmin(a[i], fmin(b[i], c[i])) >= fmax(o->a[i], o->b[i]) + o->radius ||
+                fmax(a[i], fmax(b[i], c[i])) <= fmin(o->a[i], o->b[i]) - o->radius)
+                return 0;
+        /* the axis segment through the triangle: the capsule pierces it */
+        if (sb_segment_triangle_intersect(o->a, o->b, a, b, c)) return INFINITY;
+        /* else its distance to the triangle, attained at an end of the
+           segment or on an edge of the triangle */
+        double d = fmin(tri_point_distance(o->a, a, b, c), tri_point_distance(o->b, a, b, c));
+        const double *v[3] = { a, b, c };
+        for (int k = 0; k < 3; k++) {
+            double s, t;
+            d = fmin(d, sb_closest_segments(o->a, o->b, v[k], v[(k + 1) % 3], &s, &t));
+        }
+        return o->radius - d;
+    }
+    default:
+        return 0;   /* meshes: not tested here */
+    }
 }

@@ -44,6 +44,36 @@ double sb_point_triangle_distance(const double x[3], const double a[3], const do
  * 2 (no impact in [0, 1]) otherwise.  x must be outside (phi > 0). */
 double sb_obstacle_toi(const sb_obstacle_spec *o, const sb_pose *P, const double x[3], const double d[3]);
 
+/* A static world point x against obstacle o moving over a step from
+ * motion factor fa to fb (the factor interpolated linearly within the
+ * step): the first fraction of the step in [0, 1] at which the obstacle
+ * touches x (0 when x is inside its solid at fa), or 2 when it does not.
+ * The point's path in the obstacle's rest frame is tested piece by piece
+ * (closed-form sb_obstacle_toi, point–triangle CCD for meshes): exact for
+ * translations, chords within tol (m) of the path for rotations
+ * (sb_obstacle.c).  This is the obstacle's swept volume seen from x. */
+double sb_obstacle_sweep(const sb_obstacle_spec *o, double fa, double fb, const double x[3], double tol);
+
+/* The scene's reference surface, sampled at its resolution (res x
+ * contact.samples points per side, at most 129 x 129), against the
+ * obstacles' poses at step 0: 1 when a point lies inside an analytic
+ * obstacle or on a mesh triangle, with a sentence in why naming the
+ * obstacle and the point; 0 when none does; -1 out of memory.  Method-free:
+ * `shellbench check` and the run's set-up use it (the run then checks the
+ * method's own sample points too). */
+int sb_obstacles_start_check(const sb_scene *sc, char *why, size_t why_size);
+
+/* How deep the open solid of analytic obstacle o in pose P reaches into
+ * the world triangle (xa, xb, xc): > 0 when they overlap (<= 0 otherwise).
+ * Sphere: radius minus the centre's distance to the triangle; capsule:
+ * radius minus the axis segment's distance, INFINITY when the axis crosses
+ * the triangle (pierced); box: the penetration depth of the separating-axis
+ * test (Akenine-Möller 2001); plane: minus the lowest corner's distance.
+ * Meshes: 0 (not tested).  Used to see an obstacle crossing the cloth
+ * between its sample points (docs/contact.md "What the guarantee covers"). */
+double sb_obstacle_triangle_depth(const sb_obstacle_spec *o, const sb_pose *P, const double xa[3], const double xb[3],
+                                  const double xc[3]);
+
 /* Continuous collision of a point against a triangle, all four moving
  * linearly from time 0 to 1 (p0 -> p1, a0 -> a1, ...): the first time in
  * [0, 1] at which the point lies on the triangle (closed triangle), or 2 when

@@ -8,6 +8,7 @@
 #include "sb_impulse.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -41,6 +42,10 @@ struct sb_problem {
     double *scale_x, *scale_g;  /* sb_problem_force_scale (finest level, allocated on first use) */
     int self;                   /* self-contact on every level (contact.self) */
     int pattern_changed;        /* a level's pattern was replaced (sb_problem_take_pattern_change) */
+    /* contact.model "impulse": the finest level's contact sample points,
+     * for the end-of-step measurements only (no energy, no filter; issue 37:
+     * what the response left between its points) */
+    sb_contact *watch;
 };
 
 static void level_free(sb_problem *p, level_data *L)
@@ -65,6 +70,7 @@ void sb_problem_free(sb_problem *p)
 {
     if (!p) return;
     for (int l = 0; l < p->nl; l++) level_free(p, &p->lv[l]);
+    sb_contact_free(p->watch);
     free(p->scale_x);
     free(p->scale_g);
     free(p);
@@ -92,6 +98,17 @@ static int contact_create(sb_problem *p)
             return sb_error(p->ctx, SB_ERR_UNSUPPORTED, "scene %s asks for self-contact (contact.self) with "
                             "contact.model \"impulse\", but method %s's impulse response handles obstacles only "
                             "(use the barrier model for its self-contact)", sc->name, p->mt->name);
+        sb_contact_free(p->watch);
+        p->watch = NULL;
+        if (p->mt->contact_points) {
+            sb_contact_points cp;
+            memset(&cp, 0, sizeof cp);
+            int rc = p->mt->contact_points(p->ms, p->nl - 1, sc->contact.samples, &cp);
+            if (!rc) rc = sb_contact_create(sc, &cp, &p->watch);
+            sb_contact_points_free(&cp);
+            if (rc) return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "method %s: contact sample points failed",
+                                    p->mt->name);
+        }
         return SB_OK;
     }
     if (!p->mt->contact_points)
@@ -741,6 +758,86 @@ int sb_problem_contact_separate(sb_problem *p, int step, double *x, int *moved)
     free(fixed);
     sb_stats_event(&p->ctx->stats, p->nl - 1, SB_EV_COLLIDE, t0);
     return left;
+}
+
+static const char *obstacle_kind_name(const sb_obstacle_spec *o)
+{
+    static const char *const names[] = { "sphere", "plane", "box", "capsule", "mesh" };
+    return (int)o->kind >= 0 && (int)o->kind < 5 ? names[o->kind] : "obstacle";
+}
+
+int sb_problem_contact_swept(sb_problem *p, int step, const double *x_n, char *why, size_t why_size)
+{
+    level_data *L = &p->lv[p->nl - 1];
+    if (why_size) why[0] = '\0';
+    if (!L->contact) return 0;
+    /* not a separate collide event (the counts per step stay those of the
+       docs): points x moving obstacles, nothing with static ones */
+    sb_contact_sweep_hit h;
+    const int n = sb_contact_sweep_check(L->contact, step, x_n, &h);
+    if (!n) return 0;
+    const sb_obstacle_spec *o = &p->scene->obstacles[h.obstacle];
+    char e[SB_NAME_LEN * 4 + 8];
+    snprintf(why, why_size,
+             "step %d: obstacle \"%s\" (%s) moves through the cloth within the step: its motion over the step "
+             "reaches %d contact sample point%s, first point %d (s = %.4g, t = %.4g) at (%.4g, %.4g, %.4g) m, %s "
+             "%.3g of the step, %s; the barrier sees obstacles only at the step's end, so the cloth would be left "
+             "on the wrong side unseen.  Use smaller steps (time.dt) or a slower motion (motion.ramp_steps)",
+             step, sb_escape_copy(o->name, e, sizeof e), obstacle_kind_name(o), n, n == 1 ? "" : "s", h.point,
+             h.st[0], h.st[1], h.x[0], h.x[1], h.x[2], h.when > 0 ? "touched after" : "inside it at",
+             h.when, h.ends_inside ? "and it ends inside the obstacle" : "and it ends on the obstacle's far side");
+    return n;
+}
+
+int sb_problem_contact_start_check(sb_problem *p, const double *x, char *why, size_t why_size)
+{
+    const int F = p->nl - 1;
+    level_data *L = &p->lv[F];
+    const sb_scene *sc = p->scene;
+    if (why_size) why[0] = '\0';
+    if (sc->n_obstacles == 0 || !p->mt->contact_points) return 0;
+    sb_contact *c = L->contact, *tmp = NULL;
+    if (!c) {   /* contact.model "impulse": the method's sample points, for this check only */
+        sb_contact_points cp;
+        memset(&cp, 0, sizeof cp);
+        int rc = p->mt->contact_points(p->ms, F, sc->contact.samples, &cp);
+        if (!rc) rc = sb_contact_create(sc, &cp, &tmp);
+        sb_contact_points_free(&cp);
+        if (rc) return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "method %s: contact sample points failed",
+                                p->mt->name);
+        c = tmp;
+    }
+    sb_contact_sweep_hit h;
+    const int n = sb_contact_inside_check(c, 0, x, &h);
+    sb_contact_free(tmp);
+    if (!n) return 0;
+    const sb_obstacle_spec *o = &sc->obstacles[h.obstacle];
+    char e[SB_NAME_LEN * 4 + 8];
+    snprintf(why, why_size,
+             "the cloth starts inside obstacle \"%s\" (%s): contact sample point %d (s = %.4g, t = %.4g) of "
+             "method %s at (%.4g, %.4g, %.4g) m is %s it at the start (%d point%s in all); contact cannot start "
+             "from there (infinite barrier energy, no side to push to).  Move the obstacle or the cloth apart",
+             sb_escape_copy(o->name, e, sizeof e), obstacle_kind_name(o), h.point, h.st[0], h.st[1], p->mt->name,
+             h.x[0], h.x[1], h.x[2], o->kind == SB_OBST_MESH ? "on a triangle of" : "inside", n, n == 1 ? "" : "s");
+    return n;
+}
+
+int sb_problem_contact_report(sb_problem *p, const double *x, sb_contact_report *r, double *spacing)
+{
+    level_data *L = &p->lv[p->nl - 1];
+    sb_contact *c = L->contact;
+    if (!c && p->watch) {   /* impulse: the watch points, at the obstacles' poses of the step */
+        c = p->watch;
+        if (sb_contact_begin_step(c, p->step, 0.0, NULL)) return 0;
+    }
+    if (!c) return 0;
+    /* a measurement of the step's end, timed with the record (event record), not as collide */
+    sb_contact_measure(c, x, r);
+    const sb_contact_points *P = sb_contact_points_of(c);
+    double a = 0;
+    for (int k = 0; k < P->n; k++) a += P->area[k];
+    *spacing = P->n > 0 ? sqrt(a / P->n) : NAN;
+    return r->points;
 }
 
 int sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside)

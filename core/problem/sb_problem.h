@@ -126,6 +126,27 @@ double sb_problem_step_bound(sb_problem *p, int level, const double *x, const do
  * pushes (sb_contact_separate); returns the points still closer (0 without contact). */
 int    sb_problem_contact_separate(sb_problem *p, int step, double *x, int *moved);
 int    sb_problem_contact_measure(sb_problem *p, const double *x, double *min_distance, int *active, int *inside);
+/* The full report of the finest level's contact at x (sb_contact_measure:
+ * also the sample triangles an analytic obstacle crosses between the
+ * points) and the sample spacing sqrt(mean area per point) (m); returns
+ * 0 (and leaves *r) without contact. */
+struct sb_contact_report;
+int    sb_problem_contact_report(sb_problem *p, const double *x, struct sb_contact_report *r, double *spacing);
+
+/* Moving obstacles against the finest level's sample points at x_n
+ * (docs/contact.md "Obstacles that move through the cloth"): the barrier
+ * sees an obstacle at the step's end only, so one whose motion over step
+ * `step` sweeps through a sample point is caught here, before the solve.
+ * Returns the number of points its motion touches (0 without contact or
+ * with contact.model "impulse", whose response sweeps the obstacles
+ * itself), with a sentence in why naming the obstacle, the point and what
+ * to change. */
+int    sb_problem_contact_swept(sb_problem *p, int step, const double *x_n, char *why, size_t why_size);
+/* The start x against the obstacles' poses at step 0, with the method's
+ * contact sample points of the finest level (both contact models): the
+ * number of points inside an analytic obstacle or on a mesh triangle, with
+ * a sentence naming the obstacle and the first point in why.  < 0 on error. */
+int    sb_problem_contact_start_check(sb_problem *p, const double *x, char *why, size_t why_size);
 
 /* Account one trust-region subproblem (QP) solve on a level: QP work units. */
 void sb_problem_count_qp(sb_problem *p, int level, double seconds);

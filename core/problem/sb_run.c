@@ -17,6 +17,7 @@
  * A phase returns RUN_GO_ON to continue or the exit code to stop with.  All
  * statistics come from the core wrappers (sb_problem.c). */
 #include "sb_run_state.h"
+#include "sb_contact.h"
 #include "sb_sysinfo.h"
 #include "sb_surface.h"
 
@@ -136,6 +137,7 @@ static void record_identity(run_state *R)
     sb_sysinfo_cpu_model(rec->cpu_model, sizeof rec->cpu_model);
     rec->n_cores = sb_sysinfo_cores();
     sb_sysinfo_now_iso(rec->started, sizeof rec->started);
+    sb_record_mesh_sums(sc, rec->obstacle_meshes, sizeof rec->obstacle_meshes);
     rec->steps_planned = sc->time.steps;
     rec->stats = &R->ctx.stats;
     rec->n_probes = R->mt->eval_points ? sc->n_probes : 0;
@@ -235,6 +237,18 @@ static int prepare_run(run_state *R, int levels)
     /* run.perturb: the start, perturbed (the reference state, probes and
      * sample grid above are the unperturbed ones) */
     perturb_start(n, R->x, sb_param(ps, "run.perturb"), (unsigned long long)sb_param_int(ps, "run.seed"));
+    /* the method's contact sample points at the start against the obstacles
+     * (either contact model): a point inside is refused before any work */
+    char why[1024];
+    const int inside = sb_problem_contact_start_check(R->prob, R->x, why, sizeof why);
+    if (inside < 0) {
+        fprintf(err, "shellbench: %s\n", R->ctx.err);
+        return SB_EXIT_INTERNAL;
+    }
+    if (inside > 0) {
+        fprintf(err, "shellbench: scene %s: %s\n", sc->name, why);
+        return SB_EXIT_INPUT;
+    }
     return RUN_GO_ON;
 nomem:
     fprintf(err, "shellbench: out of memory\n");
@@ -245,12 +259,14 @@ nomem:
  * (sb_reference_check): a record of this scene's finished, converged run
  * on this run's sample grid.  Not checked when this run writes that very
  * file (the run that makes the reference). */
-static int check_reference(run_state *R, const char *out_path)
+static int check_reference(run_state *R, const sb_run_request *req, const char *out_path)
 {
     char msg[2048], a[4096], b[4096];
     if (R->scene.reference.kind != SB_REF_FILE) return RUN_GO_ON;
-    if (out_path && sb_run_same_path(out_path, R->scene.reference.file, a, b, sizeof a)) return RUN_GO_ON;
-    if (sb_reference_check(&R->scene, R->rec.sample_st, R->rec.n_samples, msg, sizeof msg)) {
+    if (req->makes_reference || (out_path && sb_run_same_path(out_path, R->scene.reference.file, a, b, sizeof a)))
+        return RUN_GO_ON;
+    if (sb_reference_check(&R->scene, R->rec.sample_st, R->rec.n_samples, req->allow_unsealed_reference, msg,
+                           sizeof msg)) {
         fprintf(R->err, "shellbench: %s\n", msg);
         return SB_EXIT_INPUT;
     }
@@ -271,12 +287,16 @@ static int start_or_resume(run_state *R, const sb_run_request *req, const char *
     if (access(out_path, F_OK) == 0) {
         sb_record_summary done_s;
         if (sb_record_read_summary(out_path, &done_s, msg, sizeof msg) == SB_OK) {
-            if (!req->quiet) fprintf(err, "shellbench: %s is already recorded (%s): nothing to resume\n", out_path, done_s.reason_name);
-            int code = done_s.status == 0 ? SB_EXIT_CONVERGED : SB_EXIT_NOT_CONVERGED;
+            /* the verdict is the record's: its status and, with --strict, its validation */
+            int code = sb_run_recorded_exit(done_s.status, done_s.validation, req->strict);
+            if (!req->quiet)
+                sb_escape_print(err, "shellbench: %s is already recorded (%s, validation %s): nothing to resume%s", out_path,
+                                done_s.reason_name, done_s.validation[0] ? done_s.validation : "not recorded",
+                                code == SB_EXIT_VALIDATION ? "; --strict: validation failed, exit 5 as the run that wrote it" : "");
             sb_record_summary_free(&done_s);
             return code;
         }
-        fprintf(err, "shellbench: warning: %s exists but is no readable record (%s): running again\n", out_path, msg);
+        sb_escape_print(err, "shellbench: warning: %s exists but is no readable record (%s): running again", out_path, msg);
     }
     int k = sb_run_resume(R, req->quiet);
     if (k < 0) return SB_EXIT_INPUT;
@@ -369,15 +389,27 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
                 return SB_EXIT_INTERNAL;
             }
         }
+        /* a moving obstacle that sweeps through the cloth within the step is
+         * invisible to the barrier (it sees the step's end only): the run
+         * stops here with the reason recorded (docs/contact.md) */
+        const int swept = sb_problem_contact_swept(R->prob, step, R->xn, rec->contact_stop, sizeof rec->contact_stop);
         /* lifting of boundary motion; not for the single-step solver, which is
          * by definition one Newton step from x_n */
-        if (sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
+        if (!swept && sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
             (rc = sb_problem_lift(R->prob, R->xn, R->x)) < 0) {
             fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
             return SB_EXIT_INTERNAL;
         }
         sb_step_outcome o;
-        sb_reason reason = sb_solve_step_ex(R->stype, R->ss, R->prob, ps, step, R->x, &o);
+        sb_reason reason;
+        if (swept) {
+            memset(&o, 0, sizeof o);
+            o.f = o.gnorm = o.g0 = o.force_scale = o.gstop = NAN;
+            reason = o.reason = SB_REASON_OBSTACLE_SWEPT;
+            sb_copy(n, R->xn, R->x);   /* the state stays at the step's start */
+            if (!req->quiet) fprintf(err, "shellbench: %s\n", rec->contact_stop);
+        } else
+            reason = sb_solve_step_ex(R->stype, R->ss, R->prob, ps, step, R->x, &o);
         const int iters = o.iterations;
         const double f = o.f, gn = o.gnorm;
         sb_run_progress_clear(R);
@@ -391,6 +423,10 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             }
             if (rc == SB_NONFINITE) reason = SB_REASON_NONFINITE;
             rec->has_impulse = 1;
+            /* what the response left between its points (issue 37) */
+            sb_contact_report cr;
+            double spacing;
+            if (sb_problem_contact_report(R->prob, R->x, &cr, &spacing) > 0) sb_run_contact_between(R, step, &cr, spacing);
         }
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
@@ -415,9 +451,12 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         rec->steps_done = step;
         if (sb_problem_has_contact(R->prob)) {
             /* contact: distances of the step's end state (docs/contact.md) */
-            double dmin;
-            int act, ins;
-            rec->contact_points = sb_problem_contact_measure(R->prob, R->x, &dmin, &act, &ins);
+            sb_contact_report cr;
+            double spacing;
+            rec->contact_points = sb_problem_contact_report(R->prob, R->x, &cr, &spacing);
+            const double dmin = cr.min_distance;
+            const int act = cr.active, ins = cr.inside;
+            sb_run_contact_between(R, step, &cr, spacing);
             if (!rec->has_contact || dmin < rec->contact_min_distance) rec->contact_min_distance = dmin;
             rec->has_contact = 1;
             rec->contact_active = act;
@@ -451,7 +490,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             sb_run_write_checkpoint(R);
             if (R->checkpoint_failed) return SB_EXIT_INTERNAL;
             if (!req->quiet)
-                fprintf(err, "shellbench: stopped after step %d of %d as asked; checkpoint %s (continue with --resume)\n",
+                sb_escape_print(err, "shellbench: stopped after step %d of %d as asked; checkpoint %s (continue with --resume)",
                         step, sc->time.steps, R->partial_path);
             return SB_EXIT_STOPPED;
         }
@@ -485,11 +524,19 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
         sb_run_judge_penalty(R);
     }
     sb_run_potential_change(R);
+    sb_run_contact_coverage(R);
     sb_run_record_material(R);
     sb_run_record_energy(R);
     sb_stats_event(stats, F, SB_EV_SAMPLES, tr0);
     double te0 = sb_stats_begin(stats);
-    sb_run_compute_error(R, err);
+    /* the run that rewrites its scene's reference (`shellbench reference`) is
+       measured against the file it replaces, if that can serve: a refusal
+       is no verdict on this run (check_reference skipped it too) */
+    char pa[4096], pb[4096];
+    const int writes_ref = req->makes_reference || (out_path && sc->reference.kind == SB_REF_FILE &&
+                                                    sb_run_same_path(out_path, sc->reference.file, pa, pb, sizeof pa));
+    const int ref_refused = sb_run_compute_error(R, err, req->allow_unsealed_reference || writes_ref,
+                                                 req->makes_reference) != SB_OK && !writes_ref;
     sb_stats_event(stats, F, SB_EV_ERROR, te0);
     stats->peak_rss = sb_peak_rss();
     if (out_path) {
@@ -513,10 +560,13 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     if (summary) *summary = js;
     else free(js);
     if (!req->quiet && !req->summary_json)
-        fprintf(err, "%s/%s/%s: %s (%s), validation %s, %ld dofs, %d of %d steps, %.3f s%s%s\n", sc->name, R->mt->name,
+        sb_escape_print(err, "%s/%s/%s: %s (%s), validation %s, %ld dofs, %d of %d steps, %.3f s%s%s", sc->name, R->mt->name,
                 R->stype->name, rec->status ? "NOT converged" : "converged", sb_reason_name((sb_reason)rec->reason),
                 sb_validation_name(rec->validation), rec->n_dofs, rec->steps_done, rec->steps_planned,
                 stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
+    if (!req->quiet && rec->has_between && rec->contact_steps_between > 0)
+        fprintf(err, "shellbench: warning: %s\n", rec->contact_coverage);
+    if (ref_refused) return SB_EXIT_INPUT;   /* the record is kept, without an error */
     if (rec->status) return SB_EXIT_NOT_CONVERGED;
     if (req->strict && rec->validation == SB_VALIDATION_FAILED) {
         if (!req->quiet) fprintf(err, "shellbench: --strict: validation failed (an expected probe value is out of tolerance)\n");
@@ -548,7 +598,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         (code = sb_run_prepare_output(R, req, levels, &out_path, auto_path, sizeof auto_path)) == RUN_GO_ON &&
         (code = prepare_run(R, levels)) == RUN_GO_ON &&
         (code = sb_run_adapt_check(R, req)) == RUN_GO_ON &&
-        (code = check_reference(R, out_path)) == RUN_GO_ON &&
+        (code = check_reference(R, req, out_path)) == RUN_GO_ON &&
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
         (code = end_setup(R)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)

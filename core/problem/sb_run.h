@@ -26,6 +26,9 @@ typedef struct sb_run_request {
     int resume;               /* continue from the last step boundary of OUT.partial */
     int stop_after_steps;     /* > 0: stop after this step with a checkpoint (exit SB_EXIT_STOPPED) */
     int strict;               /* --strict: a converged run whose validation failed exits SB_EXIT_VALIDATION */
+    int allow_unsealed_reference;   /* --allow-unsealed-reference: a reference file without a checksum is used */
+    int makes_reference;      /* the run computes its scene's reference (`shellbench reference`): the scene's
+                                 reference file is neither checked at the start nor a verdict at the end */
     /* a live progress line on err_stream (step, iteration, f, ||g||, radius or
      * step length, elapsed): 0 = when err_stream is a terminal and the run is
      * not quiet, 1 = always (--progress; plain lines, one a second, off a
@@ -58,6 +61,13 @@ int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const struct sb_s
  * the JSON summary (if asked) to out_stream.  When summary is non-NULL it
  * receives the JSON text (caller frees). */
 int sb_run_execute(const sb_run_request *req, FILE *out_stream, FILE *err_stream, char **summary);
+
+/* The exit code of a finished run read back from its record (a run that
+ * `--resume` finds recorded, a sweep's skipped run): SB_EXIT_CONVERGED or
+ * SB_EXIT_NOT_CONVERGED from the recorded status, SB_EXIT_VALIDATION when
+ * strict and the recorded validation (sb_record_summary.validation) is
+ * "failed" -- the code the original run exited with (sb_run_judge.c). */
+int sb_run_recorded_exit(int status, const char *validation, int strict);
 
 /* --res: "N" (N x N elements) or "NxM" (N along s, M along t; 'x', 'X' or
  * the UTF-8 multiplication sign), each a positive integer at most 1000000

@@ -3,6 +3,7 @@
  * up-front validation of a sweep (sb_sweep.c), so both refuse the same
  * requests with the same sentences. */
 #include "sb_run.h"
+#include "sb_obstacle.h"
 #include "sb_solver.h"
 
 #include <stdio.h>
@@ -57,7 +58,8 @@ int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const sb_solver_t
 
 /* The scene's "methods" section names registered methods and their own
  * method.* parameters with valid values (the scene layer cannot check that:
- * it does not know the methods). */
+ * it does not know the methods), and its reference surface does not start
+ * inside an obstacle (sb_obstacles_start_check). */
 int sb_run_scene_methods_check(const sb_scene *sc, char *err, size_t errlen)
 {
     for (int i = 0; i < sc->n_methods; i++) {
@@ -82,6 +84,19 @@ int sb_run_scene_methods_check(const sb_scene *sc, char *err, size_t errlen)
                 return SB_ERR_INPUT;
             }
         }
+    }
+    /* a cloth that starts inside an obstacle (docs/contact.md "The start"):
+       refused here, by `check` and before a run's work, with the obstacle
+       and the point named */
+    char why[1024];
+    const int in = sb_obstacles_start_check(sc, why, sizeof why);
+    if (in < 0) {
+        snprintf(err, errlen, "out of memory");
+        return SB_ERR_NOMEM;
+    }
+    if (in > 0) {
+        snprintf(err, errlen, "scene %s: %s", sc->name, why);
+        return SB_ERR_INPUT;
     }
     return SB_OK;
 }

@@ -106,7 +106,7 @@ int sb_run_resume(run_state *R, int quiet)
 {
     sb_run *rec = &R->rec;
     if (access(R->partial_path, F_OK) != 0) {
-        if (!quiet) fprintf(R->err, "shellbench: no checkpoint %s: starting at step 1\n", R->partial_path);
+        if (!quiet) sb_escape_print(R->err, "shellbench: no checkpoint %s: starting at step 1", R->partial_path);
         return 0;
     }
     sb_resume_point rp;
@@ -139,22 +139,22 @@ int sb_run_resume(run_state *R, int quiet)
     if (rp.has_mesh || sb_run_adapt_every(R) > 0) {
         int rc = SB_OK;
         if (!rp.has_mesh) {
-            fprintf(R->err, "shellbench: cannot resume from %s: it holds no mesh of the adaptive method %s (/resume/mesh_ints; "
-                    "written by a build that did not keep it); move it away to start the run afresh\n", R->partial_path,
+            sb_escape_print(R->err, "shellbench: cannot resume from %s: it holds no mesh of the adaptive method %s (/resume/mesh_ints; "
+                    "written by a build that did not keep it); move it away to start the run afresh", R->partial_path,
                     R->mt->name);
             rc = SB_ERR_INPUT;
         } else if (!sb_run_adapt_resumable(R)) {
-            fprintf(R->err, "shellbench: cannot resume from %s: it holds a mesh, which method %s cannot restore\n",
+            sb_escape_print(R->err, "shellbench: cannot resume from %s: it holds a mesh, which method %s cannot restore",
                     R->partial_path, R->mt->name);
             rc = SB_ERR_INPUT;
         } else if ((rc = R->mt->restore_mesh(R->ms, &rp.mesh)) != SB_OK) {
-            fprintf(R->err, "shellbench: cannot resume from %s: its mesh (/resume/mesh_ints): %s\n", R->partial_path,
+            sb_escape_print(R->err, "shellbench: cannot resume from %s: its mesh (/resume/mesh_ints): %s", R->partial_path,
                     R->ctx.err[0] ? R->ctx.err : "not restorable");
         } else if ((rc = sb_run_adapt_follow(R, 0)) != SB_OK) {
-            fprintf(R->err, "shellbench: resuming from %s: following the restored mesh failed: %s\n", R->partial_path,
+            sb_escape_print(R->err, "shellbench: resuming from %s: following the restored mesh failed: %s", R->partial_path,
                     R->ctx.err[0] ? R->ctx.err : "(no message)");
         } else if (rp.n_x != R->rec.n_x) {
-            fprintf(R->err, "shellbench: cannot resume from %s: /resume/x has %d dofs, its restored mesh %d\n",
+            sb_escape_print(R->err, "shellbench: cannot resume from %s: /resume/x has %d dofs, its restored mesh %d",
                     R->partial_path, rp.n_x, R->rec.n_x);
             rc = SB_ERR_INPUT;
         }
@@ -202,7 +202,7 @@ int sb_run_resume(run_state *R, int quiet)
     long its = 0;
     for (int i = 0; i < rp.step && (size_t)i < rp.stats.n_steps; i++) its += rp.stats.steps[i].iterations;
     if (!quiet)
-        fprintf(R->err, "shellbench: resuming %s after step %d of %d (%ld iterations done)\n", R->partial_path,
+        sb_escape_print(R->err, "shellbench: resuming %s after step %d of %d (%ld iterations done)", R->partial_path,
                 rp.step, rec->steps_planned, its);
     sb_resume_point_free(&rp);
     sb_run_mark_boundary(R, rec->steps_done);

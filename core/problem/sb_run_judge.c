@@ -98,3 +98,10 @@ int sb_run_same_path(const char *p, const char *q, char *a, char *b, size_t len)
     normalize(q, b, len);
     return strcmp(a, b) == 0;
 }
+
+int sb_run_recorded_exit(int status, const char *validation, int strict)
+{
+    if (status != 0) return SB_EXIT_NOT_CONVERGED;
+    if (strict && validation && !strcmp(validation, "failed")) return SB_EXIT_VALIDATION;
+    return SB_EXIT_CONVERGED;
+}

@@ -81,13 +81,13 @@ int sb_run_prepare_output(run_state *R, const sb_run_request *req, int levels, c
     }
     if (!*out_path) return -1;
     if (sb_run_partial_path(*out_path, R->partial_path, sizeof R->partial_path)) {
-        fprintf(err, "shellbench: output path %s is too long\n", *out_path);
+        sb_escape_print(err, "shellbench: output path %s is too long", *out_path);
         return SB_EXIT_INPUT;
     }
     int code = check_paths(R, *out_path);
     if (code >= 0) return code;
     if (mkdir_p(*out_path)) {
-        fprintf(err, "shellbench: cannot create the directory of %s: %s\n", *out_path, strerror(errno));
+        sb_escape_print(err, "shellbench: cannot create the directory of %s: %s", *out_path, strerror(errno));
         return SB_EXIT_INPUT;
     }
     char msg[8600];

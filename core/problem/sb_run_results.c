@@ -277,6 +277,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(co, "active", json_integer(R->rec.contact_active));
             json_object_set_new(co, "inside", json_integer(R->rec.contact_inside));
             json_object_set_new(co, "steps_inside", json_integer(R->rec.contact_steps_inside));
+
             json_set_num(co, "min_distance", R->rec.contact_min_distance);
         }
         if (R->rec.has_self) {
@@ -291,6 +292,11 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(co, "self", se);
         }
         if (R->mt && R->mt->adapt) json_object_set_new(co, "separated", json_integer(R->contact_separated));
+        /* steps that ended with an obstacle crossing the cloth between
+           sample points (-1: not checked; issue 37) */
+        if (R->rec.has_between) json_object_set_new(co, "steps_between", json_integer(R->rec.contact_steps_between));
+        if (R->rec.contact_stop[0]) json_object_set_new(co, "stopped", json_string(R->rec.contact_stop));
+        if (R->rec.contact_coverage[0]) json_object_set_new(co, "coverage", json_string(R->rec.contact_coverage));
         if (R->rec.has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
             const sb_impulse_stats *s = &R->rec.impulse;
             json_object_set_new(co, "model", json_string("impulse"));
@@ -330,8 +336,9 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
 }
 
 /* error against the scene's reference (DESIGN.md "Accuracy") */
-void sb_run_compute_error(run_state *R, FILE *err)
+int sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed, int skip_file)
 {
+    int rc = SB_OK;
     const sb_scene *sc = &R->scene;
     sb_run *rec = &R->rec;
     double worst = 0;
@@ -342,12 +349,14 @@ void sb_run_compute_error(run_state *R, FILE *err)
         rec->has_error = 1;
         rec->error_probe = worst;
         snprintf(rec->error_kind, sizeof rec->error_kind, "probes");
-    } else if (sc->reference.kind == SB_REF_FILE && rec->n_samples > 0) {
+    } else if (sc->reference.kind == SB_REF_FILE && rec->n_samples > 0 && !skip_file) {
         sb_refrec ref;
         char msg[2048];
-        if (sb_refrec_load(sc->reference.file, sc->name, sc->json_text, rec->n_samples, rec->sample_st, &ref, msg,
-                           sizeof msg)) {
-            fprintf(err, "shellbench: warning: no error computed: %s\n", msg);
+        if (sb_refrec_load_opt(sc->reference.file, sc->name, sc->json_text, rec->n_samples, rec->sample_st, allow_unsealed,
+                           &ref, msg, sizeof msg)) {
+            /* the verdict of check and of the run's start (sb_reference_check): refused, exit 2 */
+            fprintf(err, "shellbench: scene %s: no error computed: %s\n", sc->name, msg);
+            rc = SB_ERR_INPUT;
         } else {
             sb_field_error(ref.n, rec->sample_pos, ref.pos, sb_domain_diameter(&sc->domain), &rec->error_rms,
                            &rec->error_max);
@@ -357,6 +366,7 @@ void sb_run_compute_error(run_state *R, FILE *err)
         }
     }
     if (!rec->has_error) snprintf(rec->error_kind, sizeof rec->error_kind, "none");
+    return rc;
 }
 
 /* rec->material: where the current state strains the material (methods

@@ -61,6 +61,10 @@ typedef struct run_state {
     /* contact sample points pushed out of obstacles after adaptations
      * (sb_run_adapt, sb_problem_contact_separate) */
     int contact_separated;
+    /* obstacles crossing the cloth between its sample points (issue 37,
+     * sb_run_contact.c): the first step and obstacle, the sample spacing */
+    int between_init, between_first_step, between_obstacle;
+    double contact_spacing;
 } run_state;
 
 
@@ -95,8 +99,11 @@ int    sb_run_record_probes(run_state *R, int step_slot);
 int    sb_run_record_mesh(run_state *R, int step_slot, int *n_tris);
 /* The JSON summary (caller frees). */
 char  *sb_run_summary_json(run_state *R, const char *out_path);
-/* Error against the scene's reference (DESIGN.md "Accuracy"). */
-void   sb_run_compute_error(run_state *R, FILE *err);
+/* Error against the scene's reference (DESIGN.md "Accuracy").  SB_OK, or
+ * SB_ERR_INPUT when the reference file is refused (the sentence on err, no
+ * error recorded): the run then exits 2, as check and its start would have.
+ * skip_file: the run makes its scene's reference; no file error is taken. */
+int    sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed, int skip_file);
 /* rec->material of the current state (methods with material_state). */
 void   sb_run_record_material(run_state *R);
 /* rec->energy_final: the method's energy of the current state (uncounted). */
@@ -118,6 +125,15 @@ int  sb_run_validate(run_state *R);
 /* 1 when paths p and q name the same file (directories resolved); a and b
  * (len bytes each) receive the normalized paths. */
 int  sb_run_same_path(const char *p, const char *q, char *a, char *b, size_t len);
+/* ---- what the contact guarantee covered (sb_run_contact.c) -------------- */
+/* Fold the step's end report into rec->contact_steps_between. */
+struct sb_contact_report;
+void sb_run_contact_between(run_state *R, int step, const struct sb_contact_report *r, double spacing);
+/* rec->contact_coverage: a sentence on what the no-penetration guarantee
+ * covered (sample points; between them checked or not, crossings found or
+ * not, features that could pass unseen); "" without obstacles. */
+void sb_run_contact_coverage(run_state *R);
+
 /* rec->potential_change: Phi_E(x) - Phi_E(X) with the last step's data. */
 void sb_run_potential_change(run_state *R);
 

@@ -63,12 +63,6 @@ int sb_output_check(const char *path, const char *what, sb_output_kind *kind, ch
     return SB_ERR_INPUT;
 }
 
-void sb_output_lock_init(sb_output_lock *lk)
-{
-    lk->fd = -1;
-    lk->path[0] = 0;
-}
-
 /* the pid a lock file holds, or 0 */
 static long read_pid(int fd)
 {
@@ -77,6 +71,152 @@ static long read_pid(int fd)
     if (n <= 0) return 0;
     buf[n] = 0;
     return strtol(buf, NULL, 10);
+}
+
+int sb_output_check_dir(const char *dir, const char *what, char *err, size_t errlen)
+{
+    char p[4096];
+    struct stat st;
+    if (!dir || !dir[0]) {
+        snprintf(err, errlen, "empty directory path for %s", what);
+        return SB_ERR_INPUT;
+    }
+    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
+        snprintf(err, errlen, "cannot write %s into %s: the path is too long", what, dir);
+        return SB_ERR_INPUT;
+    }
+    for (;;) {
+        if (stat(p, &st) == 0) {
+            if (!S_ISDIR(st.st_mode)) {
+                if (!strcmp(p, dir))
+                    snprintf(err, errlen, "cannot write %s into %s: it is %s, not a directory", what, dir,
+                             S_ISREG(st.st_mode) ? "a regular file" : type_name(st.st_mode));
+                else
+                    snprintf(err, errlen, "cannot write %s into %s: %s is not a directory", what, dir, p);
+                return SB_ERR_INPUT;
+            }
+            if (access(p, W_OK | X_OK) != 0) {
+                snprintf(err, errlen, "cannot write %s into %s: %s is not writable (%s)", what, dir, p, strerror(errno));
+                return SB_ERR_INPUT;
+            }
+            return SB_OK;
+        }
+        if (errno != ENOENT && errno != ENOTDIR) {   /* ENOTDIR: the ancestor that is a file is named below */
+            snprintf(err, errlen, "cannot write %s into %s: %s: %s", what, dir, p, strerror(errno));
+            return SB_ERR_INPUT;
+        }
+        if (!strcmp(p, ".") || !strcmp(p, "/")) {
+            snprintf(err, errlen, "cannot write %s into %s: %s", what, dir, strerror(errno));
+            return SB_ERR_INPUT;
+        }
+        char *slash = strrchr(p, '/');
+        while (slash && slash > p && slash[1] == 0) {   /* "dir/": the trailing slash names dir */
+            *slash = 0;
+            slash = strrchr(p, '/');
+        }
+        if (!slash) snprintf(p, sizeof p, ".");          /* relative: the current directory decides */
+        else if (slash == p) p[1] = 0;                   /* the root */
+        else *slash = 0;
+    }
+}
+
+int sb_output_check_file_dir(const char *path, const char *what, int must_exist, char *err, size_t errlen)
+{
+    char dir[4096];
+    if (snprintf(dir, sizeof dir, "%s", path ? path : "") >= (int)sizeof dir) {
+        snprintf(err, errlen, "cannot write %s %s: the path is too long", what, path);
+        return SB_ERR_INPUT;
+    }
+    char *slash = strrchr(dir, '/');
+    if (!slash) snprintf(dir, sizeof dir, ".");
+    else if (slash == dir) dir[1] = 0;
+    else *slash = 0;
+    struct stat st;
+    if (must_exist && stat(dir, &st) != 0 && errno == ENOENT) {
+        snprintf(err, errlen, "cannot write %s %s: its directory %s does not exist", what, path, dir);
+        return SB_ERR_INPUT;
+    }
+    char w[300];
+    snprintf(w, sizeof w, "the %s %s", what, path);
+    return sb_output_check_dir(dir, w, err, errlen);
+}
+
+int sb_output_check_lockfile(const char *out_path, char *err, size_t errlen)
+{
+    char lp[4200];
+    struct stat st;
+    if (snprintf(lp, sizeof lp, "%s.lock", out_path) >= (int)sizeof lp) {
+        snprintf(err, errlen, "output path %s is too long", out_path);
+        return SB_ERR_INPUT;
+    }
+    if (lstat(lp, &st) != 0 || S_ISREG(st.st_mode)) return SB_OK;
+    snprintf(err, errlen, "cannot lock %s: its lock file %s is %s (a lock file is made by shellbench as a regular "
+             "file; remove it)", out_path, lp, type_name(st.st_mode));
+    return SB_ERR_INPUT;
+}
+
+int sb_output_lock_clear_stale(const char *out_path, char *err, size_t errlen)
+{
+    char lp[4200];
+    struct stat st;
+    if (snprintf(lp, sizeof lp, "%s.lock", out_path) >= (int)sizeof lp) {
+        snprintf(err, errlen, "output path %s is too long", out_path);
+        return SB_ERR_INPUT;
+    }
+    if (lstat(lp, &st) != 0) return SB_OK;
+    if (!S_ISREG(st.st_mode)) return sb_output_check_lockfile(out_path, err, errlen);
+    int fd = open(lp, O_RDWR | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) return SB_OK;   /* gone meanwhile */
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        long pid = read_pid(fd);
+        close(fd);
+        if (pid > 0)
+            snprintf(err, errlen, "%s is being written by another process, %ld (lock %s)", out_path, pid, lp);
+        else
+            snprintf(err, errlen, "%s is being written by another process (lock %s)", out_path, lp);
+        return SB_ERR_INPUT;
+    }
+    /* nobody holds it: its writer is gone (the kernel drops a lock with its process) */
+    struct stat b;
+    if (fstat(fd, &st) == 0 && lstat(lp, &b) == 0 && st.st_ino == b.st_ino && st.st_dev == b.st_dev) unlink(lp);
+    close(fd);
+    return SB_OK;
+}
+
+FILE *sb_input_open(const char *path, const char *what, char *err, size_t errlen)
+{
+    struct stat st;
+    memset(&st, 0, sizeof st);
+    if (!path || !path[0]) {
+        snprintf(err, errlen, "empty %s path", what);
+        return NULL;
+    }
+    /* O_NONBLOCK: opening a FIFO without a writer would block here */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        snprintf(err, errlen, "cannot open the %s %s: %s", what, path, strerror(errno));
+        return NULL;
+    }
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        snprintf(err, errlen, "will not read the %s %s: it is %s; %ss are read only from regular files (a FIFO or "
+                 "device could block forever or never end)", what, path, type_name(st.st_mode), what);
+        close(fd);
+        return NULL;
+    }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags >= 0) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        snprintf(err, errlen, "cannot open the %s %s: %s", what, path, strerror(errno));
+        close(fd);
+    }
+    return f;
+}
+
+void sb_output_lock_init(sb_output_lock *lk)
+{
+    lk->fd = -1;
+    lk->path[0] = 0;
 }
 
 int sb_output_lock_take(sb_output_lock *lk, const char *out_path, char *err, size_t errlen)

@@ -97,6 +97,9 @@ int  sb_record_has_mesh_series(const char *path, int *rows);
 int  sb_record_read_step_mesh(const char *path, int step, sb_mesh_topo *topo, double **pos, char *err,
                               size_t errlen);
 
+/* room for the checksums of SB_SCENE_MAX_OBSTACLES meshes with long names */
+#define SB_RECORD_MESH_SUMS_LEN 8192
+
 typedef struct sb_run {
     /* identity */
     char scene_name[SB_NAME_LEN];
@@ -114,6 +117,7 @@ typedef struct sb_run {
     char cpu_model[128];
     int n_cores;
     char started[32];          /* ISO 8601 UTC */
+    char obstacle_meshes[SB_RECORD_MESH_SUMS_LEN];   /* the mesh obstacles' contents (sb_record_mesh_sums); "" none */
     /* outcome */
     int status;                /* 0 converged, 1 not converged, see exit codes;
                                   SB_STATUS_UNFINISHED in a checkpoint */
@@ -167,6 +171,16 @@ typedef struct sb_run {
     int has_contact;
     int contact_points, contact_active, contact_inside, contact_steps_inside;
     double contact_min_distance;
+    /* why the run stopped at a moving obstacle that swept through the
+     * cloth within a step ("" otherwise; reason obstacle_swept) and what the
+     * no-penetration guarantee covers (docs/contact.md "What the guarantee
+     * covers"); both "" without obstacles */
+    char contact_stop[1024];
+    char contact_coverage[1024];
+    /* steps whose end had an analytic obstacle crossing a sample triangle
+     * with its corners outside (between the points); -1: not checked (the
+     * method does not triangulate its points) */
+    int has_between, contact_steps_between;
     /* self-contact (contact.self; docs/contact.md): end-of-step figures */
     int has_self, self_pairs, self_active, self_steps_crossing;
     double self_min_distance;
@@ -338,14 +352,26 @@ int  sb_record_digest(const char *path, int drop_state, int *already, char *err,
  * rebuild from), 0 for a digest made with drop_state, < 0 when unreadable */
 int  sb_record_keeps_state(const char *path, char *err, size_t errlen);
 
+/* The checksums of the scene's mesh obstacles' contents into buf (""
+ * without mesh obstacles), as the record's attribute "obstacle_meshes"
+ * holds them (sb_record_obstacles.c). */
+void sb_record_mesh_sums(const sb_scene *sc, char *buf, size_t len);
+/* The record's "obstacle_meshes" into buf ("" when it has none); SB_OK or
+ * an error with a sentence naming the file. */
+int  sb_record_read_mesh_sums(const char *path, char *buf, size_t len, char *err, size_t errlen);
 /* A scene's `reference: {type: file}` (sb_reference_check.c, docs/trust.md):
  * SB_OK when the scene has none, or when the file is a readable record of a
  * finished, converged run of the same scene (physics compared section by
  * section) on a sample grid of the scene's domain (sample_st NULL: any
- * number of points per side; else exactly the n_samples points given).
- * Otherwise SB_ERR_INPUT with one sentence naming the scene, the file and
- * what is wrong. */
-int  sb_reference_check(const sb_scene *sc, const double *sample_st, int n_samples, char *err, size_t errlen);
+ * number of points per side; else exactly the n_samples points given),
+ * sealed with a checksum unless allow_unsealed (sb_reference_sealed), whose
+ * scene text is the same problem by sb_scene_same_problem too (the test
+ * the end of a run and the study reports make, so all give one verdict),
+ * and whose obstacle meshes have the contents of this scene's (when it
+ * recorded their checksums).  Otherwise SB_ERR_INPUT with one sentence
+ * naming the scene, the file and what is wrong. */
+int  sb_reference_check(const sb_scene *sc, const double *sample_st, int n_samples, int allow_unsealed, char *err,
+                        size_t errlen);
 void sb_record_setup_free(sb_record_setup *s);
 
 /* The sample-grid surface of a record at one step (sb_record_steps.c):

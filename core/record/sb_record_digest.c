@@ -148,7 +148,36 @@ static int write_digest(const char *path, const char *tmp, int drop_state, char 
     return bad ? -1 : 0;
 }
 
+static int digest_locked(const char *path, int drop_state, int *already, char *err, size_t errlen);
+
+/* The record is rewritten under its writer's lock (OUT.lock, sb_output.h):
+ * a run that is writing it, or another digest, makes this one refuse. */
+static void record_dir(const char *path, char *dir, size_t len)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash) snprintf(dir, len, ".");
+    else if (slash == path) snprintf(dir, len, "/");
+    else snprintf(dir, len, "%.*s", (int)(slash - path), path);
+}
+
 int sb_record_digest(const char *path, int drop_state, int *already, char *err, size_t errlen)
+{
+    sb_output_lock lk;
+    char dir[4200];
+    *already = 0;
+    record_dir(path, dir, sizeof dir);
+    /* a missing record or an unwritable directory: nothing will be written,
+     * so no lock is taken (its file could not be made either); digest_locked
+     * says why after reading what it can */
+    if (access(path, F_OK) != 0 || access(dir, W_OK | X_OK) != 0)
+        return digest_locked(path, drop_state, already, err, errlen);
+    if (sb_output_lock_take(&lk, path, err, errlen)) return SB_ERR_INPUT;
+    int rc = digest_locked(path, drop_state, already, err, errlen);
+    sb_output_lock_release(&lk);
+    return rc;
+}
+
+static int digest_locked(const char *path, int drop_state, int *already, char *err, size_t errlen)
 {
     *already = 0;
     sb_h5r r = { path, err, errlen, NULL, NULL };
@@ -156,12 +185,25 @@ int sb_record_digest(const char *path, int drop_state, int *already, char *err, 
     /* the record must read (checksum, format) and not be a checkpoint */
     int rc = sb_h5r_open(&r, &f);
     if (!rc && H5Aexists(f, "digest") > 0) *already = 1;
-    if (!rc && H5Lexists(f, "/resume", H5P_DEFAULT) > 0)
-        rc = sb_h5r_fail(&r, SB_ERR_INPUT, "is a checkpoint of an unfinished run (it holds", "/resume), not a record");
+    if (!rc && H5Lexists(f, "/resume", H5P_DEFAULT) > 0) {
+        snprintf(err, errlen, "cannot digest %s: it is a checkpoint of an unfinished run (it holds /resume), not a "
+                 "finished record: finish the run with --resume, then digest its record", path);
+        rc = SB_ERR_INPUT;
+    }
     sb_h5r_close(&r, f);
     if (rc || *already) return rc;
     sb_output_kind kind;
     if (sb_output_check(path, "record", &kind, err, errlen)) return SB_ERR_INPUT;
+    /* the digest is written beside the record and renamed onto it: its
+     * directory must be writable, which is checked before any copying */
+    char dir[4200];
+    record_dir(path, dir, sizeof dir);
+    if (access(dir, W_OK | X_OK) != 0) {
+        snprintf(err, errlen, "cannot digest %s: its directory %s is not writable (%s); the digest is written beside "
+                 "the record and renamed onto it: make the directory writable or digest a copy elsewhere", path, dir,
+                 strerror(errno));
+        return SB_ERR_INPUT;
+    }
     char tmp[4200], note[256];
     if ((size_t)snprintf(tmp, sizeof tmp, "%s.digest.tmp", path) >= sizeof tmp) {
         snprintf(err, errlen, "cannot digest %s: path too long", path);

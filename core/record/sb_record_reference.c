@@ -72,8 +72,25 @@ void sb_refrec_free(sb_refrec *ref)
  * tolerance only absorbs a grid computed by another expression. */
 #define ST_TOL 1e-12
 
+int sb_reference_sealed(const char *path, int allow_unsealed, char *err, size_t errlen)
+{
+    int sealed = 0;
+    int rc = sb_record_verify(path, &sealed, err, errlen);   /* a sealed file's checksum must match */
+    if (rc || sealed || allow_unsealed) return rc;
+    snprintf(err, errlen, "reference %s carries no checksum (a record written before checksums, format version 1), so "
+             "a damaged copy could not be told from a good one: regenerate it with `shellbench reference SCENE "
+             "--force`, or pass --allow-unsealed-reference to use it unverified", path);
+    return SB_ERR_INPUT;
+}
+
 int sb_refrec_load(const char *path, const char *scene_name, const char *scene_json, int n,
                    const double *st, sb_refrec *ref, char *err, size_t errlen)
+{
+    return sb_refrec_load_opt(path, scene_name, scene_json, n, st, 0, ref, err, errlen);
+}
+
+int sb_refrec_load_opt(const char *path, const char *scene_name, const char *scene_json, int n,
+                       const double *st, int allow_unsealed, sb_refrec *ref, char *err, size_t errlen)
 {
     (void)scene_name;   /* the problem decides, not the name (not_the_problem) */
     memset(ref, 0, sizeof *ref);
@@ -82,7 +99,12 @@ int sb_refrec_load(const char *path, const char *scene_name, const char *scene_j
     sb_record_setup su;
     sb_record_summary sm;
     char msg[1536], why[256];
-    int rc = sb_record_read_setup(path, &su, msg, sizeof msg);
+    int rc = sb_reference_sealed(path, allow_unsealed, msg, sizeof msg);
+    if (rc) {
+        snprintf(err, errlen, "reference %s refused: %s", path, msg);
+        return rc;
+    }
+    rc = sb_record_read_setup(path, &su, msg, sizeof msg);
     if (rc) {
         snprintf(err, errlen, "reference %s refused: %s", path, msg);
         return rc;

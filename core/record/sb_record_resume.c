@@ -118,6 +118,15 @@ static int check_identity(sb_h5r *r, hid_t f, const sb_run *e)
     if (!rc) rc = sb_h5r_attr_str_alloc(r, f, "scene_json", &json);
     if (!rc && strcmp(json, e->scene_json ? e->scene_json : "")) rc = mismatch(r, "scene text", "another", e->scene_path);
     free(json);
+    /* the obstacle meshes' contents (an OBJ edited since the checkpoint: the scene text is the same) */
+    char sums[sizeof e->obstacle_meshes] = "";
+    if (!rc && H5Aexists(f, "obstacle_meshes") > 0) rc = sb_h5r_attr_str(r, f, "obstacle_meshes", sums, sizeof sums);
+    if (!rc && strcmp(sums, e->obstacle_meshes)) {
+        snprintf(r->err, r->errlen, "cannot resume from %s: the scene's obstacle meshes changed since the checkpoint "
+                 "was written (an OBJ file was edited): checkpoint [%s], this run [%s]; run again without --resume",
+                 r->path, sums[0] ? sums : "no mesh checksums", e->obstacle_meshes[0] ? e->obstacle_meshes : "none");
+        rc = SB_ERR_INPUT;
+    }
     return rc;
 }
 

@@ -51,6 +51,7 @@ static int write_root(sb_h5w *w, hid_t f, const sb_run *r)
     bad |= sb_h5w_attr_str(w, f, "scene_name", r->scene_name);
     bad |= sb_h5w_attr_str(w, f, "scene_path", r->scene_path);
     bad |= sb_h5w_attr_str(w, f, "scene_json", r->scene_json);
+    if (r->obstacle_meshes[0]) bad |= sb_h5w_attr_str(w, f, "obstacle_meshes", r->obstacle_meshes);
     bad |= sb_h5w_attr_str(w, f, "method", r->method);
     bad |= sb_h5w_attr_str(w, f, "solver", r->solver);
     bad |= sb_h5w_attr_str(w, f, "method_info", r->method_info);
@@ -384,6 +385,11 @@ static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
         bad |= sb_h5w_attr_long(w, g, "steps_inside", (long)r->contact_steps_inside);
         bad |= sb_h5w_attr_dbl(w, g, "min_distance", r->contact_min_distance);
     }
+    /* issue 37: why a moving obstacle stopped the run, and what the
+       no-penetration guarantee covered */
+    if (r->has_between) bad |= sb_h5w_attr_long(w, g, "steps_between", (long)r->contact_steps_between);
+    if (r->contact_stop[0]) bad |= sb_h5w_attr_str(w, g, "stopped", r->contact_stop);
+    if (r->contact_coverage[0]) bad |= sb_h5w_attr_str(w, g, "coverage", r->contact_coverage);
     if (r->has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
         const sb_impulse_stats *s = &r->impulse;
         bad |= sb_h5w_attr_str(w, g, "model", "impulse");

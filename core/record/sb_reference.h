@@ -40,10 +40,23 @@ int sb_scene_same_problem(const char *json_a, const char *json_b, char *why, siz
  * the file (SB_ERR_INPUT / SB_ERR_IO): an unreadable or unfinished record
  * (a checkpoint), a run that did not converge, a record of another problem
  * (the scene's name does not count: a renamed copy keeps its reference, as
- * sb_reference_check says at `check`), another sample grid.
+ * sb_reference_check says at `check`), another sample grid, and a record
+ * without a checksum (sb_reference_sealed).
  * On success ref owns its arrays (sb_refrec_free). */
 int sb_refrec_load(const char *path, const char *scene_name, const char *scene_json, int n,
                    const double *st, sb_refrec *ref, char *err, size_t errlen);
+/* The same, with a record without a checksum accepted when allow_unsealed
+ * (--allow-unsealed-reference). */
+int sb_refrec_load_opt(const char *path, const char *scene_name, const char *scene_json, int n,
+                       const double *st, int allow_unsealed, sb_refrec *ref, char *err, size_t errlen);
+
+/* A reference must carry a checksum (a sealed record, docs/trust.md
+ * "Reference files"): a record without one (format version 1) could be
+ * damaged without anyone knowing.  SB_OK when PATH is sealed and its
+ * checksum matches, or when it carries none and allow_unsealed
+ * (--allow-unsealed-reference); else SB_ERR_INPUT (or SB_ERR_IO) with one
+ * sentence naming the file. */
+int sb_reference_sealed(const char *path, int allow_unsealed, char *err, size_t errlen);
 void sb_refrec_free(sb_refrec *ref);
 
 /* The final probe positions of a record: *n probes, names[n][SB_NAME_LEN]

@@ -6,11 +6,15 @@
  * checksum matches: not missing, not a directory, not /dev/zero, not a JSON
  * file), of a finished, converged run (not an unfinished checkpoint), of
  * the same scene — the same domain, geometry, material, loads, boundary
- * conditions and time mode (for dynamic scenes also dt, steps and damping:
- * the final time must match; quasi-static load steps may differ, as the
- * reference is the final load state) — and, at run start, recorded on this
- * run's sample grid (the error is taken point by point on it). */
+ * conditions and time mode (for dynamic scenes also dt, steps and damping),
+ * named section by section, and then the same problem by the test the end
+ * of the run and the study reports make (sb_scene_same_problem: obstacles,
+ * contact, load steps; issue 37: one verdict everywhere), with obstacle
+ * meshes of the same contents — sealed with a checksum unless the caller
+ * allows otherwise, and, at run start, recorded on this run's sample grid
+ * (the error is taken point by point on it). */
 #include "sb_record_io.h"
+#include "sb_reference.h"
 #include "sb_geometry.h"
 
 #include <math.h>
@@ -82,7 +86,8 @@ static int grid_matches(const sb_domain *d, int n, int m, const double *st)
     return k == m;
 }
 
-int sb_reference_check(const sb_scene *sc, const double *sample_st, int n_samples, char *err, size_t errlen)
+int sb_reference_check(const sb_scene *sc, const double *sample_st, int n_samples, int allow_unsealed, char *err,
+                       size_t errlen)
 {
     if (sc->reference.kind != SB_REF_FILE) return SB_OK;
     const char *path = sc->reference.file;
@@ -93,6 +98,12 @@ int sb_reference_check(const sb_scene *sc, const double *sample_st, int n_sample
     int rc = sb_record_read_summary(path, &sum, msg, sizeof msg);
     if (rc) {
         snprintf(err, errlen, "scene %s: reference file %s cannot serve as a reference: %s", sc->name, path, msg);
+        return SB_ERR_INPUT;
+    }
+    /* a readable record whose checksum matches; one without a checksum only when asked (sb_reference_sealed) */
+    if (sb_reference_sealed(path, allow_unsealed, msg, sizeof msg)) {
+        sb_record_summary_free(&sum);
+        snprintf(err, errlen, "scene %s: %s", sc->name, msg);
         return SB_ERR_INPUT;
     }
     int status = sum.status;
@@ -113,22 +124,57 @@ int sb_reference_check(const sb_scene *sc, const double *sample_st, int n_sample
         snprintf(err, errlen, "scene %s: reference file %s cannot serve as a reference: %s", sc->name, path, msg);
         return SB_ERR_INPUT;
     }
+    /* the test the end of the run and the study reports make (sb_refrec_load):
+       the scene texts as JSON, what does not change the solution set aside;
+       it sees what the section-by-section comparison below does not name
+       (obstacles, contact, the load steps) */
+    char why[256];
+    const int same = sb_scene_same_problem(sc->json_text, setup.scene_json, why, sizeof why);
     sb_scene ref;
-    rc = sb_scene_parse_string(setup.scene_json, path, &ref, msg, sizeof msg);
+    /* parsed as from the reference's own scene file: its OBJ meshes are found beside it */
+    rc = sb_scene_parse_string(setup.scene_json, setup.scene_path[0] ? setup.scene_path : path, &ref, msg, sizeof msg);
     sb_record_setup_free(&setup);
+    const char *what = NULL;
+    char ref_name[SB_NAME_LEN] = "";
+    if (!rc) {
+        what = physics_differs(sc, &ref);
+        snprintf(ref_name, sizeof ref_name, "%s", ref.name);
+        sb_scene_free(&ref);
+    }
+    if (what) {
+        snprintf(err, errlen, "scene %s: reference file %s is a record of another scene (%s: its %s differs from this "
+                 "scene's)", sc->name, path, ref_name, what);
+        return SB_ERR_INPUT;
+    }
+    if (same < 0) {
+        snprintf(err, errlen, "scene %s: reference file %s cannot serve as a reference: its scene text or this scene's "
+                 "is not a JSON object", sc->name, path);
+        return SB_ERR_INPUT;
+    }
+    if (!same) {
+        snprintf(err, errlen, "scene %s: reference file %s is a record of another scene (%s: its %s differs from this "
+                 "scene's)", sc->name, path, ref_name[0] ? ref_name : "its scene text", why);
+        return SB_ERR_INPUT;
+    }
     if (rc) {
         snprintf(err, errlen, "scene %s: the scene recorded in reference file %s does not parse with this build: %s",
                  sc->name, path, msg);
         return SB_ERR_INPUT;
     }
-    const char *what = physics_differs(sc, &ref);
-    char ref_name[SB_NAME_LEN];
-    snprintf(ref_name, sizeof ref_name, "%s", ref.name);
-    sb_scene_free(&ref);
-    if (what) {
-        snprintf(err, errlen, "scene %s: reference file %s is a record of another scene (%s: its %s differs from this "
-                 "scene's)", sc->name, path, ref_name, what);
-        return SB_ERR_INPUT;
+    /* the obstacle meshes: the same file names (above), and the same contents */
+    char ours[SB_RECORD_MESH_SUMS_LEN], theirs[SB_RECORD_MESH_SUMS_LEN];
+    sb_record_mesh_sums(sc, ours, sizeof ours);
+    if (ours[0]) {
+        if (sb_record_read_mesh_sums(path, theirs, sizeof theirs, msg, sizeof msg)) {
+            snprintf(err, errlen, "scene %s: reference file %s cannot serve as a reference: %s", sc->name, path, msg);
+            return SB_ERR_INPUT;
+        }
+        if (strcmp(ours, theirs)) {
+            snprintf(err, errlen, "scene %s: reference file %s was computed with other obstacle meshes (its [%s], this "
+                     "scene's [%s]: an OBJ file differs)", sc->name, path, theirs[0] ? theirs : "no mesh checksums",
+                     ours);
+            return SB_ERR_INPUT;
+        }
     }
     int n = 0;
     double *st = NULL, *pos = NULL;

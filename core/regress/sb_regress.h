@@ -174,6 +174,11 @@ void sb_regress_markdown(FILE *out, const sb_regress_set *now, const sb_regress_
 int sb_regress_history_plots(const char *history, const sb_regress_set *now, const char *dir, const char *gnuplot,
                              FILE *err);
 
+/* The paths of case id's history plot (ext "png" or "svg") and of the
+ * picture of its scene, in dir. */
+void sb_regress_plot_path(const char *dir, const char *id, const char *ext, char *buf, size_t len);
+void sb_regress_picture_path(const char *dir, const char *id, char *buf, size_t len);
+
 /* Pictures (sb_regress_pictures.c): for each scene one representative case
  * (its first converged case) drawn from RECORDS/rep1/ID into
  * dir/final-SCENE.png, and a "Final states" section into md linking them

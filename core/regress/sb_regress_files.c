@@ -12,8 +12,10 @@
  * Both are written to a temporary file and renamed into place. */
 #include "sb_regress.h"
 #include "sb_gsl.h"
+#include "sb_output.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
@@ -200,7 +202,10 @@ int sb_regress_baseline_read(const char *path, sb_regress_set *s, char *err, siz
 {
     memset(s, 0, sizeof *s);
     json_error_t je;
-    json_t *root = json_load_file(path, 0, &je);
+    FILE *f = sb_input_open(path, "baseline", err, errlen);
+    if (!f) return SB_ERR_INPUT;
+    json_t *root = json_loadf(f, 0, &je);
+    fclose(f);
     if (!root) {
         snprintf(err, errlen, "%s:%d:%d: %s", path, je.line, je.column, je.text);
         return SB_ERR_INPUT;
@@ -262,7 +267,10 @@ int sb_regress_history_append(const sb_regress_set *s, const char *path, char *e
 {
     struct stat stt;
     int fresh = stat(path, &stt) != 0 || stt.st_size == 0;
-    FILE *f = fopen(path, "a");
+    /* appended, never through a symbolic link (O_NOFOLLOW) */
+    int fd = open(path, O_WRONLY | O_APPEND | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+    FILE *f = fd >= 0 ? fdopen(fd, "a") : NULL;
+    if (!f && fd >= 0) close(fd);
     if (!f) {
         snprintf(err, errlen, "cannot append to %s: %s", path, strerror(errno));
         return SB_ERR_IO;

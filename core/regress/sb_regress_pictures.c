@@ -20,6 +20,11 @@ static size_t scene_len(const char *id)
     return s ? (size_t)(s - id) : strlen(id);
 }
 
+void sb_regress_picture_path(const char *dir, const char *id, char *buf, size_t len)
+{
+    snprintf(buf, len, "%s/final-%.*s.png", dir, (int)scene_len(id), id);
+}
+
 int sb_regress_pictures(FILE *md, const sb_regress_set *now, const char *records, const char *dir, FILE *err)
 {
     int pick[MAX_SCENES], n = 0;
@@ -44,7 +49,7 @@ int sb_regress_pictures(FILE *md, const sb_regress_set *now, const char *records
         const size_t L = scene_len(c->id);
         snprintf(scene, sizeof scene, "%.*s", (int)L, c->id);
         snprintf(rec, sizeof rec, "%s/rep1/%s", records, c->id);
-        snprintf(png[drawn], sizeof png[drawn], "%s/final-%s.png", dir, scene);
+        sb_regress_picture_path(dir, c->id, png[drawn], sizeof png[drawn]);
         if (access(rec, R_OK)) {
             fprintf(err, "shellbench regress: warning: no picture of %s: its record %s is gone\n", c->id, rec);
             bad++;

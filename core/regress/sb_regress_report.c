@@ -42,10 +42,11 @@ void sb_regress_markdown(FILE *out, const sb_regress_set *now, const sb_regress_
 {
     int count[SB_VERDICT_COUNT] = { 0 };
     for (int k = 0; k < now->n; k++) count[now->c[k].verdict]++;
-    fprintf(out, "# Nightly regression: `%s`\n\n", now->prov.suite);
+    char esc[1100];   /* the suite's and the baseline's names as given, terminal-safe (sb_escape_copy) */
+    fprintf(out, "# Nightly regression: `%s`\n\n", sb_escape_copy(now->prov.suite, esc, sizeof esc));
     prov_line(out, "this run", &now->prov);
     if (base) prov_line(out, "baseline", &base->prov);
-    else fprintf(out, "* baseline: none (`%s`)\n", baseline_path);
+    else fprintf(out, "* baseline: none (`%s`)\n", sb_escape_copy(baseline_path, esc, sizeof esc));
     fprintf(out, "* times: CPU seconds of each run's process divided by the calibration kernel's (same invocation); "
                  "slower/faster when a two-sided Mann-Whitney U test gives p < %g **and** the medians differ by at least "
                  "%.0f %% **and** by at least %.0f ms of the run's CPU time; deterministic figures exactly (energy and "
@@ -133,6 +134,13 @@ static void file_name(const char *id, char *buf, size_t len)
     if (dot && dot[3] == 0) *dot = 0;
 }
 
+void sb_regress_plot_path(const char *dir, const char *id, const char *ext, char *buf, size_t len)
+{
+    char stem[300];
+    file_name(id, stem, sizeof stem);
+    snprintf(buf, len, "%s/history-%s.%s", dir, stem, ext);
+}
+
 static int plot_case(const char *history, const char *id, const char *dir, const char *gnuplot, char *why, size_t len)
 {
     FILE *h = fopen(history, "r");
@@ -165,10 +173,9 @@ static int plot_case(const char *history, const char *id, const char *dir, const
     fprintf(g.body, " using 1:2:3:4:xtic(5) with yerrorlines lw 2 pt 7, ");
     sb_gp_quoted(g.body, dat);
     fprintf(g.body, " using 1:2:6 with labels offset 0,1 font ',7'\n");
-    char stem[300], png[900], svg[900];
-    file_name(id, stem, sizeof stem);
-    snprintf(png, sizeof png, "%s/history-%s.png", dir, stem);
-    snprintf(svg, sizeof svg, "%s/history-%s.svg", dir, stem);
+    char png[900], svg[900];
+    sb_regress_plot_path(dir, id, "png", png, sizeof png);
+    sb_regress_plot_path(dir, id, "svg", svg, sizeof svg);
     return sb_gp_finish(&g, png, svg, 720, 400, why, len);
 }
 

@@ -16,6 +16,9 @@
 #include "sb_sysinfo.h"
 #include "sb_gsl.h"
 #include "sb_record.h"
+#include "sb_output.h"
+
+#include <dirent.h>
 
 #include <errno.h>
 #include <math.h>
@@ -52,15 +55,104 @@ static int selected(const sb_regress_run_options *o, const char *id)
     return 0;
 }
 
+/* the outputs of an earlier invocation; its lock only when nobody holds it
+ * (a live writer's lock is left to refuse the run) */
 static void remove_outputs(const char *out)
 {
-    static const char *const suffix[] = { "", ".partial", ".log", ".lock" };
+    static const char *const suffix[] = { "", ".partial", ".log" };
     char p[1200];
     for (size_t k = 0; k < sizeof suffix / sizeof *suffix; k++) {
         snprintf(p, sizeof p, "%s%s", out, suffix[k]);
         unlink(p);
     }
     if (sb_record_xdmf_path(out, p, sizeof p) == SB_OK) unlink(p);
+    sb_output_lock_clear_stale(out, p, sizeof p);
+}
+
+/* Every lock file under dir (RECORDS/repK/SCENE/...: depth <= 4) whose
+ * writer is gone is removed (an invocation killed with its runs leaves
+ * them); one a live process holds is an error. */
+static int clear_stale_locks(const char *dir, int depth, char *err, size_t errlen)
+{
+    DIR *d = opendir(dir);
+    if (!d) return SB_OK;
+    struct dirent *e;
+    int rc = SB_OK;
+    while (rc == SB_OK && (e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        char p[2048];
+        if (snprintf(p, sizeof p, "%s/%s", dir, e->d_name) >= (int)sizeof p) continue;
+        struct stat st;
+        if (lstat(p, &st) != 0) continue;
+        size_t n = strlen(p);
+        if (n > 5 && !strcmp(p + n - 5, ".lock")) {
+            p[n - 5] = 0;
+            rc = sb_output_lock_clear_stale(p, err, errlen);
+        } else if (S_ISDIR(st.st_mode) && depth > 0) {
+            rc = clear_stale_locks(p, depth - 1, err, errlen);
+        }
+    }
+    closedir(d);
+    return rc;
+}
+
+int sb_regress_prepare_outputs(const sb_study *st, int repeat, const char *dir, sb_output_lock *lock, char *err,
+                               size_t errlen)
+{
+    sb_output_lock_init(lock);
+    sb_plan plan;
+    char msg[1200];
+    if (sb_study_plan(st, &plan, msg, sizeof msg)) {
+        snprintf(err, errlen, "%s: %s", st->path, msg);
+        return SB_ERR_INPUT;
+    }
+    int rc = sb_output_check_dir(st->records, "the suite's records", err, errlen);
+    for (int k = 0; k < plan.n && rc == SB_OK; k++) {
+        const sb_plan_run *r = &plan.runs[k];
+        if (r->state != SB_PLAN_RUN) continue;
+        const char *id = case_id(st, r);
+        char path[2048];
+        sb_output_kind kind;
+        sb_regress_plot_path(dir, id, "png", path, sizeof path);
+        rc = sb_output_check(path, "history plot", &kind, err, errlen);
+        if (rc == SB_OK) {
+            sb_regress_plot_path(dir, id, "svg", path, sizeof path);
+            rc = sb_output_check(path, "history plot", &kind, err, errlen);
+        }
+        if (rc == SB_OK) {
+            sb_regress_picture_path(dir, id, path, sizeof path);
+            rc = sb_output_check(path, "picture", &kind, err, errlen);
+        }
+        for (int rep = 1; rep <= repeat && rc == SB_OK; rep++) {
+            snprintf(path, sizeof path, "%s/rep%d/%s", st->records, rep, id);
+            rc = sb_output_check(path, "record", &kind, err, errlen);
+            if (rc == SB_OK && kind == SB_OUTPUT_DISCARD) {
+                snprintf(err, errlen, "will not write record %s: it is the null device", path);
+                rc = SB_ERR_INPUT;
+            }
+            if (rc == SB_OK) rc = sb_output_check_lockfile(path, err, errlen);
+        }
+    }
+    sb_plan_free(&plan);
+    if (rc) return SB_ERR_INPUT;
+    /* one invocation at a time on these records: RECORDS.lock beside them */
+    char parent[1100];
+    snprintf(parent, sizeof parent, "%s/", st->records);
+    for (char *q = parent + 1; *q; q++)
+        if (*q == '/') {
+            *q = 0;
+            if (mkdir(parent, 0777) && errno != EEXIST) {
+                snprintf(err, errlen, "cannot create the records directory %s: %s", parent, strerror(errno));
+                return SB_ERR_INPUT;
+            }
+            *q = '/';
+        }
+    if (sb_output_lock_take(lock, st->records, err, errlen)) return SB_ERR_INPUT;
+    if (clear_stale_locks(st->records, 4, err, errlen)) {
+        sb_output_lock_release(lock);
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
 }
 
 typedef struct slot {
@@ -91,9 +183,30 @@ static void first_log_line(const char *out, char *buf, size_t len)
     if (f) fclose(f);
 }
 
+static double real_calibrate(void *ctx, int round)
+{
+    (void)ctx, (void)round;
+    return sb_regress_calibrate();
+}
+
+/* user + system CPU seconds of the run's process */
+static double real_run_seconds(void *ctx, const char *id, int rep, const struct rusage *ru)
+{
+    (void)ctx, (void)id, (void)rep;
+    return (double)ru->ru_utime.tv_sec + 1e-6 * (double)ru->ru_utime.tv_usec +
+           (double)ru->ru_stime.tv_sec + 1e-6 * (double)ru->ru_stime.tv_usec;
+}
+
+const sb_regress_clock *sb_regress_clock_real(void)
+{
+    static const sb_regress_clock real = { real_calibrate, real_run_seconds, NULL };
+    return &real;
+}
+
 /* a finished child: its time and figures into the case; 1 when the run was
  * refused as input (exit 2: a bad --set), else 0 */
-static int finish(sb_regress_case *c, const slot *s, int status, const struct rusage *ru, FILE *err)
+static int finish(sb_regress_case *c, const slot *s, int status, const struct rusage *ru, const sb_regress_clock *clk,
+                  FILE *err)
 {
     int code = WIFEXITED(status) ? WEXITSTATUS(status) : SB_EXIT_INTERNAL;
     char why[600], msg[1200];
@@ -129,8 +242,7 @@ static int finish(sb_regress_case *c, const slot *s, int status, const struct ru
         snprintf(c->failure, sizeof c->failure, "not reproducible: repeat %d differs from the first: %.400s", s->rep + 1, msg);
     }
     if (c->n_rep < SB_REGRESS_MAX_REPEAT) {
-        c->cpu[c->n_rep] = (double)ru->ru_utime.tv_sec + 1e-6 * (double)ru->ru_utime.tv_usec +
-                           (double)ru->ru_stime.tv_sec + 1e-6 * (double)ru->ru_stime.tv_usec;
+        c->cpu[c->n_rep] = clk->run_seconds(clk->ctx, c->id, s->rep, ru);
         c->wall[c->n_rep] = wall;
         c->n_rep++;
     }
@@ -163,6 +275,7 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
     p->cores = sb_sysinfo_cores();
     p->calib_version = SB_REGRESS_CALIB_VERSION;
     p->load_max = NAN;
+    const sb_regress_clock *clk = o->clock ? o->clock : sb_regress_clock_real();
     int jobs = o->jobs > 0 ? o->jobs : 1, refused = 0;
     slot *sl = calloc((size_t)jobs, sizeof *sl);
     if (!sl) { free(runs); sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
@@ -172,7 +285,7 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
     for (int rep = 0; rep < o->repeat && !refused; rep++) {
         double l = load_average();
         if (isfinite(l) && !(l <= p->load_max)) p->load_max = l;
-        p->calib[p->n_calib++] = sb_regress_calibrate();
+        p->calib[p->n_calib++] = clk->calibrate(clk->ctx, rep);
         int next = 0, running = 0;
         while ((next < n || running > 0) && !refused) {
             while (running < jobs && next < n) {
@@ -207,7 +320,7 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
                 if (sl[k].pid == pid) {
                     sb_regress_case *c = &now->c[sl[k].run];
                     int had = c->n_rep;
-                    refused |= finish(c, &sl[k], status, &ru, err);
+                    refused |= finish(c, &sl[k], status, &ru, clk, err);
                     if (!o->quiet && c->n_rep > had)
                         fprintf(out, "  round %d/%d  %-60s %7.2f s CPU\n", rep + 1, o->repeat, c->id, c->cpu[had]);
                     else if (!o->quiet)
@@ -234,4 +347,48 @@ int sb_regress_measure(const sb_study *st, const sb_regress_run_options *o, sb_r
     for (int k = 0; k < now->n; k++)
         for (int i = 0; i < now->c[k].n_rep; i++) now->c[k].norm[i] = now->c[k].cpu[i] / p->calib_median;
     return SB_EXIT_CONVERGED;
+}
+
+/* A timing verdict (slower, faster) is confirmed by measuring the case again
+ * (k fresh repeats with their own calibration) and judging the new samples:
+ * it stands only when both measurements agree, so a passing disturbance of
+ * the machine (a false positive at level alpha) must strike twice (alpha^2).
+ * The case keeps the confirming samples. */
+int sb_regress_confirm(const sb_study *st, const sb_regress_run_options *o, sb_regress_set *now,
+                       const sb_regress_set *base, const sb_regress_rules *ru, int *regressions, FILE *out, FILE *err)
+{
+    const char **ids = malloc((size_t)(now->n ? now->n : 1) * sizeof *ids);
+    int n = 0;
+    if (!ids) return SB_EXIT_INTERNAL;
+    for (int k = 0; k < now->n; k++)
+        if (now->c[k].verdict == SB_VERDICT_SLOWER || now->c[k].verdict == SB_VERDICT_FASTER) ids[n++] = now->c[k].id;
+    if (n == 0) { free(ids); return 0; }
+    if (!o->quiet) fprintf(out, "confirming %d timing verdict%s with %d more repeats\n", n, n > 1 ? "s" : "", o->repeat);
+    sb_regress_run_options o2 = *o;
+    o2.n_only = n, o2.only = ids;
+    sb_regress_set again;
+    memset(&again, 0, sizeof again);
+    int rc = sb_regress_measure(st, &o2, &again, out, err);
+    if (!rc) {
+        sb_regress_judge(&again, base, ru);
+        for (int j = 0; j < again.n; j++) {
+            sb_regress_case *c = (sb_regress_case *)sb_regress_set_find(now, again.c[j].id), *a = &again.c[j];
+            if (!c) continue;
+            char first[200];
+            snprintf(first, sizeof first, "first measurement %s x%.3f p = %.3g", sb_verdict_name(c->verdict), c->ratio, c->p);
+            if (a->verdict == c->verdict) {
+                snprintf(a->detail + strlen(a->detail), sizeof a->detail - strlen(a->detail), "; confirmed (%s)", first);
+            } else {
+                char d[512];
+                snprintf(d, sizeof d, "%.300s; not confirmed (%.150s)", a->detail, first);
+                snprintf(a->detail, sizeof a->detail, "%s", d);
+                if (a->verdict == SB_VERDICT_SLOWER || a->verdict == SB_VERDICT_FASTER) a->verdict = SB_VERDICT_SAME;
+            }
+            *regressions += sb_verdict_is_regression(a->verdict) - sb_verdict_is_regression(c->verdict);
+            *c = *a;
+        }
+    }
+    sb_regress_set_free(&again);
+    free(ids);
+    return rc;
 }

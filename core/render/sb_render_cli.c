@@ -54,8 +54,8 @@ int sb_render_main(int argc, char **argv)
     char out_default[4096];
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-#define NEED() do { if (!v) { fprintf(stderr, "shellbench render: %s needs a value\n", a); return 2; } i++; } while (0)
-#define BAD(...) do { fprintf(stderr, "shellbench render: " __VA_ARGS__); fputc('\n', stderr); return 2; } while (0)
+#define NEED() do { if (!v) { sb_escape_print(stderr, "shellbench render: %s needs a value", a); return 2; } i++; } while (0)
+#define BAD(...) do { sb_escape_print(stderr, "shellbench render: " __VA_ARGS__); return 2; } while (0)
         if (!strcmp(a, "--out")) { NEED(); rq.out = v; }
         else if (!strcmp(a, "--size")) {
             NEED();
@@ -121,7 +121,7 @@ int sb_render_main(int argc, char **argv)
         else if (!strcmp(a, "--stats")) stats = 1;
         else if (!strcmp(a, "--quiet")) rq.quiet = 1;
         else if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(stdout); return 0; }
-        else if (a[0] == '-' && a[1] == '-') { fprintf(stderr, "shellbench render: unknown option \"%s\"\n", a); usage(stderr); return 2; }
+        else if (a[0] == '-' && a[1] == '-') { sb_escape_print(stderr, "shellbench render: unknown option \"%s\"", a); usage(stderr); return 2; }
         else if (!rq.record) rq.record = a;
         else BAD("one record at a time (got \"%s\" and \"%s\")", rq.record, a);
 #undef NEED
@@ -143,10 +143,10 @@ int sb_render_main(int argc, char **argv)
     char info[1024] = "", err[2048] = "";
     int rc = sb_render_record(&rq, &st, info, sizeof info, err, sizeof err);
     if (rc) {
-        fprintf(stderr, "shellbench render: %s\n", err);
+        sb_escape_print(stderr, "shellbench render: %s", err);
         return rc == SB_ERR_NOMEM || rc == SB_ERR_INTERNAL ? 3 : 2;
     }
-    if (!rq.quiet) printf("%s\n", info);
+    if (!rq.quiet) sb_escape_print(stdout, "%s", info);   /* names the picture as given */
     if (stats) {
         const sb_isect_counts *c = &st.isect;
         printf("{\"seconds\": %.6f, \"cpu_seconds\": %.6f, \"build_seconds\": %.6f, \"width\": %d, \"height\": %d, \"spp\": %d, "

@@ -288,6 +288,7 @@ int sb_render_record(const sb_render_request *rq, sb_render_stats *st, char *inf
     /* the output is checked before any work: a refused path costs nothing */
     sb_output_kind out_kind;
     if (sb_output_check(rq->out, "image", &out_kind, err, errlen)) return SB_ERR_INPUT;
+    if (out_kind != SB_OUTPUT_DISCARD && sb_output_check_file_dir(rq->out, "image", 1, err, errlen)) return SB_ERR_INPUT;
     sb_record_setup su;
     sb_record_summary sum;
     memset(&sum, 0, sizeof sum);

@@ -109,18 +109,20 @@ int sb_inspect_report(int n_files, char **files, const char *format, FILE *out, 
         sb_record_setup su;
         char e[1536];
         if (sb_record_read_setup(files[i], &su, e, sizeof e) || material_of(files[i], &su, &ms, e, sizeof e)) {
-            fprintf(err, "shellbench inspect: %s\n", e);
+            sb_escape_print(err, "shellbench inspect: %s", e);
             sb_record_setup_free(&su);
             bad++;
             continue;
         }
         const double frac = ms.area > 0 ? ms.soft_area / ms.area : 0.0;
+        char fe[1024];
+        sb_escape_copy(files[i], fe, sizeof fe);   /* the file name as given, terminal-safe */
         if (csv)
-            fprintf(out, "%s,%s,%s,%s,%d,%d,%s,%d,%d,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g\n", files[i], su.scene, su.method,
+            fprintf(out, "%s,%s,%s,%s,%d,%d,%s,%d,%d,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g\n", fe, su.scene, su.method,
                     su.solver, su.n_x, su.levels, sb_record_status_name(su.status), su.status, su.steps_done, ms.points, ms.soft_membrane,
                     ms.soft_section, frac, ms.max_strain[0], ms.max_strain[1], ms.max_strain[2], ms.min_rel_eig);
         else
-            fprintf(out, "| %s | %d | %s | %ld | %ld | %.3g | %ld | %.3g | %.3g | %.3g |\n", files[i], su.n_x,
+            fprintf(out, "| %s | %d | %s | %ld | %ld | %.3g | %ld | %.3g | %.3g | %.3g |\n", fe, su.n_x,
                     sb_record_status_name(su.status),
                     ms.points, ms.soft_membrane, frac, ms.soft_section, ms.max_strain[0], ms.max_strain[1],
                     ms.max_strain[2]);

@@ -332,7 +332,11 @@ int sb_scene_resolve(const char *name_or_path, char *path, size_t len)
 {
     if (!name_or_path || !path || len == 0) return SB_ERR_INPUT;
     struct stat st;
-    if (is_file(name_or_path) || strchr(name_or_path, '/')) {
+    /* something that is there and is not a directory (a regular file, a FIFO,
+     * a device) is the path the user meant: the loader refuses what it cannot
+     * read with what it is, instead of "not found" */
+    if (is_file(name_or_path) || strchr(name_or_path, '/') ||
+        (stat(name_or_path, &st) == 0 && !S_ISDIR(st.st_mode))) {
         /* a path: found when something is there (the loader takes regular
          * files and the standard input, and refuses the rest with a sentence) */
         int n = snprintf(path, len, "%s", name_or_path);

@@ -2,7 +2,7 @@
  *
  *   "time": {"mode": "quasi_static", "steps": n}
  *         | {"mode": "dynamic", "dt": s, "steps": n, "rayleigh": {"alpha": 1/s, "beta": s}}
- *   "probes": [{"name": "tip", "at": [xi1, xi2],
+ *   "probes": [{"name": "tip", "at": [xi1, xi2], "on": edge (optional: the lip of a slit),
  *               "expected": {"component": "x"|"y"|"z"|"norm"|"vector",
  *                            "value": m (or [ux, uy, uz] for "vector"),
  *                            "tol": relative}}]
@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 
 #include "sb_scene_json.h"
+#include "sb_geometry.h"
 
 #define MAX_STEPS 1000000L
 
@@ -122,9 +123,138 @@ static int parse_expected(sbj_ctx *c, const json_t *o, sb_probe *p)
     return r;
 }
 
+/* ---- a probe on a slit's lips (docs/scene_format.md "probes") --------- */
+
+/* Whether a boundary condition (other than free) or a load names an edge
+ * of the seam in direction dir (s = 0 / 1 when dir = 0, t = 0 / 1 when
+ * dir = 1): then a method keeps the seam open (a slit, the rule of
+ * bhem_detect_periodic and core/mesh's merge_coincident). */
+static int seam_named(const sb_scene *sc, int dir)
+{
+    for (int b = 0; b < sc->n_bcs; b++)
+        for (int k = 0; k < sc->bcs[b].n_parts && sc->bcs[b].kind != SB_BC_FREE; k++) {
+            const sb_part *q = &sc->bcs[b].parts[k];
+            if (q->kind == SB_PART_EDGE && q->st0[dir] == q->st1[dir] && (q->st0[dir] == 0.0 || q->st0[dir] == 1.0))
+                return 1;
+        }
+    for (int l = 0; l < sc->n_loads; l++)
+        for (int k = 0; k < sc->loads[l].n_parts; k++) {
+            const sb_part *q = &sc->loads[l].parts[k];
+            if (q->kind == SB_PART_EDGE && q->st0[dir] == q->st1[dir] && (q->st0[dir] == 0.0 || q->st0[dir] == 1.0))
+                return 1;
+        }
+    return 0;
+}
+
+static double dist3p(const double *a, const double *b)
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* Whether the chart closes the surface across the seam in direction dir:
+ * the two edges map onto the same curve (33 points compared, within 1e-9
+ * of the tangents' size, as bhem_detect_periodic does). */
+static int seam_closes(const sb_scene *sc, int dir)
+{
+    enum { NS = 33 };
+    double scale = 0;
+    sb_jet3 A, B;
+    for (int k = 0; k < NS; k++) {
+        const double u = (double)k / (NS - 1);
+        sb_geometry_eval_st(sc, dir == 0 ? 0.5 : u, dir == 0 ? u : 0.5, &A);
+        scale = fmax(scale, sqrt(A.d1[0] * A.d1[0] + A.d1[1] * A.d1[1] + A.d1[2] * A.d1[2]) +
+                                sqrt(A.d2[0] * A.d2[0] + A.d2[1] * A.d2[1] + A.d2[2] * A.d2[2]));
+    }
+    if (!(scale > 0) || !isfinite(scale)) return 0;
+    for (int k = 0; k < NS; k++) {
+        const double u = (double)k / (NS - 1);
+        if (dir == 0) {
+            sb_geometry_eval_st(sc, 0.0, u, &A);
+            sb_geometry_eval_st(sc, 1.0, u, &B);
+        } else {
+            sb_geometry_eval_st(sc, u, 0.0, &A);
+            sb_geometry_eval_st(sc, u, 1.0, &B);
+        }
+        if (dist3p(A.x, B.x) > 1e-9 * scale) return 0;
+    }
+    return 1;
+}
+
+/* A probe point on a slit lies on two lips (the coincident edges of a
+ * closed surface's seam kept open by a condition), which move apart: it is
+ * ambiguous unless "on" names its lip.  "on" (an edge name of the domain)
+ * must name an edge the point lies on; on a slit, the named lip's side is
+ * taken (st moved across the seam).  A point where the seam collapses (the
+ * centre of a disc, merged by every method) is not ambiguous. */
+static int resolve_probe_lip(sbj_ctx *c, const json_t *o, const sb_scene *sc, sb_probe *p)
+{
+    json_t *on = json_object_get(o, "on");
+    const sb_domain *d = &sc->domain;
+    sb_part part;
+    int have_on = on != NULL;
+    if (have_on) {
+        if (!json_is_string(on))
+            return sbj_fail(c, "on", 0, "must be an edge name (string), got %s", sbj_type_name(on));
+        if (sb_domain_edge_part(d, json_string_value(on), &part) != SB_OK) {
+            char list[200];
+            size_t k = 0;
+            const char *const *names = sb_domain_part_names(d->kind);
+            list[0] = '\0';
+            for (int j = 0; names[j]; j++)
+                k += (size_t)snprintf(list + k, sizeof list - k, "%s%s", j ? ", " : "", names[j]);
+            return sbj_fail(c, "on", 0, "unknown edge \"%.40s\" (expected one of: %s)", json_string_value(on), list);
+        }
+    }
+    const double tol = 1e-12;
+    for (int dir = 0; dir < 2; dir++) {
+        const double u = p->st[dir];
+        if (!(fabs(u) <= tol || fabs(u - 1) <= tol)) continue;
+        if (!seam_closes(sc, dir)) continue;
+        if (!seam_named(sc, dir)) {
+            /* a closed seam (merged): both edges are one curve; "on" may name either */
+            if (have_on && part.st0[dir] == part.st1[dir] && (part.st0[dir] == 0.0 || part.st0[dir] == 1.0)) {
+                p->st[dir] = part.st0[dir];
+                return SB_OK;
+            }
+            continue;
+        }
+        /* a point where the lips meet (the chart does not move across the
+           seam there: all of its other parameter maps to one point, e.g. a
+           disc's centre) is merged by every method: not ambiguous */
+        sb_jet3 J;
+        sb_geometry_eval_st(sc, p->st[0], p->st[1], &J);
+        const double *along = dir == 0 ? J.d2 : J.d1, *across = dir == 0 ? J.d1 : J.d2;
+        if (sqrt(across[0] * across[0] + across[1] * across[1] + across[2] * across[2]) <=
+            1e-9 * sqrt(along[0] * along[0] + along[1] * along[1] + along[2] * along[2]))
+            continue;
+        const char *const *names = sb_domain_part_names(d->kind);
+        char lo[SB_NAME_LEN] = "", hi[SB_NAME_LEN] = "";
+        for (int j = 0; names[j]; j++) {
+            sb_part q;
+            if (sb_domain_edge_part(d, names[j], &q) || q.st0[dir] != q.st1[dir]) continue;
+            if (q.st0[dir] == 0.0) snprintf(lo, sizeof lo, "%s", names[j]);
+            if (q.st0[dir] == 1.0) snprintf(hi, sizeof hi, "%s", names[j]);
+        }
+        if (!have_on)
+            return sbj_fail(c, "at", 0,
+                            "probe \"%s\" at (%g, %g) lies on both lips of a slit: edges \"%s\" and \"%s\" of "
+                            "the closed surface coincide there, but a condition or load names one of them, so "
+                            "they are kept apart and move apart; say which lip the probe reads with \"on\": "
+                            "\"%s\" or \"on\": \"%s\"", p->name, p->xi[0], p->xi[1], lo, hi, lo, hi);
+        if (part.st0[dir] == part.st1[dir] && (part.st0[dir] == 0.0 || part.st0[dir] == 1.0)) {
+            p->st[dir] = part.st0[dir];   /* the named lip's side of the seam */
+            return SB_OK;
+        }
+    }
+    if (have_on && !sb_part_contains_st(&part, p->st[0], p->st[1], 1e-9))
+        return sbj_fail(c, "on", 0, "probe \"%s\" at (%g, %g) does not lie on edge \"%s\"", p->name, p->xi[0],
+                        p->xi[1], part.name);
+    return SB_OK;
+}
+
 static int parse_probe(sbj_ctx *c, const json_t *o, const sb_scene *sc, sb_probe *p)
 {
-    static const char *const keys[] = { "name", "at", "expected", NULL };
+    static const char *const keys[] = { "name", "at", "on", "expected", NULL };
     json_t *at;
     int r;
     if (!json_is_object(o)) return sbj_fail(c, NULL, 0, "must be an object, got %s", sbj_type_name(o));
@@ -142,6 +272,7 @@ static int parse_probe(sbj_ctx *c, const json_t *o, const sb_scene *sc, sb_probe
     r = sbj_parse_point(c, at, &sc->domain, p->xi, p->st);
     sbj_pop(c, mark);
     if (r) return r;
+    if ((r = resolve_probe_lip(c, o, sc, p))) return r;
     return parse_expected(c, o, p);
 }
 

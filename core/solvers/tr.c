@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+static const char *const tr_rho_names[] = { "robust", "paper", NULL };
+
 static const sb_param_def tr_params[] = {
     { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
     { "eta2", SB_PARAM_REAL, 0.75, 0, 1, NULL, "enlarge when rho > eta2 (Table 2)" },
@@ -21,6 +23,9 @@ static const sb_param_def tr_params[] = {
       "dogleg on an indefinite Hessian: shift (Newton point of H + tau I) or cauchy (the paper's configuration)" },
     { "cg_precond", SB_PARAM_CHOICE, 0, 0, 0, sb_trs_precond_names, "Steihaug–Toint CG preconditioner (trs = stcg)" },
     { "cg_max_iter", SB_PARAM_INT, 0, 0, 1e9, NULL, "Steihaug–Toint CG iteration cap (0 = n)" },
+    { "rho", SB_PARAM_CHOICE, 0, 0, 0, tr_rho_names,
+      "ratio (4.2): robust (round-off-sized reductions count as agreement, or are taken from gradients) or paper "
+      "(the plain quotient of Eq. 4.2, issue 43)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -28,6 +33,7 @@ typedef struct tr_state {
     int n, F;
     double eta1, eta2, gamma1, gamma2, delta0, delta_min;
     int cg_max;
+    int rho_paper;     /* solver.rho = paper: Eq. (4.2) as a plain quotient */
     sb_trs trs;
     double *g, *gt, *s, *xt;
     double f, delta, gnorm;
@@ -46,6 +52,7 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     t->delta0 = sb_param(ps, "solver.delta0");
     t->delta_min = sb_param(ps, "solver.delta_min");
     t->cg_max = sb_param_int(ps, "solver.cg_max_iter");
+    t->rho_paper = sb_param_int(ps, "solver.rho") == 1;
     t->g = malloc((size_t)t->n * sizeof(double));
     t->gt = malloc((size_t)t->n * sizeof(double));
     t->s = malloc((size_t)t->n * sizeof(double));
@@ -118,7 +125,9 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     if (rc < 0) return rc;
     /* Alg. 4.1 line 3: rho = actual / predicted reduction (Eq. 4.2) */
     double rho = sb_tr_ratio(rc, t->f, ft, r.pred);
-    if (rc == SB_OK && sb_tr_ared_unreliable(t->f, ft, r.pred)) {
+    if (t->rho_paper)   /* Eq. (4.2) exactly: (f(x) - f(x + s)) / (m(0) - m(s)), round-off and all */
+        rho = rc == SB_OK && isfinite(ft) && r.pred > 0.0 ? (t->f - ft) / r.pred : -INFINITY;
+    else if (rc == SB_OK && sb_tr_ared_unreliable(t->f, ft, r.pred)) {
         rc = sb_problem_eval(p, t->F, t->xt, &ft, t->gt, NULL);
         if (rc < 0) return rc;
         rho = rc == SB_OK ? sb_tr_ratio_grad(n, t->g, t->gt, t->s, r.pred) : -INFINITY;

@@ -114,6 +114,8 @@ typedef struct sb_study {
     int n_values[SB_STUDY_MAX_VARY];
     char vary_value[SB_STUDY_MAX_VARY][SB_STUDY_MAX_VALUES][SB_NAME_LEN];
     sb_study_dt dt;
+    int allow_unsealed_reference;    /* --allow-unsealed-reference: the scenes' references may lack a checksum
+                                        (set by the command line after sb_study_load; docs/trust.md) */
 } sb_study;
 
 /* Parse and validate the study file.  Errors: "FILE:LINE:COL: at /ptr: what"

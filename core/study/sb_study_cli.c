@@ -20,7 +20,7 @@ static int parse_count(const char *opt, const char *v, int lo, int *out)
     char *end;
     long x = v ? strtol(v, &end, 10) : 0;
     if (!v || end == v || *end || x < lo || x > 100000) {
-        fprintf(stderr, "shellbench: %s: \"%s\" is not an integer >= %d\n", opt, v ? v : "", lo);
+        sb_escape_print(stderr, "shellbench: %s: \"%s\" is not an integer >= %d", opt, v ? v : "", lo);
         return -1;
     }
     *out = (int)x;
@@ -35,10 +35,10 @@ static void print_plan(const sb_study *st, const sb_plan *p, FILE *out)
         char label[128];
         sb_plan_config_label(st, r, label, sizeof label);
         if (r->state == SB_PLAN_RUN)
-            fprintf(out, "%-16s %-28s res %4d %7ld dofs start %d  %s%s\n", st->scenes[r->scene].name, label, r->res, r->dofs,
+            sb_escape_print(out, "%-16s %-28s res %4d %7ld dofs start %d  %s%s", st->scenes[r->scene].name, label, r->res, r->dofs,
                     r->start, r->out, sb_study_run_done(r) ? "  (recorded)" : "");
         else
-            fprintf(out, "%-16s %-28s %s: %s\n", st->scenes[r->scene].name, label, state[r->state], r->why);
+            sb_escape_print(out, "%-16s %-28s %s: %s", st->scenes[r->scene].name, label, state[r->state], r->why);
     }
 }
 
@@ -46,7 +46,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
 {
     const char *file = NULL, *dir = NULL;
     sb_sweep_options o = { 1, 0, 0 };
-    int plan_only = 0, task = -1;
+    int plan_only = 0, task = -1, allow_unsealed = 0;
     const char *emit = NULL, *emit_out = NULL;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -60,10 +60,11 @@ int sb_study_cmd_sweep(int argc, char **argv)
         else if (!strcmp(a, "--max-runs")) { if (parse_count(a, v, 1, &o.max_runs)) return 2; i++; }
         else if (!strcmp(a, "--plan")) plan_only = 1;
         else if (!strcmp(a, "--quiet")) o.quiet = 1;
+        else if (!strcmp(a, "--allow-unsealed-reference")) allow_unsealed = 1;
         else {
-            fprintf(stderr, "shellbench sweep --study: unknown option or missing value \"%s\" "
+            sb_escape_print(stderr, "shellbench sweep --study: unknown option or missing value \"%s\" "
                             "(--study FILE [--jobs N] [--max-runs N] [--dir DIR] [--plan] [--quiet] [--resume] "
-                            "[--emit slurm [--out FILE]] [--task K])\n", a);
+                            "[--allow-unsealed-reference] [--emit slurm [--out FILE]] [--task K])", a);
             return 2;
         }
     }
@@ -84,10 +85,11 @@ int sb_study_cmd_sweep(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_print(stderr, "shellbench sweep: --study: %s", err);
         free(st);
         return 2;
     }
+    st->allow_unsealed_reference = allow_unsealed;
     int rc;
     if (emit) {
         rc = sb_study_emit_slurm(st, file, emit_out, stdout, stderr);
@@ -99,7 +101,7 @@ int sb_study_cmd_sweep(int argc, char **argv)
         sb_plan p;
         rc = 0;
         if (sb_study_plan(st, &p, err, sizeof err)) {
-            fprintf(stderr, "shellbench sweep: %s: %s\n", file, err);
+            sb_escape_print(stderr, "shellbench sweep: %s: %s", file, err);
             rc = 2;
         } else {
             print_plan(st, &p, stdout);
@@ -117,15 +119,17 @@ int sb_study_cmd_report(int argc, char **argv)
 {
     const char *file = NULL, *dir = NULL;
     sb_study_report_options o = { NULL, NULL, 0 };
+    int allow_unsealed = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--study") && v) file = v, i++;
         else if (!strcmp(a, "--dir") && v) dir = v, i++;
         else if (!strcmp(a, "--out") && v) o.out_dir = v, i++;
         else if (!strcmp(a, "--deterministic")) o.deterministic = 1;
+        else if (!strcmp(a, "--allow-unsealed-reference")) allow_unsealed = 1;
         else {
-            fprintf(stderr, "shellbench report --study: unknown option or missing value \"%s\" "
-                            "(--study FILE [--out DIR] [--dir DIR] [--deterministic])\n", a);
+            sb_escape_print(stderr, "shellbench report --study: unknown option or missing value \"%s\" "
+                            "(--study FILE [--out DIR] [--dir DIR] [--deterministic] [--allow-unsealed-reference])", a);
             return 2;
         }
     }
@@ -137,10 +141,11 @@ int sb_study_cmd_report(int argc, char **argv)
     char err[2048];
     if (!st) return 3;
     if (sb_study_load(file, dir, st, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
+        sb_escape_print(stderr, "shellbench report: --study: %s", err);
         free(st);
         return 2;
     }
+    st->allow_unsealed_reference = allow_unsealed;
     int rc = sb_study_report(st, &o, stderr);
     sb_study_free(st);
     free(st);

@@ -1,6 +1,11 @@
 /* sb_study_dofs.c — how many dofs a method has on a scene at a resolution,
  * found by setting the method up (create, count, destroy; nothing is
- * assembled or solved), and the resolution nearest a dofs target.
+ * assembled or solved), and the resolution nearest a dofs target.  Before
+ * a method is set up its memory estimate (the `estimate` op, sb_memory.h)
+ * is checked against run.max_memory as the study sets it (else the
+ * machine's physical memory) and the index limits: a resolution over them
+ * is refused with the estimate's sentence and never built, so that
+ * `sweep --study --plan` only estimates such runs.
  *
  * Search: two accepted resolutions give a model sqrt(dofs) ~ a res + b
  * (structured methods have dofs ~ (res + c)^2: rmtr 3 (res + 3)^2, bhem
@@ -10,6 +15,7 @@
  * count. */
 #include "sb_study_int.h"
 #include "sb_context.h"
+#include "sb_memory.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -38,6 +44,23 @@ static int method_sets(const sb_study *st, int i, int m, sb_paramset *ps, char *
             if (strncmp(lists[l]->kv[j], "method.", 7) == 0 && sb_paramset_set(ps, lists[l]->kv[j], why, len))
                 return SB_ERR_INPUT;
     return SB_OK;
+}
+
+/* run.max_memory (GB) as the study's, the method's and the matching rules'
+ * assignments set it (the last wins); 0: the machine's physical memory */
+static double memory_limit(const sb_study *st, int i, int m)
+{
+    const sb_study_sets *lists[2 + SB_STUDY_MAX_RULES];
+    int nl = 0;
+    double gb = 0;
+    lists[nl++] = &st->sets;
+    lists[nl++] = &st->methods[m].sets;
+    for (int k = 0; k < st->n_rules; k++)
+        if (sb_study_rule_matches(st, k, i, m, -1)) lists[nl++] = &st->rules[k].sets;
+    for (int l = 0; l < nl; l++)
+        for (int j = 0; j < lists[l]->n; j++)
+            if (strncmp(lists[l]->kv[j], "run.max_memory=", 15) == 0) gb = atof(lists[l]->kv[j] + 15);
+    return gb > 0 ? gb * 1e9 : 0;
 }
 
 int sb_study_dofs_at(const sb_study *st, sb_dofs_cache *c, int i, int m, int levels, int res, long *dofs,
@@ -72,11 +95,23 @@ int sb_study_dofs_at(const sb_study *st, sb_dofs_cache *c, int i, int m, int lev
         return SB_ERR_NOMEM;
     }
     sb_method_config cfg = { res, levels, &ctx.params, &ctx, 0 };
-    int crc = mt->create(ms, st->scenes[i].scene, &cfg);
+    /* the memory estimate before anything is built (a run too large for the
+     * memory limit or for the index limits is refused here, as `run` would
+     * refuse it, without setting the method up) */
+    const sb_scene *scn = st->scenes[i].scene;
+    sb_memory_run mr = { scn->time.mode == SB_TIME_DYNAMIC, scn->time.steps, scn->n_probes, 21, levels > 1 };
+    char what[300];
+    double bytes = 0;
+    snprintf(what, sizeof what, "method %s on scene %s at res %d with %d level%s", mt->name, st->scenes[i].name, res,
+             levels, levels > 1 ? "s" : "");
+    int crc = sb_memory_check_method(mt, scn, &cfg, &mr, memory_limit(st, i, m), what, &bytes, msg, sizeof msg);
+    const int set_up = crc == SB_OK;
+    if (set_up) crc = mt->create(ms, scn, &cfg);
+    else crc = SB_ERR_INPUT;   /* refused at this resolution, the estimate's sentence in msg */
     if (crc == SB_OK) d = mt->n_dofs(ms, mt->n_levels(ms) - 1);
-    else snprintf(msg, sizeof msg, "method %s on scene %s at res %d with %d level%s: %s", mt->name, st->scenes[i].name, res,
+    else if (!msg[0]) snprintf(msg, sizeof msg, "method %s on scene %s at res %d with %d level%s: %s", mt->name, st->scenes[i].name, res,
                   levels, levels > 1 ? "s" : "", ctx.err[0] ? ctx.err : "set-up failed");
-    mt->destroy(ms);
+    if (set_up) mt->destroy(ms);
     free(ms);
     sb_context_free(&ctx);
     if (crc != SB_OK && crc != SB_ERR_INPUT && crc != SB_ERR_UNSUPPORTED) {

@@ -195,7 +195,7 @@ int sb_study_dt_sweep(const sb_study *st, const sb_sweep_options *o, FILE *out, 
     sb_plan plan;
     char msg[1024];
     if (sb_study_plan(st, &plan, msg, sizeof msg)) {
-        fprintf(err, "shellbench sweep: %s: %s\n", st->path, msg);
+        sb_escape_print(err, "shellbench sweep: %s: %s", st->path, msg);
         return SB_EXIT_INPUT;
     }
     /* rounds: the next probe of every unfinished configuration, run together */
@@ -232,7 +232,7 @@ int sb_study_dt_sweep(const sb_study *st, const sb_sweep_options *o, FILE *out, 
             rc = SB_EXIT_STOPPED;
             break;
         }
-        fprintf(out, "dt study %s, round %d: %d probe%s\n", st->name, ++round, nq, nq > 1 ? "s" : "");
+        sb_escape_print(out, "dt study %s, round %d: %d probe%s", st->name, ++round, nq, nq > 1 ? "s" : "");
         fflush(out);
         int failed = 0;
         rc = sb_study_run_queue(st, &probes, queue, nq, o, out, err, &failed);
@@ -242,7 +242,7 @@ int sb_study_dt_sweep(const sb_study *st, const sb_sweep_options *o, FILE *out, 
             rc = SB_EXIT_INTERNAL;
         }
     }
-    if (rc == SB_EXIT_CONVERGED) fprintf(out, "dt study %s: every bisection finished (%d new probes)\n", st->name, runs);
+    if (rc == SB_EXIT_CONVERGED) sb_escape_print(out, "dt study %s: every bisection finished (%d new probes)", st->name, runs);
     free(probes.runs);
     free(queue);
     sb_plan_free(&plan);

@@ -42,6 +42,11 @@ int sb_study_applicable(const sb_study *st, int m, int s, char *why, size_t len)
 int sb_study_rule_matches(const sb_study *st, int k, int i, int m, int s);
 
 /* ---- sweep (sb_study_sweep.c) ------------------------------------------ */
+/* SB_OK when the record at r->out is the planned run's: the same scene
+ * (name and problem), method, solver, resolution and levels; else an error
+ * with one sentence naming the file and the first difference
+ * (sb_study_records.c). */
+int sb_study_record_check(const sb_study *st, const sb_plan_run *r, char *why, size_t len);
 /* 1 when the run has a record or a refusal marker already. */
 int sb_study_run_done(const sb_plan_run *r);
 /* Run plan->runs[queue[0..nq)] in child processes, o->jobs at a time;
@@ -49,6 +54,11 @@ int sb_study_run_done(const sb_plan_run *r);
 int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue, int nq, const sb_sweep_options *o,
                        FILE *out, FILE *err, int *failed);
 /* One run in a child process (messages into OUT.log); the child's pid, or -1. */
+/* Before the first run: every record of the queue, its log, refusal note
+ * and lock file can be written (new or regular files, not symbolic links,
+ * in a directory that is writable or can be made).  0, or -1 with a
+ * sentence on err (sb_study_sweep.c; also the MPI scheduler's). */
+int sb_study_check_outputs(const sb_plan *plan, const int *queue, int nq, FILE *err);
 pid_t sb_study_start_child(const sb_study *st, const sb_plan_run *r, FILE *err);
 /* What a finished child (exit code) leaves: OUT.refused for a refusal, its
  * log shown (and removed unless it failed); the outcome's word. */

@@ -5,6 +5,7 @@
  * the tables of every method and solver they reach, and combinations that
  * cannot run.  The sections are parsed here, the cross-checks in
  * sb_study_check.c. */
+#include "sb_output.h"
 #include "sb_study_parse.h"
 
 #include <errno.h>
@@ -423,9 +424,10 @@ int sb_study_parse_string(const char *text, const char *file, const char *record
 int sb_study_load(const char *path, const char *records_override, sb_study *st, char *err, size_t errlen)
 {
     memset(st, 0, sizeof *st);
-    FILE *f = fopen(path, "rb");
+    char why[1200];
+    FILE *f = sb_input_open(path, "study file", why, sizeof why);
     if (!f) {
-        snprintf(err, errlen, "%s:1:1: at /: cannot open the study file (%s)", path, strerror(errno));
+        snprintf(err, errlen, "%s:1:1: at /: %s", path, why);
         return SB_ERR_IO;
     }
     char *buf = malloc(MAX_FILE_BYTES + 1);

@@ -65,12 +65,13 @@ static void relative_path(const char *from_dir, const char *target, char *out, s
 }
 
 static int run_at(const char *scene, const char *method, const char *solver, int res, int levels, const char *const *sets,
-                  int n_sets, int samples, const char *out)
+                  int n_sets, int samples, const char *out, int makes_reference)
 {
     sb_run_request q;
     memset(&q, 0, sizeof q);
     q.scene = scene, q.method = method, q.solver = solver, q.res = res, q.levels = levels, q.out = out;
     q.sets = sets, q.n_sets = n_sets, q.sample_n = samples, q.resume = 1;
+    q.makes_reference = makes_reference;   /* the scene's reference is this run's output, replaced */
     return sb_run_execute(&q, stdout, stderr, NULL);
 }
 
@@ -98,9 +99,9 @@ int sb_study_cmd_reference(int argc, char **argv)
         else if (!strcmp(a, "--force")) force = 1;
         else if (a[0] != '-' && !scene_arg) scene_arg = a;
         else {
-            fprintf(stderr, "shellbench reference: unknown option, bad or missing value: \"%s\"\n"
-                            "usage: shellbench reference SCENE [--method M] [--solver S] [--res N | --dofs N] [--levels L]\n"
-                            "                            [--set key=value]... [--samples N] [--out FILE.h5] [--no-check] [--force]\n", a);
+            sb_escape_print(stderr, "shellbench reference: unknown option, bad or missing value: \"%s\"", a);
+            fprintf(stderr, "usage: shellbench reference SCENE [--method M] [--solver S] [--res N | --dofs N] [--levels L]\n"
+                            "                            [--set key=value]... [--samples N] [--out FILE.h5] [--no-check] [--force]\n");
             return 2;
         }
     }
@@ -115,9 +116,18 @@ int sb_study_cmd_reference(int argc, char **argv)
     sb_study_scene *sc = &st->scenes[0];
     snprintf(sc->arg, sizeof sc->arg, "%s", scene_arg);
     sc->scene = calloc(1, sizeof *sc->scene);
-    if (!sc->scene || sb_scene_resolve(scene_arg, sc->path, sizeof sc->path) ||
-        sb_scene_load(sc->path, sc->scene, msg, sizeof msg)) {
-        fprintf(stderr, "shellbench reference: scene \"%s\": %s\n", scene_arg, sc->scene ? msg : "out of memory");
+    if (!sc->scene) {
+        fprintf(stderr, "shellbench reference: out of memory\n");
+        goto out;
+    }
+    if (sb_scene_resolve(scene_arg, sc->path, sizeof sc->path)) {
+        sb_escape_print(stderr, "shellbench reference: scene \"%s\" not found: no such file, and no bench/scenes/%s.json "
+                        "(looked in the current directory, under $SB_ROOT and beside the program; try `shellbench list "
+                        "scenes`)", scene_arg, scene_arg);
+        goto out;
+    }
+    if (sb_scene_load(sc->path, sc->scene, msg, sizeof msg)) {
+        sb_escape_print(stderr, "shellbench reference: scene \"%s\": %s", scene_arg, msg);
         goto out;
     }
     st->n_scenes = 1;
@@ -127,13 +137,13 @@ int sb_study_cmd_reference(int argc, char **argv)
     for (int k = 0; !mt && !method && k < sb_method_count(); k++)
         if (!(sb_method_at(k)->flags & SB_METHOD_TEST_FIXTURE)) mt = sb_method_at(k);
     if (!mt) {
-        fprintf(stderr, "shellbench reference: unknown method \"%s\" (see `shellbench list methods`)\n", method ? method : "");
+        sb_escape_print(stderr, "shellbench reference: unknown method \"%s\" (see `shellbench list methods`)", method ? method : "");
         goto out;
     }
     if (!solver) solver = (mt->flags & SB_METHOD_HIERARCHY) ? "rmtr" : "tr";
     const sb_solver_type *stype = sb_solver_find(solver);
     if (!stype) {
-        fprintf(stderr, "shellbench reference: unknown solver \"%s\" (see `shellbench list solvers`)\n", solver);
+        sb_escape_print(stderr, "shellbench reference: unknown solver \"%s\" (see `shellbench list solvers`)", solver);
         goto out;
     }
     if (!levels) levels = (stype->flags & SB_SOLVER_NEEDS_HIERARCHY) ? 3 : 1;
@@ -150,7 +160,7 @@ int sb_study_cmd_reference(int argc, char **argv)
                  : sb_study_res_for_dofs(st, &cache, 0, 0, levels, dofs, &res, &got, msg, sizeof msg);
     sb_dofs_cache_free(&cache);
     if (r2) {
-        fprintf(stderr, "shellbench reference: %s\n", msg);
+        sb_escape_print(stderr, "shellbench reference: %s", msg);
         goto out;
     }
     /* a tight tolerance unless one is given */
@@ -163,7 +173,7 @@ int sb_study_cmd_reference(int argc, char **argv)
     snprintf(check_out, sizeof check_out, "%.*s-check.h5", (int)(ol > 3 && !strcmp(out + ol - 3, ".h5") ? ol - 3 : ol), out);
     snprintf(prov, sizeof prov, "%.*s.json", (int)(ol > 3 && !strcmp(out + ol - 3, ".h5") ? ol - 3 : ol), out);
     if (!force && access(out, F_OK) == 0) {
-        fprintf(stderr, "shellbench reference: %s exists (--force replaces it; scenes and studies may point at it)\n", out);
+        sb_escape_print(stderr, "shellbench reference: %s exists (--force replaces it; scenes and studies may point at it)", out);
         goto out;
     }
     if (force) {   /* and their checkpoints: a replaced reference starts afresh */
@@ -172,10 +182,10 @@ int sb_study_cmd_reference(int argc, char **argv)
         snprintf(part, sizeof part, "%s.partial", out), unlink(part);
         snprintf(part, sizeof part, "%s.partial", check_out), unlink(part);
     }
-    printf("reference of %s: %s/%s on %d level%s, res %d (%ld dofs), %s -> %s\n", sc->name, mt->name, solver, levels,
+    sb_escape_print(stdout, "reference of %s: %s/%s on %d level%s, res %d (%ld dofs), %s -> %s", sc->name, mt->name, solver, levels,
            levels > 1 ? "s" : "", res, got, REF_GTOL, out);
     fflush(stdout);
-    int code = run_at(sc->path, mt->name, solver, res, levels, sets, n_sets, samples, out);
+    int code = run_at(sc->path, mt->name, solver, res, levels, sets, n_sets, samples, out, 1);
     if (code != 0) {
         fprintf(stderr, "shellbench reference: the reference run %s (exit %d): no reference written%s\n",
                 code == 1 ? "did not converge" : "failed", code, code == 1 ? " (its record is left for inspection)" : "");
@@ -185,7 +195,7 @@ int sb_study_cmd_reference(int argc, char **argv)
             sb_output_kind kind;
             char msg[1400] = "the path is the null device";
             if (sb_output_check(keep, "record", &kind, msg, sizeof msg) || kind == SB_OUTPUT_DISCARD)
-                fprintf(stderr, "shellbench reference: %s kept where it is: %s\n", out, msg);
+                sb_escape_print(stderr, "shellbench reference: %s kept where it is: %s", out, msg);
             else
                 rename(out, keep);
         }
@@ -200,13 +210,13 @@ int sb_study_cmd_reference(int argc, char **argv)
         int lv = levels;
         while (lv > 1 && cres % (1 << (lv - 1))) lv--;
         if (stype->flags & SB_SOLVER_NEEDS_HIERARCHY && lv < 2) lv = 2;
-        code = run_at(sc->path, mt->name, solver, cres, lv, sets, n_sets, samples, check_out);
+        code = run_at(sc->path, mt->name, solver, cres, lv, sets, n_sets, samples, check_out, 0);
         if (code == 2 && (lv > 1 || strcmp(solver, "tr"))) {
             /* the method refuses the hierarchy at half the resolution: the
              * check is about the discretization, so single-level TR will do */
             fprintf(stderr, "shellbench reference: the self-check with %s on %d levels was refused; "
                             "running it with tr on 1 level\n", solver, lv);
-            code = run_at(sc->path, mt->name, "tr", cres, 1, sets, n_sets, samples, check_out);
+            code = run_at(sc->path, mt->name, "tr", cres, 1, sets, n_sets, samples, check_out, 0);
         }
         if (code == 0) {
             int n = 0;
@@ -260,7 +270,7 @@ int sb_study_cmd_reference(int argc, char **argv)
                                                 "2^p - 1 >= 3 for an order p >= 2 method (on a scene with a unique solution)"));
     json_object_set_new(o, "self_check", ck);
     if (json_dump_file(o, prov, JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(6)))
-        fprintf(stderr, "shellbench reference: warning: cannot write %s\n", prov);
+        sb_escape_print(stderr, "shellbench reference: warning: cannot write %s", prov);
     json_decref(o);
     char scene_dir[600], rel[1200];
     snprintf(scene_dir, sizeof scene_dir, "%s", sc->path);
@@ -268,9 +278,9 @@ int sb_study_cmd_reference(int argc, char **argv)
     if (slash) *slash = 0;
     else snprintf(scene_dir, sizeof scene_dir, ".");
     relative_path(scene_dir, out, rel, sizeof rel);
-    printf("reference written: %s (%ld dofs), provenance %s\n", out, got, prov);
+    sb_escape_print(stdout, "reference written: %s (%ld dofs), provenance %s", out, got, prov);
     if (isfinite(crms)) printf("self-check at res %d (%ld dofs): field difference RMS %.3g, max %.3g of the diameter\n", cres, cdofs, crms, cmax);
-    printf("point the scene at it: \"reference\": {\"type\": \"file\", \"file\": \"%s\"}\n", rel);
+    sb_escape_print(stdout, "point the scene at it: \"reference\": {\"type\": \"file\", \"file\": \"%s\"}", rel);
     rc = 0;
 out:
     sb_study_free(st);

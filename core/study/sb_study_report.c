@@ -426,12 +426,12 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     char why[1400];
     if (sb_study_output_ok(path, "report", why, sizeof why)) {
-        fprintf(err, "shellbench report: %s\n", why);
+        sb_escape_print(err, "shellbench report: %s", why);
         sb_study_data_free(&d);
         return SB_EXIT_INPUT;
     }
     if (mkdir_p(R.dir) || !(R.md = sb_study_open_tmp(tmp))) {
-        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
+        sb_escape_print(err, "shellbench report: cannot write %s: %s", path, strerror(errno));
         sb_study_data_free(&d);
         return SB_EXIT_INPUT;
     }

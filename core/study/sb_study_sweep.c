@@ -45,6 +45,7 @@ int sb_study_run_one(const sb_study *st, const sb_plan_run *r, FILE *err)
     q.quiet = 1;
     q.sample_n = st->samples;
     q.resume = 1;
+    q.allow_unsealed_reference = st->allow_unsealed_reference;
     return sb_run_execute(&q, stdout, err, NULL);
 }
 
@@ -95,7 +96,7 @@ pid_t sb_study_start_child(const sb_study *st, const sb_plan_run *r, FILE *err)
     char lp[1100];
     log_path(r, lp, sizeof lp);
     if (mkdirs_for(lp)) {
-        fprintf(err, "shellbench sweep: cannot create the directory of %s: %s\n", lp, strerror(errno));
+        sb_escape_print(err, "shellbench sweep: cannot create the directory of %s: %s", lp, strerror(errno));
         return -1;
     }
     fflush(NULL);
@@ -126,9 +127,9 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err)
         sb_output_kind kind;
         char msg[1400];
         if (sb_output_check(rp, "refusal note", &kind, msg, sizeof msg) || kind == SB_OUTPUT_DISCARD)
-            fprintf(err, "shellbench sweep: %s\n", kind == SB_OUTPUT_DISCARD ? "a refusal note path is the null device" : msg);
+            sb_escape_print(err, "shellbench sweep: %s", kind == SB_OUTPUT_DISCARD ? "a refusal note path is the null device" : msg);
         else if (rename(lp, rp))
-            fprintf(err, "shellbench sweep: cannot write %s: %s\n", rp, strerror(errno));
+            sb_escape_print(err, "shellbench sweep: cannot write %s: %s", rp, strerror(errno));
         return "refused";
     }
     FILE *f = fopen(lp, "r");
@@ -139,9 +140,39 @@ const char *sb_study_finish_child(const sb_plan_run *r, int code, FILE *err)
          : code == SB_EXIT_STOPPED ? "stopped" : "internal error (log kept)";
 }
 
+int sb_study_check_outputs(const sb_plan *plan, const int *queue, int nq, FILE *err)
+{
+    char msg[2400], p[1100];
+    for (int k = 0; k < nq; k++) {
+        const sb_plan_run *r = &plan->runs[queue[k]];
+        sb_output_kind kind;
+        int bad = sb_output_check(r->out, "record", &kind, msg, sizeof msg);
+        if (!bad && kind == SB_OUTPUT_DISCARD)
+            bad = 1, snprintf(msg, sizeof msg, "will not write record %s: it is the null device", r->out);
+        if (!bad) bad = sb_output_check_file_dir(r->out, "record", 0, msg, sizeof msg);
+        if (!bad) bad = sb_output_check_lockfile(r->out, msg, sizeof msg);
+        if (!bad) {
+            log_path(r, p, sizeof p);
+            bad = sb_output_check(p, "run log", &kind, msg, sizeof msg);
+        }
+        if (!bad) {
+            sb_plan_refused_path(r->out, p, sizeof p);
+            bad = sb_output_check(p, "refusal note", &kind, msg, sizeof msg);
+        }
+        if (bad) {
+            sb_escape_controls(msg, sizeof msg);
+            fprintf(err, "shellbench sweep: %s (nothing was run)\n", msg);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue, int nq, const sb_sweep_options *o,
                        FILE *out, FILE *err, int *failed)
 {
+    *failed = 0;
+    if (sb_study_check_outputs(plan, queue, nq, err)) return SB_EXIT_INPUT;
     int jobs = o->jobs > 0 ? o->jobs : 1, next = 0, running = 0, done = 0, n_conv = 0, n_not = 0, n_refused = 0;
     child *ch = calloc((size_t)jobs, sizeof *ch);
     if (!ch) return SB_EXIT_INTERNAL;
@@ -153,7 +184,7 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
             const sb_plan_run *r = &plan->runs[queue[next]];
             pid_t pid = sb_study_start_child(st, r, err);
             if (pid < 0) {
-                fprintf(err, "shellbench sweep: cannot start %s: %s\n", r->out, strerror(errno));
+                sb_escape_print(err, "shellbench sweep: cannot start %s: %s", r->out, strerror(errno));
                 *failed += 1;
                 next++;
                 continue;
@@ -179,7 +210,7 @@ int sb_study_run_queue(const sb_study *st, const sb_plan *plan, const int *queue
                 n_refused += code == SB_EXIT_INPUT;
                 done++;
                 if (!o->quiet)
-                    fprintf(out, "[%d/%d] %-64s %s%s (%.1f s)\n", done, nq, r->out, what,
+                    sb_escape_print(out, "[%d/%d] %-64s %s%s (%.1f s)", done, nq, r->out, what,
                             WIFSIGNALED(status) ? " by a signal" : "", now_s() - ch[k].t0);
                 fflush(out);
                 ch[k].pid = 0;
@@ -202,22 +233,37 @@ int sb_study_sweep(const sb_study *st, const sb_sweep_options *o, FILE *out, FIL
     sb_plan plan;
     char msg[1024];
     if (sb_study_plan(st, &plan, msg, sizeof msg)) {
-        fprintf(err, "shellbench sweep: %s: %s\n", st->path, msg);
+        sb_escape_print(err, "shellbench sweep: %s: %s", st->path, msg);
         return SB_EXIT_INPUT;
     }
     int *queue = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *queue), nq = 0, recorded = 0, refused = 0, other = 0;
     if (!queue) { sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
+    int misplaced = 0;
+    char why[3072];
     for (int k = 0; k < plan.n; k++) {
         const sb_plan_run *r = &plan.runs[k];
         if (r->state != SB_PLAN_RUN) { other++; continue; }
+        if (exists(r->out) && sb_study_record_check(st, r, why, sizeof why) == SB_ERR_INPUT) {
+            /* another run's record in this run's place: neither counted nor overwritten */
+            fprintf(err, "shellbench sweep: %s\n", why);
+            misplaced++;
+            continue;
+        }
         if (sb_study_run_done(r)) { recorded++; continue; }
         queue[nq++] = k;
+    }
+    if (misplaced) {
+        fprintf(err, "shellbench sweep: %d record%s of study %s %s not the planned run%s: nothing run\n", misplaced,
+                misplaced > 1 ? "s" : "", st->name, misplaced > 1 ? "are" : "is", misplaced > 1 ? "s" : "");
+        free(queue);
+        sb_plan_free(&plan);
+        return SB_EXIT_INPUT;
     }
     int total_new = nq;
     if (o->max_runs > 0 && nq > o->max_runs) nq = o->max_runs;
     for (int k = 0; k < plan.n; k++) refused += plan.runs[k].state == SB_PLAN_REFUSED;
-    fprintf(out, "study %s: %d runs planned, %d already recorded, %d to run%s (%d jobs); %d configurations without runs "
-            "(%d refused by the method at set-up)\n", st->name, recorded + total_new, recorded, nq,
+    sb_escape_print(out, "study %s: %d runs planned, %d already recorded, %d to run%s (%d jobs); %d configurations without runs "
+            "(%d refused by the method at set-up)", st->name, recorded + total_new, recorded, nq,
             nq < total_new ? " now" : "", o->jobs > 0 ? o->jobs : 1, other, refused);
     fflush(out);
     int failed = 0;
@@ -233,6 +279,6 @@ int sb_study_sweep(const sb_study *st, const sb_sweep_options *o, FILE *out, FIL
         fprintf(out, "stopped after %d new runs as asked; %d left (run the same command again to continue)\n", nq, total_new - nq);
         return SB_EXIT_STOPPED;
     }
-    fprintf(out, "study %s: every run recorded under %s\n", st->name, st->records);
+    sb_escape_print(out, "study %s: every run recorded under %s", st->name, st->records);
     return SB_EXIT_CONVERGED;
 }

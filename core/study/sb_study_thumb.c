@@ -46,21 +46,21 @@ int sb_study_commit_report(FILE *md, const char *tmp, const char *path, int refu
     char msg[1400];
     int bad = ferror(md);
     if (fclose(md) || bad) {
-        fprintf(err, "shellbench report: cannot write %s\n", path);
+        sb_escape_print(err, "shellbench report: cannot write %s", path);
         unlink(tmp);
         return SB_EXIT_INTERNAL;
     }
     if (sb_study_output_ok(path, "report", msg, sizeof msg)) {
-        fprintf(err, "shellbench report: %s\n", msg);
+        sb_escape_print(err, "shellbench report: %s", msg);
         unlink(tmp);
         return SB_EXIT_INPUT;
     }
     if (rename(tmp, path)) {
-        fprintf(err, "shellbench report: cannot write %s: %s\n", path, strerror(errno));
+        sb_escape_print(err, "shellbench report: cannot write %s: %s", path, strerror(errno));
         unlink(tmp);
         return SB_EXIT_INTERNAL;
     }
-    fprintf(err, "shellbench report: %s\n", path);
+    sb_escape_print(err, "shellbench report: %s", path);
     if (refused) {
         fprintf(err, "shellbench report: %d output path%s refused (above): exit 2\n", refused, refused > 1 ? "s" : "");
         return SB_EXIT_INPUT;

@@ -137,16 +137,33 @@ static int scheduler(const sb_study *st, const sb_plan *plan, const sb_sweep_opt
         MPI_Abort(MPI_COMM_WORLD, SB_EXIT_INTERNAL);
         return SB_EXIT_INTERNAL;
     }
+    int misplaced = 0;
+    char why[3072];
     for (int k = 0; k < plan->n; k++) {
         const sb_plan_run *r = &plan->runs[k];
         if (r->state != SB_PLAN_RUN) continue;
+        if (access(r->out, F_OK) == 0 && sb_study_record_check(st, r, why, sizeof why) == SB_ERR_INPUT) {
+            /* another run's record in this run's place (sb_study_records.c) */
+            fprintf(err, "shellbench sweep: %s\n", why);
+            misplaced++;
+            continue;
+        }
         if (sb_study_run_done(r)) { recorded++; continue; }
         queue[nq++] = k;
     }
+    if (misplaced) {   /* nothing is run: the ranks are released at once */
+        fprintf(err, "shellbench sweep: %d record%s of study %s %s not the planned run%s: nothing run\n", misplaced,
+                misplaced > 1 ? "s" : "", st->name, misplaced > 1 ? "are" : "is", misplaced > 1 ? "s" : "");
+        nq = 0;
+    }
+    /* every output before the first run: refused, no rank runs anything */
+    const int refused = misplaced || sb_study_check_outputs(plan, queue, nq, err) != 0;
+    if (refused) nq = 0;
     int total_new = nq;
     sb_study_order_longest_first(st, plan, queue, nq, NULL);
     if (o->max_runs > 0 && nq > o->max_runs) nq = o->max_runs;
-    fprintf(out, "study %s: %d runs planned, %d already recorded, %d to run%s on %d MPI ranks, longest expected first\n",
+    if (!refused)
+        fprintf(out, "study %s: %d runs planned, %d already recorded, %d to run%s on %d MPI ranks, longest expected first\n",
             st->name, recorded + total_new, recorded, nq, nq < total_new ? " now" : "", size);
     fflush(out);
     int next = 0, done = 0, failed = 0, stopped = 0, local = -1;
@@ -200,6 +217,7 @@ static int scheduler(const sb_study *st, const sb_plan *plan, const sb_sweep_opt
         nanosleep(&nap, NULL);
     }
     free(queue), free(t0);
+    if (refused) return SB_EXIT_INPUT;
     if (failed) {
         fprintf(err, "shellbench sweep: %d run%s failed (internal error; logs kept beside the records)\n", failed, failed > 1 ? "s" : "");
         return SB_EXIT_INTERNAL;

@@ -128,7 +128,8 @@ int sb_study_emit_slurm(const sb_study *st, const char *study_file, const char *
             sh_quote(f, sfile);
             fprintf(f, " --dir ");
             sh_quote(f, rec);
-            fprintf(f, " --task \"$SLURM_ARRAY_TASK_ID\"\n");
+            fprintf(f, "%s --task \"$SLURM_ARRAY_TASK_ID\"\n",
+                    st->allow_unsealed_reference ? " --allow-unsealed-reference" : "");
         }
         int bad = !f || ferror(f);
         if (f && fclose(f)) bad = 1;
@@ -157,8 +158,14 @@ int sb_study_run_task(const sb_study *st, int k, FILE *out, FILE *err)
     int *task = malloc((size_t)(plan.n ? plan.n : 1) * sizeof *task);
     if (!task) { sb_plan_free(&plan); return SB_EXIT_INTERNAL; }
     int nt = sb_study_tasks(&plan, task), rc = SB_EXIT_CONVERGED;
+    char why[3072];
     if (k >= nt) {
         fprintf(err, "shellbench sweep: --task %d: the study %s has %d tasks (0..%d)\n", k, st->name, nt, nt - 1);
+        rc = SB_EXIT_INPUT;
+    } else if (access(plan.runs[task[k]].out, F_OK) == 0 &&
+               sb_study_record_check(st, &plan.runs[task[k]], why, sizeof why) == SB_ERR_INPUT) {
+        /* another run's record in this task's place (sb_study_records.c): neither counted nor overwritten */
+        fprintf(err, "shellbench sweep: --task %d: %s\n", k, why);
         rc = SB_EXIT_INPUT;
     } else if (sb_study_run_done(&plan.runs[task[k]])) {
         fprintf(out, "task %d: %s is recorded already\n", k, plan.runs[task[k]].out);

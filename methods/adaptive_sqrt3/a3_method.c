@@ -8,6 +8,7 @@
 #include "a3.h"
 #include "sb_surface.h"
 #include "sb_contact_mesh.h"
+#include "sb_context.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -79,6 +80,53 @@ static int refuse(a3_state *S, const sb_scene *sc)
     if (!(mt->thickness > 0.0) || !(mt->young > 0.0) || !(mt->density >= 0.0) || !(mt->poisson > -1.0 && mt->poisson < 0.5))
         return a3_fail(S, SB_ERR_INPUT, "scene %s: material needs thickness > 0, young > 0, density >= 0 and "
                        "-1 < poisson < 0.5", sc->name);
+    return SB_OK;
+}
+
+/* sb_method_type.estimate (sb_memory.h): the mesh create() builds, from the
+ * sizes alone (nothing is allocated).  The base mesh has (n+1)(m+1)
+ * vertices (and one per cell for `crossed`), 2 triangles per cell (4
+ * crossed); the full resolution (method.adaptive = 0) refines every
+ * triangle to method.max_generation: a split (odd generation) adds a vertex
+ * per triangle and triples them, the flips after it add none (boundary
+ * splits a few: measured on the curtain at generation 4, 128 -> 1152
+ * triangles, 81 -> 625 vertices, counted 593).  An adaptive run starts on the
+ * base mesh and is estimated there (its refinement follows the curvature
+ * during the run).  Dofs 3 per vertex; elements the triangles (3 nodes) and
+ * the interior bending edges (4 nodes, about 1.5 per triangle); the node
+ * stencil of the triangles and the bending edges' flaps is linear_fem's
+ * hinge stencil (11).  The method's own bytes per triangle: its rest data
+ * (K_e, 360 bytes), bending edges, the sqrt3 forest's records and edge map,
+ * the sb_mesh with its edges and locator; per vertex the reference, masses,
+ * loads, the forest's parents and weights (260 bytes + 24 per load).  The
+ * 1500 bytes per triangle are fitted to the peak resident size of the
+ * curtain (one step, linearized) at --res 200 and 400: estimate / peak
+ * 1.01 and 0.97 (docs/cli.md "Sizes and memory"). */
+static int a3_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_method_size *sz)
+{
+    const sb_paramset *ps = cfg->params;
+    const int n = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
+    const int ct = (int)pval(ps, "method.cells_t", 0);
+    const int m = cfg->res_t > 0 ? cfg->res_t : ct > 0 ? ct : n;
+    if (n > SB_SCENE_MAX_RESOLUTION || m > SB_SCENE_MAX_RESOLUTION)
+        return sb_error(cfg->ctx, SB_ERR_INPUT, "adaptive_sqrt3: %d x %d cells requested, at most %d per side are "
+                        "supported", n, m, SB_SCENE_MAX_RESOLUTION);
+    const int crossed = (int)pval(ps, "method.mesh", 0) == 2;
+    const int adaptive = (int)pval(ps, "method.adaptive", 1), gens = adaptive ? 0 : (int)pval(ps, "method.max_generation", 6);
+    double cells = (double)n * m, nv = ((double)n + 1) * ((double)m + 1) + (crossed ? cells : 0);
+    double nt = (crossed ? 4.0 : 2.0) * cells;
+    for (int g = 0; g < gens; g += 2) {   /* a split (odd generation) and its flips: a vertex per triangle */
+        nv += nt;
+        nt *= 3.0;
+    }
+    memset(sz, 0, sizeof *sz);
+    sz->levels = 1;
+    sz->bs = 3;
+    sz->nodes[0] = nv;
+    sz->elements[0] = nt + 1.5 * nt;
+    sz->nodes_per_element = 4;
+    sz->stencil = 11;
+    sz->method_bytes = nt * 1500.0 + nv * (260.0 + 24.0 * scene->n_loads);
     return SB_OK;
 }
 
@@ -293,6 +341,7 @@ const sb_method_type sb_method_adaptive_sqrt3 = {
     .flags = SB_METHOD_RES_ST | SB_METHOD_IMPULSE_SELF,
     .create = a3_create,
     .destroy = a3_destroy,
+    .estimate = a3_estimate,
     .n_levels = a3_n_levels,
     .n_dofs = a3_n_dofs,
     .block_size = a3_block_size,
