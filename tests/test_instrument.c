@@ -327,7 +327,7 @@ SB_TEST(memory_estimate_within_30_percent_of_peak)
 SB_TEST(older_records_still_read)
 {
     static const struct { const char *file; long version; } recs[] = {
-        { "results/references/trampoline.h5", 1 },
+        { "results/references/drooping.h5", 1 },
         { "results/dt_stability/reentrant_corner/bhem-linearized-r10-dt0.0001.h5", 2 },
     };
     for (int k = 0; k < 2; k++) {
@@ -347,7 +347,7 @@ SB_TEST(older_records_still_read)
         sb_record_summary_free(&s);
         CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && %s report --format csv %s", sb_test_root(),
                            sb_test_bin(), path), 0);
-        CHECK(strstr(out, recs[k].version == 1 ? "trampoline" : "reentrant_corner") != NULL);
+        CHECK(strstr(out, recs[k].version == 1 ? "drooping" : "reentrant_corner") != NULL);
     }
 }
 
