@@ -115,6 +115,7 @@ typedef struct sb_stats {
     /* memory (issue 42), bytes: the run.max_memory estimate, the process's
      * peak resident size after set-up and at the end (VmHWM) */
     double mem_estimate, peak_rss_setup, peak_rss;
+    double peak_rss_analyzed;         /* right after the last symbolic analysis (0: none) */
     /* events open now (sb_stats_begin): start time and inclusive seconds of
      * the events closed inside each */
     int depth;

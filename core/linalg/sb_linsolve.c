@@ -57,6 +57,7 @@ int sb_linsolve_create(sb_context *ctx, int level, sb_matrix *H, sb_linsolve **o
     }
     ls->flops = cm->fl;
     ls->lnz = cm->lnz;
+    ctx->stats.peak_rss_analyzed = sb_peak_rss();   /* issue 42: set-up plus the symbolic factor */
     if (level >= 0 && level < SB_MAX_LEVELS) {
         ctx->stats.chol_flops[level] = cm->fl;
         ctx->stats.chol_nnz_l[level] = cm->lnz;
