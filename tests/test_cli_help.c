@@ -24,7 +24,7 @@ SB_TEST(version_and_help)
 {
     const char *bin = sb_test_bin();
     CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --version", bin), 0);
-    CHECK_MSG(strncmp(out, "shellbench ", 11) == 0 && strstr(out, "record format shellbench-run 2"), "%s", out);
+    CHECK_MSG(strncmp(out, "shellbench ", 11) == 0 && strstr(out, "record format shellbench-run 3"), "%s", out);
     const char *cmds[] = { "run", "sweep", "check", "report", "inspect", "list" };
     const char *opts[] = { "--res N", "--scenes", "/dev/stdin", "--plot", "material state", "params" };
     for (int i = 0; i < 6; i++) {

@@ -1,13 +1,16 @@
 /* sb_stats.c — run statistics (see sb_stats.h). */
 #include "sb_stats.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 
 static const char *const event_names[SB_EV_COUNT] = {
     "energy", "gradient", "hessian", "analyze", "factorize", "solve",
     "cg_iter", "qp", "transfer", "adapt", "collide", "record", "galerkin", "checkpoint",
+    "setup", "samples", "error", "progress", "solver",
 };
 
 const char *sb_event_name(sb_event e)
@@ -77,17 +80,70 @@ int sb_stats_push_step(sb_stats *s, const sb_step_record *r)
 
 sb_event_stat sb_stats_event_total(const sb_stats *s, sb_event e)
 {
-    sb_event_stat t = { 0, 0.0 };
+    sb_event_stat t = { 0, 0.0, 0.0 };
     for (int l = 0; l < SB_MAX_LEVELS; l++) {
         t.count += s->ev[l][e].count;
         t.seconds += s->ev[l][e].seconds;
+        t.self += s->ev[l][e].self;
     }
     return t;
 }
 
+double sb_stats_begin(sb_stats *s)
+{
+    double t0 = sb_now();
+    if (s->depth >= 0 && s->depth < SB_STATS_DEPTH) {
+        s->open_t0[s->depth] = t0;
+        s->open_child[s->depth] = 0.0;
+        s->depth++;
+    }
+    return t0;
+}
+
 void sb_stats_event(sb_stats *s, int level, sb_event e, double t0)
 {
+    const double incl = sb_now() - t0;
+    double child = 0.0;
     if (level < 0 || level >= SB_MAX_LEVELS) level = 0;
+    if (s->depth < 0 || s->depth > SB_STATS_DEPTH) s->depth = 0;
+    /* the open event this closes; ones begun above it and never closed (an
+     * error path) are dropped, the events closed inside them counting as
+     * this one's */
+    for (int k = s->depth - 1; k >= 0; k--)
+        if (s->open_t0[k] == t0) {
+            for (int j = k; j < s->depth; j++) child += s->open_child[j];
+            s->depth = k;
+            break;
+        }
+    if (s->depth > 0) s->open_child[s->depth - 1] += incl;
     s->ev[level][e].count++;
-    s->ev[level][e].seconds += sb_now() - t0;
+    s->ev[level][e].seconds += incl;
+    s->ev[level][e].self += incl - child;
+}
+
+void sb_stats_close_all(sb_stats *s) { s->depth = 0; }
+
+double sb_stats_self_total(const sb_stats *s, sb_event e)
+{
+    double t = 0.0;
+    for (int l = 0; l < SB_MAX_LEVELS; l++) t += s->ev[l][e].self;
+    return t;
+}
+
+double sb_peak_rss(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    double kb = -1.0;
+    while (f && fgets(line, sizeof line, f))
+        if (strncmp(line, "VmHWM:", 6) == 0) {
+            kb = strtod(line + 6, NULL);
+            break;
+        }
+    if (f) fclose(f);
+    if (kb < 0) {
+        struct rusage ru;
+        kb = getrusage(RUSAGE_SELF, &ru) == 0 ? (double)ru.ru_maxrss : 0.0;
+    }
+    return 1024.0 * kb;
 }

@@ -25,6 +25,13 @@ typedef enum {
     SB_EV_GALERKIN,     /* Galerkin coarse Hessian I^T H I             */
     SB_EV_CHECKPOINT,   /* a checkpoint written (run.checkpoint, --stop-after-steps): how many
                            depends on wall-clock time and interruptions, unlike every other count */
+    /* harness parts (issue 42), so that every second of seconds_total is attributed */
+    SB_EV_SETUP,        /* set-up: scene, method, problem (pattern, symbolic analysis), solver, samples */
+    SB_EV_SAMPLES,      /* probes, sample grid, the method's triangles, material state, validation */
+    SB_EV_ERROR,        /* error against the scene's reference */
+    SB_EV_PROGRESS,     /* the live progress line */
+    SB_EV_SOLVER,       /* a step's own work outside every other event: the outer solver's vector
+                           operations, line searches and bookkeeping, the step's set-up (one per step) */
     SB_EV_COUNT
 } sb_event;
 
@@ -32,8 +39,13 @@ const char *sb_event_name(sb_event e);
 
 typedef struct sb_event_stat {
     long count;
-    double seconds;
+    double seconds;      /* inclusive: wall time between the event's start and end */
+    double self;         /* exclusive: seconds minus the events timed inside it (sb_stats_begin) */
 } sb_event_stat;
+
+/* Open events (sb_stats_begin) nest at most this deep; deeper ones are
+ * timed as leaves. */
+#define SB_STATS_DEPTH 16
 
 /* One outer iteration (TR iteration, V-cycle, Newton iteration). */
 typedef struct sb_iter_record {
@@ -49,6 +61,12 @@ typedef struct sb_iter_record {
     int accepted;
     int linear_iters;    /* CG iterations (or 1 for a direct solve) */
     int reason;          /* sb_reason when the step ended here, else 0 */
+    /* seconds of this iteration (issue 42; 0 for a step's iteration-0 record):
+     * wall time, and the events' inclusive seconds inside it */
+    double seconds;
+    double seconds_assembly;   /* energy + gradient + hessian (contact terms included) */
+    double seconds_analyze, seconds_factorize, seconds_solve;
+    double seconds_contact;    /* collide */
 } sb_iter_record;
 
 /* One time / load step. */
@@ -67,6 +85,13 @@ typedef struct sb_step_record {
     int dofs;            /* dofs of the finest level in this step (adaptive meshes change it) */
     int triangles;       /* triangles of the method's own surface in this step (triangle methods:
                             linear_fem, adaptive_sqrt3); 0 for methods whose surface is not triangles */
+    /* issue 42: the step's exclusive event seconds (sb_event_stat.self) by
+     * part, from its start to the end of its recording, and the process's
+     * peak resident memory at its end */
+    double seconds_assembly;   /* energy + gradient + hessian */
+    double seconds_analyze, seconds_factorize, seconds_solve;
+    double seconds_contact, seconds_adapt, seconds_record, seconds_checkpoint;
+    double peak_rss;           /* bytes (VmHWM) */
 } sb_step_record;
 
 typedef struct sb_stats {
@@ -81,6 +106,20 @@ typedef struct sb_stats {
     double chol_nnz_l[SB_MAX_LEVELS];
     long matrix_nnz[SB_MAX_LEVELS];   /* stored entries of the upper triangle */
     long not_posdef;                  /* factorizations that met an indefinite matrix */
+    /* CHOLMOD per numeric factorization (issue 42): flops and nnz(L) of the
+     * analysis summed over the level's factorizations, and the stored
+     * entries (supernodal: with the zeros supernodes keep) of the last one */
+    double chol_flops_sum[SB_MAX_LEVELS];
+    double chol_nnz_l_sum[SB_MAX_LEVELS];
+    double chol_factor_entries[SB_MAX_LEVELS];
+    /* memory (issue 42), bytes: the run.max_memory estimate, the process's
+     * peak resident size after set-up and at the end (VmHWM) */
+    double mem_estimate, peak_rss_setup, peak_rss;
+    double peak_rss_analyzed;         /* right after the last symbolic analysis (0: none) */
+    /* events open now (sb_stats_begin): start time and inclusive seconds of
+     * the events closed inside each */
+    int depth;
+    double open_t0[SB_STATS_DEPTH], open_child[SB_STATS_DEPTH];
     /* history (growable; amortized allocation, never per inner iteration) */
     sb_iter_record *iters; size_t n_iters, cap_iters;
     sb_step_record *steps; size_t n_steps, cap_steps;
@@ -99,7 +138,21 @@ sb_event_stat sb_stats_event_total(const sb_stats *s, sb_event e);
 double sb_now(void);
 
 /* Timer helper used by the core wrappers:
- *   double t0 = sb_now(); ...; sb_stats_event(s, level, SB_EV_X, t0); */
+ *   double t0 = sb_stats_begin(s); ...; sb_stats_event(s, level, SB_EV_X, t0);
+ * An event begun with sb_stats_begin gets exclusive seconds (self): its
+ * inclusive seconds minus those of the events closed inside it.  An event
+ * timed from a plain sb_now() is a leaf (self = seconds) inside the
+ * innermost open event.  An event begun and never closed (an error path)
+ * is dropped when an enclosing one closes: its time stays the enclosing
+ * event's own. */
+double sb_stats_begin(sb_stats *s);
 void sb_stats_event(sb_stats *s, int level, sb_event e, double t0);
+/* Close every open event without counting it (top of a run's phase). */
+void sb_stats_close_all(sb_stats *s);
+/* Sum over levels of the exclusive seconds of one event. */
+double sb_stats_self_total(const sb_stats *s, sb_event e);
+/* The process's peak resident size in bytes (VmHWM of /proc/self/status,
+ * else getrusage's ru_maxrss), 0 when unknown. */
+double sb_peak_rss(void);
 
 #endif

@@ -48,7 +48,7 @@ int sb_linsolve_create(sb_context *ctx, int level, sb_matrix *H, sb_linsolve **o
     ls->A->xtype = CHOLMOD_REAL;
     ls->A->x = H->val;
 
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&ctx->stats);
     ls->L = cholmod_analyze(ls->A, cm);       /* fill-reducing ordering, symbolic, once */
     sb_stats_event(&ctx->stats, level, SB_EV_ANALYZE, t0);
     if (!ls->L || cm->status < CHOLMOD_OK) {
@@ -57,6 +57,7 @@ int sb_linsolve_create(sb_context *ctx, int level, sb_matrix *H, sb_linsolve **o
     }
     ls->flops = cm->fl;
     ls->lnz = cm->lnz;
+    ctx->stats.peak_rss_analyzed = sb_peak_rss();   /* issue 42: set-up plus the symbolic factor */
     if (level >= 0 && level < SB_MAX_LEVELS) {
         ctx->stats.chol_flops[level] = cm->fl;
         ctx->stats.chol_nnz_l[level] = cm->lnz;
@@ -87,11 +88,20 @@ int sb_linsolve_factor(sb_linsolve *ls, double shift)
 {
     cholmod_common *cm = ls->ctx->cholmod;
     double beta[2] = { shift, 0.0 };
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&ls->ctx->stats);
     int ok = cholmod_factorize_p(ls->A, beta, NULL, 0, ls->L, cm);
     /* status must be read right here: later calls reset it (DESIGN.md) */
     int status = cm->status;
     sb_stats_event(&ls->ctx->stats, ls->level, SB_EV_FACTORIZE, t0);
+    if (ls->level >= 0 && ls->level < SB_MAX_LEVELS) {
+        /* per factorization (issue 42): the analysis's figures summed, the
+         * stored entries of this factor (an indefinite matrix stops CHOLMOD
+         * early: its figures are an upper bound) */
+        sb_stats *st = &ls->ctx->stats;
+        st->chol_flops_sum[ls->level] += ls->flops;
+        st->chol_nnz_l_sum[ls->level] += ls->lnz;
+        st->chol_factor_entries[ls->level] = (double)(ls->L->is_super ? ls->L->xsize : ls->L->nzmax);
+    }
     if (status == CHOLMOD_NOT_POSDEF) {
         ls->factored = 0;
         ls->ctx->stats.not_posdef++;
@@ -111,7 +121,7 @@ int sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x)
     cholmod_common *cm = ls->ctx->cholmod;
     if (!ls->factored) return sb_error(ls->ctx, SB_ERR_INTERNAL, "solve without a valid factorization");
     size_t n = ls->A->nrow;
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&ls->ctx->stats);
     memcpy(ls->B->x, b, n * sizeof(double));
     int ok = cholmod_solve2(CHOLMOD_A, ls->L, ls->B, NULL, &ls->X, NULL, &ls->Y, &ls->E, cm);
     sb_stats_event(&ls->ctx->stats, ls->level, SB_EV_SOLVE, t0);

@@ -337,7 +337,7 @@ static int contact_begin_step(sb_problem *p, const sb_step_info *si, const doubl
 {
     const int F = p->nl - 1;
     if (!p->lv[F].contact) return SB_OK;
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     int rc = sb_contact_begin_step(p->lv[F].contact, si->step, p->dt, x_n);
     double *xhat = NULL;
     if (!rc && p->self && p->dynamic && v_n) {
@@ -515,7 +515,7 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
     for (int i = 0; i < Lf->n; i++) Lf->xhat[i] = x_n[i] + p->dt * v_n[i];
     for (int l = F - 1; l >= 0; l--) {
         if (!(p->mt->flags & SB_METHOD_HIERARCHY)) break;
-        double t0 = sb_now();
+        double t0 = sb_stats_begin(&p->ctx->stats);
         if ((rc = p->mt->project(p->ms, l, p->lv[l + 1].xn, p->lv[l].xn)) ||
             (rc = p->mt->project(p->ms, l, p->lv[l + 1].xhat, p->lv[l].xhat)))
             return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "projection to level %d failed", l);
@@ -530,7 +530,7 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
         sb_matrix_zero(&L->D);
         if (p->ray_b != 0.0) {
             double f = 0.0;
-            double t0 = sb_now();
+            double t0 = sb_stats_begin(&p->ctx->stats);
             rc = p->mt->energy(p->ms, l, L->xn, &f, NULL, &L->D);
             sb_stats_event(&p->ctx->stats, l, SB_EV_HESSIAN, t0);
             if (rc) return rc;
@@ -629,7 +629,7 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
     level_data *L = &p->lv[level];
     const int n = L->n;
     sb_event ev = H ? SB_EV_HESSIAN : g ? SB_EV_GRADIENT : SB_EV_ENERGY;
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     if (g) memset(g, 0, (size_t)n * sizeof *g);
     if (H) sb_matrix_zero(H);
     double e = 0.0;
@@ -638,7 +638,7 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
     if (L->contact && rc == SB_OK) {
         /* contact barrier and lagged friction (docs/contact.md), timed as
          * the event "collide" (also inside this evaluation's own time) */
-        double tc = sb_now();
+        double tc = sb_stats_begin(&p->ctx->stats);
         rc = sb_contact_energy(L->contact, x, &e, g, H);
         sb_stats_event(&p->ctx->stats, level, SB_EV_COLLIDE, tc);
         if (rc == SB_ERR_NOMEM) return sb_error(p->ctx, rc, "out of memory (contact Hessian, level %d)", level);
@@ -687,7 +687,7 @@ int sb_problem_force_scale(sb_problem *p, double *F)
     }
     int rc = p->mt->initial(p->ms, Fl, p->scale_x);
     if (rc < 0) return rc;
-    double t0 = sb_now(), e = 0.0;
+    double t0 = sb_stats_begin(&p->ctx->stats), e = 0.0;
     memset(p->scale_g, 0, (size_t)n * sizeof *p->scale_g);
     rc = p->mt->energy(p->ms, Fl, p->scale_x, &e, p->scale_g, NULL);
     sb_stats_event(&p->ctx->stats, Fl, SB_EV_GRADIENT, t0);
@@ -702,7 +702,7 @@ int sb_problem_force_scale(sb_problem *p, double *F)
 int sb_problem_method_energy(sb_problem *p, const double *x, double *e)
 {
     const int Fl = p->nl - 1;
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     *e = 0.0;
     int rc = p->mt->energy(p->ms, Fl, x, e, NULL, NULL);
     sb_stats_event(&p->ctx->stats, Fl, SB_EV_ENERGY, t0);
@@ -722,7 +722,7 @@ int sb_problem_has_impulse(const sb_problem *p)
 int sb_problem_impulse(sb_problem *p, double t1, const double *x0, double *x1, sb_impulse_stats *st)
 {
     const int F = p->nl - 1;
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     int rc = p->mt->impulse_response(p->ms, p->scene, p->dt, t1, x0, x1, st);
     sb_stats_event(&p->ctx->stats, F, SB_EV_COLLIDE, t0);
     if (rc == SB_ERR_NOMEM) return sb_error(p->ctx, rc, "out of memory (impulse collision response)");
@@ -734,7 +734,7 @@ double sb_problem_step_bound(sb_problem *p, int level, const double *x, const do
 {
     level_data *L = &p->lv[level];
     if (!L->contact) return 1.0;
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     double a = sb_contact_step_bound(L->contact, x, d);
     sb_stats_event(&p->ctx->stats, level, SB_EV_COLLIDE, t0);
     return a;
@@ -745,7 +745,7 @@ int sb_problem_contact_separate(sb_problem *p, int step, double *x, int *moved)
     level_data *L = &p->lv[p->nl - 1];
     *moved = 0;
     if (!L->contact) return 0;
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     unsigned char *fixed = calloc((size_t)L->n, 1);
     if (!fixed) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (contact separation)");
     const sb_dirichlet *bc = p->mt->dirichlet ? p->mt->dirichlet(p->ms, p->nl - 1) : NULL;
@@ -903,7 +903,7 @@ void sb_problem_hess_block_diag(const sb_problem *p, int level, double *B)
 
 int sb_problem_prolong(sb_problem *p, int lc, const double *xc, double *xf)
 {
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     int rc = p->mt->prolong(p->ms, lc, xc, xf);
     sb_problem_constrain(p, lc + 1, xf);
     sb_stats_event(&p->ctx->stats, lc, SB_EV_TRANSFER, t0);
@@ -912,7 +912,7 @@ int sb_problem_prolong(sb_problem *p, int lc, const double *xc, double *xf)
 
 int sb_problem_restrict(sb_problem *p, int lc, const double *gf, double *gc)
 {
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     int rc = p->mt->restrict_adj(p->ms, lc, gf, gc);
     sb_problem_constrain(p, lc, gc);
     sb_stats_event(&p->ctx->stats, lc, SB_EV_TRANSFER, t0);
@@ -921,7 +921,7 @@ int sb_problem_restrict(sb_problem *p, int lc, const double *gf, double *gc)
 
 int sb_problem_project(sb_problem *p, int lc, const double *xf, double *xc)
 {
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     int rc = p->mt->project(p->ms, lc, xf, xc);
     sb_problem_impose(p, lc, xc);
     sb_stats_event(&p->ctx->stats, lc, SB_EV_TRANSFER, t0);
@@ -1007,7 +1007,7 @@ int sb_problem_galerkin_hessian(sb_problem *p, int lc)
     int rc = sb_problem_galerkin_prepare(p, lc);
     if (rc) return rc;
     level_data *C = &p->lv[lc], *F = &p->lv[lc + 1];
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(&p->ctx->stats);
     rc = sb_galerkin_product(C->gal, &F->H, &C->H);
     if (rc) return sb_error(p->ctx, SB_ERR_INTERNAL, "Galerkin product of level %d left the pattern", lc);
     if (C->bc) eliminate_hessian(C, &C->H);
@@ -1020,7 +1020,16 @@ void sb_problem_count_qp(sb_problem *p, int level, double seconds)
     sb_stats *st = &p->ctx->stats;
     st->ev[level][SB_EV_QP].count++;
     st->ev[level][SB_EV_QP].seconds += seconds;
+    st->ev[level][SB_EV_QP].self += seconds;
     st->work_qp += (double)p->lv[level].n / (double)p->lv[p->nl - 1].n;   /* RMTR paper Eq. (7.3) */
+}
+
+double sb_problem_clock(sb_problem *p) { return sb_stats_begin(&p->ctx->stats); }
+
+void sb_problem_count_qp_since(sb_problem *p, int level, double t0)
+{
+    sb_stats_event(&p->ctx->stats, level, SB_EV_QP, t0);
+    p->ctx->stats.work_qp += (double)p->lv[level].n / (double)p->lv[p->nl - 1].n;   /* RMTR paper Eq. (7.3) */
 }
 
 void sb_problem_count_cg(sb_problem *p, int level, int iters)

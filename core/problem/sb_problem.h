@@ -150,6 +150,10 @@ int    sb_problem_contact_start_check(sb_problem *p, const double *x, char *why,
 
 /* Account one trust-region subproblem (QP) solve on a level: QP work units. */
 void sb_problem_count_qp(sb_problem *p, int level, double seconds);
+/* The start of a timed part (sb_stats_begin of the run's statistics) and a
+ * QP solve counted from it: exclusive seconds too (sb_stats.h). */
+double sb_problem_clock(sb_problem *p);
+void sb_problem_count_qp_since(sb_problem *p, int level, double t0);
 /* Account CG iterations on a level. */
 void sb_problem_count_cg(sb_problem *p, int level, int iters);
 

@@ -304,6 +304,51 @@ static int start_or_resume(run_state *R, const sb_run_request *req, const char *
     return RUN_GO_ON;
 }
 
+/* The end of set-up: its event (SB_EV_SETUP, from the start of the process;
+ * a resumed process's set-up is in the resume log instead, sb_run_resume),
+ * the peak resident size so far and the memory estimate. */
+static int end_setup(run_state *R)
+{
+    sb_stats *stats = &R->ctx.stats;
+    if (!R->resumed) sb_stats_event(stats, sb_problem_finest(R->prob), SB_EV_SETUP, R->t_start);
+    sb_stats_close_all(stats);
+    stats->peak_rss_setup = sb_peak_rss();
+    stats->mem_estimate = R->mem_estimate;
+    return RUN_GO_ON;
+}
+
+/* Exclusive seconds so far of the parts a step record keeps (sb_step_record):
+ * assembly, analyze, factorize, solve, contact, adapt, record, checkpoint. */
+static void step_parts(const sb_stats *s, double out[8])
+{
+    out[0] = sb_stats_self_total(s, SB_EV_ENERGY) + sb_stats_self_total(s, SB_EV_GRADIENT) +
+             sb_stats_self_total(s, SB_EV_HESSIAN);
+    out[1] = sb_stats_self_total(s, SB_EV_ANALYZE);
+    out[2] = sb_stats_self_total(s, SB_EV_FACTORIZE);
+    out[3] = sb_stats_self_total(s, SB_EV_SOLVE);
+    out[4] = sb_stats_self_total(s, SB_EV_COLLIDE);
+    out[5] = sb_stats_self_total(s, SB_EV_ADAPT);
+    out[6] = sb_stats_self_total(s, SB_EV_RECORD);
+    out[7] = sb_stats_self_total(s, SB_EV_CHECKPOINT);
+}
+
+/* The parts since p0 into the last step record. */
+static void step_parts_into(sb_stats *s, const double p0[8])
+{
+    if (!s->n_steps) return;
+    double p[8];
+    step_parts(s, p);
+    sb_step_record *r = &s->steps[s->n_steps - 1];
+    r->seconds_assembly = p[0] - p0[0];
+    r->seconds_analyze = p[1] - p0[1];
+    r->seconds_factorize = p[2] - p0[2];
+    r->seconds_solve = p[3] - p0[3];
+    r->seconds_contact = p[4] - p0[4];
+    r->seconds_adapt = p[5] - p0[5];
+    r->seconds_record = p[6] - p0[6];
+    r->seconds_checkpoint = p[7] - p0[7];
+}
+
 /* The time / load steps from first_step on; stops at the first step that
  * does not converge (recorded) or after --stop-after-steps. */
 static int run_steps(run_state *R, const sb_run_request *req, int first_step)
@@ -316,10 +361,15 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
     const int F = sb_problem_finest(R->prob);
     int n = sb_problem_n(R->prob, F);
     for (int step = first_step; step <= sc->time.steps; step++) {
-        double t0 = sb_now();
+        sb_stats_close_all(stats);
+        double t0 = sb_now(), parts0[8];
+        step_parts(stats, parts0);
         double wa0 = stats->work_assembly, wq0 = stats->work_qp;
         int code = sb_run_adapt(R, step, &n);   /* adaptive meshes (sb_method.h adapt) */
         if (code >= 0) return code;
+        /* the step's own work outside every other event (SB_EV_SOLVER): its
+         * set-up, the solver's vector operations and bookkeeping */
+        const double tsolver = sb_stats_begin(stats);
         sb_step_info si;
         sb_run_step_info(sc, step, &si);
         sb_copy(n, R->x, R->xn);
@@ -380,20 +430,25 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         }
         if (sc->time.mode == SB_TIME_DYNAMIC)
             for (int i = 0; i < n; i++) R->v[i] = (R->x[i] - R->xn[i]) / sc->time.dt;   /* v_{n+1} = (x - x_n)/dt */
-        double tr0 = sb_now();
-        /* a converged step must also be a physical state (finite, strains within run.strain_max) */
+        sb_stats_event(stats, F, SB_EV_SOLVER, tsolver);
+        double tr0 = sb_stats_begin(stats);
+        /* a converged step must also be a physical state (finite, strains
+         * within run.strain_max); the probes and triangles of the step */
+        double tsm = sb_stats_begin(stats);
         reason = sb_run_judge_step(R, reason);
         int n_tris = 0;
         if (sb_run_record_mesh(R, step, &n_tris)) {
             fprintf(err, "shellbench: step %d: method %s cannot give its triangle surface\n", step, R->mt->name);
             return SB_EXIT_INTERNAL;
         }
+        if (R->mt->eval_points) sb_run_record_probes(R, step);
+        sb_stats_event(stats, F, SB_EV_SAMPLES, tsm);
         sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0,
-                              o.force_scale, o.gstop, n, n_tris };
+                              o.force_scale, o.gstop, n, n_tris, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
         sr.seconds = tr0 - t0;
+        sr.peak_rss = sb_peak_rss();
         sb_stats_push_step(stats, &sr);
         rec->steps_done = step;
-        if (R->mt->eval_points) sb_run_record_probes(R, step);
         if (sb_problem_has_contact(R->prob)) {
             /* contact: distances of the step's end state (docs/contact.md) */
             sb_contact_report cr;
@@ -418,6 +473,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             }
         }
         sb_stats_event(stats, F, SB_EV_RECORD, tr0);
+        step_parts_into(stats, parts0);
         if (!req->quiet)
             fprintf(err, "step %d/%d: %s after %d iterations, f = %.10g, |g| = %.3g (%.3f s)\n", step, sc->time.steps,
                     sb_reason_name(reason), iters, f, gn, sr.seconds);
@@ -438,8 +494,10 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
                         step, sc->time.steps, R->partial_path);
             return SB_EXIT_STOPPED;
         }
-        if (R->checkpoints_on && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every)
+        if (R->checkpoints_on && !R->checkpoint_failed && sb_now() - R->checkpoint_last >= 0.1 * R->checkpoint_every) {
             sb_run_write_checkpoint(R);
+            step_parts_into(stats, parts0);
+        }
     }
     stats->seconds_total = sb_now() - R->t_start;
     return RUN_GO_ON;
@@ -455,7 +513,8 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     sb_run *rec = &R->rec;
     const int F = sb_problem_finest(R->prob);
     char msg[2048];
-    double tr0 = sb_now();
+    sb_stats_close_all(stats);
+    double tr0 = sb_stats_begin(stats);
     if (R->mt->eval_points) {
         R->mt->eval_points(R->ms, F, R->x, rec->n_samples, rec->sample_st, rec->sample_pos);
         if (sb_run_validate(R)) {
@@ -466,6 +525,10 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
     }
     sb_run_potential_change(R);
     sb_run_contact_coverage(R);
+    sb_run_record_material(R);
+    sb_run_record_energy(R);
+    sb_stats_event(stats, F, SB_EV_SAMPLES, tr0);
+    double te0 = sb_stats_begin(stats);
     /* the run that rewrites its scene's reference (`shellbench reference`) is
        measured against the file it replaces, if that can serve: a refusal
        is no verdict on this run (check_reference skipped it too) */
@@ -474,12 +537,13 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
                                                     sb_run_same_path(out_path, sc->reference.file, pa, pb, sizeof pa));
     const int ref_refused = sb_run_compute_error(R, err, req->allow_unsealed_reference || writes_ref,
                                                  req->makes_reference) != SB_OK && !writes_ref;
-    sb_run_record_material(R);
-    sb_run_record_energy(R);
+    sb_stats_event(stats, F, SB_EV_ERROR, te0);
+    stats->peak_rss = sb_peak_rss();
     if (out_path) {
-        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
-        stats->seconds_total = sb_now() - R->t_start;
-        double tw0 = sb_now();
+        double tw0 = sb_stats_begin(stats);
+        stats->seconds_total = tw0 - R->t_start;
+        rec->write_event = SB_EV_RECORD;   /* the record holds its own write (but for closing it, sb_record.h) */
+        rec->write_t0 = tw0;
         if (sb_record_write(rec, out_path, msg, sizeof msg)) {
             fprintf(err, "shellbench: %s\n", msg);
             return SB_EXIT_INPUT;
@@ -489,7 +553,6 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
         sb_stats_event(stats, F, SB_EV_RECORD, tw0);
         stats->seconds_total = sb_now() - R->t_start;
     } else {
-        sb_stats_event(stats, F, SB_EV_RECORD, tr0);
         stats->seconds_total = sb_now() - R->t_start;
     }
     char *js = sb_run_summary_json(R, out_path);
@@ -520,7 +583,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     if (sb_context_init(&R->ctx)) { free(R); fprintf(err, "shellbench: out of memory\n"); return SB_EXIT_INTERNAL; }
     R->err = err;
     sb_output_lock_init(&R->lock);
-    R->t_start = sb_now();
+    R->t_start = sb_stats_begin(&R->ctx.stats);   /* the set-up event (SB_EV_SETUP), closed by end_setup */
     sb_run_progress_init(R, req);
     R->ctx.monitor = sb_run_monitor;
     R->ctx.monitor_data = R;
@@ -537,6 +600,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
         (code = sb_run_adapt_check(R, req)) == RUN_GO_ON &&
         (code = check_reference(R, req, out_path)) == RUN_GO_ON &&
         (code = start_or_resume(R, req, out_path, &first_step)) == RUN_GO_ON &&
+        (code = end_setup(R)) == RUN_GO_ON &&
         (code = run_steps(R, req, first_step)) == RUN_GO_ON)
         code = finish_run(R, req, out_path, out, summary);
     sb_run_progress_clear(R);

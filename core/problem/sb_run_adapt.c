@@ -97,7 +97,7 @@ int sb_run_adapt(run_state *R, int step, int *n_out)
     if (every <= 0 || step <= 1 || (step - 1) % every) return -1;
     sb_stats *stats = &R->ctx.stats;
     const int F = sb_problem_finest(R->prob);
-    double t0 = sb_now();
+    double t0 = sb_stats_begin(stats);
     int changed = 0, rc = R->mt->adapt(R->ms, R->x, R->v, &changed);
     if (rc == SB_OK && changed) {
         rc = sb_run_adapt_follow(R, 1);

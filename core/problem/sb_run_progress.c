@@ -68,5 +68,9 @@ void sb_run_monitor(void *data, const sb_iter_record *r)
         sb_run_progress_clear(R);   /* a failed checkpoint prints a warning */
         sb_run_write_checkpoint(R);
     }
-    if (R->progress.on) progress_update(R, r);
+    if (R->progress.on) {
+        double t0 = sb_stats_begin(&R->ctx.stats);
+        progress_update(R, r);
+        sb_stats_event(&R->ctx.stats, sb_problem_finest(R->prob), SB_EV_PROGRESS, t0);
+    }
 }

@@ -165,6 +165,16 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     json_set_num(sec, "total", st->seconds_total);
     for (int e = 0; e < SB_EV_COUNT; e++) json_set_num(sec, sb_event_name((sb_event)e), sb_stats_event_total(st, (sb_event)e).seconds);
     json_object_set_new(o, "seconds", sec);
+    /* exclusive seconds (issue 42): they and `unattributed` add up to the total */
+    json_t *self = json_object();
+    double attributed = R->rec.resumed.setup_seconds;
+    for (int e = 0; e < SB_EV_COUNT; e++) {
+        const double v = sb_stats_self_total(st, (sb_event)e);
+        json_set_num(self, sb_event_name((sb_event)e), v);
+        attributed += v;
+    }
+    json_set_num(self, "unattributed", st->seconds_total - attributed);
+    json_object_set_new(o, "seconds_self", self);
     json_t *cnt = json_object();
     for (int e = 0; e < SB_EV_COUNT; e++) json_object_set_new(cnt, sb_event_name((sb_event)e), json_integer(sb_stats_event_total(st, (sb_event)e).count));
     json_object_set_new(o, "counts", cnt);
@@ -173,6 +183,8 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     json_set_num(lin, "matrix_nnz", (double)st->matrix_nnz[F]);
     json_set_num(lin, "factor_nnz", st->chol_nnz_l[F]);
     json_set_num(lin, "factor_flops", st->chol_flops[F]);
+    json_set_num(lin, "factor_flops_sum", st->chol_flops_sum[F]);
+    json_set_num(lin, "factor_entries", st->chol_factor_entries[F]);
     json_object_set_new(lin, "not_posdef", json_integer(st->not_posdef));
     json_object_set_new(o, "linear_algebra", lin);
     /* the up-front estimate (sb_memory.h) beside what the process took */
@@ -180,6 +192,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     struct rusage ru;
     json_set_num(mem, "estimate_bytes", R->mem_estimate);
     if (getrusage(RUSAGE_SELF, &ru) == 0) json_set_num(mem, "peak_rss_bytes", 1024.0 * (double)ru.ru_maxrss);
+    json_set_num(mem, "peak_rss_setup_bytes", st->peak_rss_setup);
     json_object_set_new(o, "memory", mem);
     json_t *pr = json_object();
     int last = R->rec.steps_done;

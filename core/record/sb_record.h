@@ -208,6 +208,13 @@ typedef struct sb_run {
      * a final record); its stats' history pointers are not used, the
      * boundary is n_iters / n_steps records into /history */
     const sb_resume_point *resume;
+    /* the record's own write (issue 42): when write_event is an event
+     * (SB_EV_RECORD of the final record) and write_t0 its start, the seconds
+     * from write_t0 to the moment every group is written are added to that
+     * event (finest level) and to seconds_total in the file; 0 / 0: none.
+     * Closing, checksumming, fsync and renames stay outside the file. */
+    int write_event;
+    double write_t0;
 } sb_run;
 
 /* Call first thing in main() of a program that reads records it did not
@@ -226,7 +233,9 @@ void sb_run_init(sb_run *run);
 /* Layout version written as the root attribute "format_version"; a reader
  * refuses files with a newer version.  The layout is documented in
  * docs/recorded_figures.md. */
-#define SB_RECORD_FORMAT_VERSION 2   /* 2: root attribute "checksum" (docs/trust.md) */
+#define SB_RECORD_FORMAT_VERSION 3   /* 2: root attribute "checksum" (docs/trust.md); 3: exclusive event
+                                        seconds, harness events, CHOLMOD per factorization, peak memory,
+                                        per-iteration and per-step seconds by part (issue 42) */
 #define SB_RECORD_FORMAT_NAME "shellbench-run"
 /* Record status of a checkpoint (run.checkpoint): the run was still going. */
 #define SB_STATUS_UNFINISHED 2
@@ -259,6 +268,10 @@ typedef struct sb_record_summary {
     int levels, steps, iterations, status, reason;
     double work_assembly, work_qp, seconds;
     double seconds_event[SB_EV_COUNT];
+    /* exclusive seconds per event (format 3, /stats/events_self_seconds) and
+     * what no event covers; has_self 0 for older records (then both are 0) */
+    int has_self;
+    double seconds_self[SB_EV_COUNT], seconds_unattributed;
     int has_error;
     double error_rms, error_max, error_probe;
     char error_kind[16];

@@ -57,7 +57,10 @@ hid_t sb_h5w_group(sb_h5w *w, hid_t file, const char *name);
  * each, written as a 1-D dataset (sb_record_write.c) and read back by
  * sb_record_read_resume.  "units" is empty where the unit depends on the
  * method's DOF layout (docs/recorded_figures.md). */
-typedef struct sb_record_column { const char *name; size_t off; int is_int; const char *units; } sb_record_column;
+typedef struct sb_record_column {
+    const char *name; size_t off; int is_int; const char *units;
+    int since_v3;   /* a column of format version 3 (issue 42): absent in older checkpoints, read as 0 */
+} sb_record_column;
 extern const sb_record_column sb_record_iter_cols[], sb_record_step_cols[];
 extern const int sb_record_n_iter_cols, sb_record_n_step_cols;
 

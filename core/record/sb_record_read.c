@@ -17,10 +17,25 @@
  * with a different event list still reads. */
 static int read_event_seconds(sb_h5r *r, hid_t f, sb_record_summary *s)
 {
-    hsize_t dims[2];
-    double *sec = NULL;
+    hsize_t dims[2], dself[2];
+    double *sec = NULL, *self = NULL;
     int rc = sb_h5r_dset(r, f, "/stats/events_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), dims, (void **)&sec);
     if (rc) return rc;
+    /* format 3: exclusive seconds, same shape (older records: none) */
+    if (H5Lexists(f, "/stats/events_self_seconds", H5P_DEFAULT) > 0 &&
+        sb_h5r_dset(r, f, "/stats/events_self_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), dself,
+                    (void **)&self) == SB_OK && (dself[0] != dims[0] || dself[1] != dims[1])) {
+        free(self);
+        self = NULL;
+    }
+    s->has_self = self != NULL;
+    if (self) {
+        hid_t gs = H5Gopen2(f, "/stats", H5P_DEFAULT);
+        double u = 0.0;
+        if (gs >= 0 && H5Aexists(gs, "seconds_unattributed") > 0) sb_h5r_attr_dbl(r, gs, "seconds_unattributed", &u);
+        if (gs >= 0) H5Gclose(gs);
+        s->seconds_unattributed = u;
+    }
     hid_t g = H5Gopen2(f, "/stats", H5P_DEFAULT);
     hid_t a = g < 0 ? -1 : H5Aopen(g, "event_names", H5P_DEFAULT);
     hid_t t = a < 0 ? -1 : H5Aget_type(a), sp = a < 0 ? -1 : H5Aget_space(a);
@@ -40,7 +55,10 @@ static int read_event_seconds(sb_h5r *r, hid_t f, sb_record_summary *s)
             snprintf(name, sizeof name, "%.*s", (int)(width < 63 ? width : 63), names + c * width);
             for (int e = 0; e < SB_EV_COUNT; e++)
                 if (strcmp(name, sb_event_name((sb_event)e)) == 0)
-                    for (hsize_t l = 0; l < dims[0]; l++) s->seconds_event[e] += sec[l * dims[1] + c];
+                    for (hsize_t l = 0; l < dims[0]; l++) {
+                        s->seconds_event[e] += sec[l * dims[1] + c];
+                        if (self) s->seconds_self[e] += self[l * dims[1] + c];
+                    }
         }
     }
     free(names);
@@ -49,6 +67,7 @@ static int read_event_seconds(sb_h5r *r, hid_t f, sb_record_summary *s)
     if (a >= 0) H5Aclose(a);
     if (g >= 0) H5Gclose(g);
     free(sec);
+    free(self);
     return rc;
 }
 

@@ -35,11 +35,12 @@ int sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp)
     if (g < 0) return -1;
     const sb_stats *s = &rp->stats;
     long cnt[SB_MAX_LEVELS * SB_EV_COUNT];
-    double sec[SB_MAX_LEVELS * SB_EV_COUNT];
+    double sec[SB_MAX_LEVELS * SB_EV_COUNT], self[SB_MAX_LEVELS * SB_EV_COUNT];
     for (int l = 0; l < SB_MAX_LEVELS; l++)
         for (int e = 0; e < SB_EV_COUNT; e++) {
             cnt[l * SB_EV_COUNT + e] = s->ev[l][e].count;
             sec[l * SB_EV_COUNT + e] = s->ev[l][e].seconds;
+            self[l * SB_EV_COUNT + e] = s->ev[l][e].self;
         }
     hsize_t dx = (hsize_t)rp->n_x, d2[2] = { SB_MAX_LEVELS, SB_EV_COUNT };
     int bad = 0;
@@ -54,6 +55,9 @@ int sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp)
     bad |= sb_h5w_dset_dbl(w, g, "v", 1, &dx, rp->v, NULL);
     bad |= sb_h5w_dset_long(w, g, "events_count", 2, d2, cnt, "calls");
     bad |= sb_h5w_dset_dbl(w, g, "events_seconds", 2, d2, sec, "s");
+    bad |= sb_h5w_dset_dbl(w, g, "events_self_seconds", 2, d2, self, "s");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_flops_sum", 1, d2, s->chol_flops_sum, "flop");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_nnz_l_sum", 1, d2, s->chol_nnz_l_sum, "entries");
     if (rp->has_mesh) {
         /* the adaptive method's discretization at the boundary (sb_method.h save_mesh) */
         hsize_t di = (hsize_t)rp->mesh.n_int, dd = (hsize_t)rp->mesh.n_dbl;
@@ -168,7 +172,8 @@ static int read_columns(sb_h5r *r, hid_t f, const char *group, const sb_record_c
         snprintf(name, sizeof name, "%s/%s", group, cols[c].name);
         hsize_t d = 0;
         void *buf = NULL;
-        if (strcmp(cols[c].name, "triangles") == 0 && H5Lexists(f, name, H5P_DEFAULT) <= 0) continue;
+        if ((cols[c].since_v3 || strcmp(cols[c].name, "triangles") == 0) && H5Lexists(f, name, H5P_DEFAULT) <= 0)
+            continue;   /* a checkpoint written before the column existed: 0 */
         int rc = sb_h5r_dset(r, f, name, 1, cols[c].is_int ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
                              cols[c].is_int ? sizeof(int) : sizeof(double), &d, &buf);
         if (!rc && d < n) rc = sb_h5r_fail(r, SB_ERR_INPUT, "too few rows before the resume point in", name);
@@ -201,9 +206,26 @@ static int read_events(sb_h5r *r, hid_t f, sb_stats *s)
 {
     hsize_t d1[2], d2[2];
     long *cnt = NULL;
-    double *sec = NULL;
+    double *sec = NULL, *self = NULL, *fl = NULL, *lz = NULL;
+    hsize_t d3[2], d4[2] = { 0, 0 }, d5[2] = { 0, 0 };
     int rc = sb_h5r_dset(r, f, "/resume/events_count", 2, H5T_NATIVE_LONG, sizeof(long), d1, (void **)&cnt);
     if (!rc) rc = sb_h5r_dset(r, f, "/resume/events_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), d2, (void **)&sec);
+    /* format version 3 (issue 42): exclusive seconds and CHOLMOD sums; older checkpoints have neither */
+    if (!rc && H5Lexists(f, "/resume/events_self_seconds", H5P_DEFAULT) > 0) {
+        rc = sb_h5r_dset(r, f, "/resume/events_self_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), d3, (void **)&self);
+        if (!rc && (d3[0] != d2[0] || d3[1] != d2[1]))
+            rc = sb_h5r_fail(r, SB_ERR_INPUT, "event table of another shape in", "/resume/events_self_seconds");
+    }
+    if (!rc && H5Lexists(f, "/resume/chol_flops_sum", H5P_DEFAULT) > 0 &&
+        !(rc = sb_h5r_dset(r, f, "/resume/chol_flops_sum", 1, H5T_NATIVE_DOUBLE, sizeof(double), d4, (void **)&fl)) &&
+        H5Lexists(f, "/resume/chol_nnz_l_sum", H5P_DEFAULT) > 0)
+        rc = sb_h5r_dset(r, f, "/resume/chol_nnz_l_sum", 1, H5T_NATIVE_DOUBLE, sizeof(double), d5, (void **)&lz);
+    for (int l = 0; !rc && l < SB_MAX_LEVELS; l++) {
+        if (fl && (hsize_t)l < d4[0]) s->chol_flops_sum[l] = fl[l];
+        if (lz && (hsize_t)l < d5[0]) s->chol_nnz_l_sum[l] = lz[l];
+    }
+    free(fl);
+    free(lz);
     if (!rc && (d1[0] != SB_MAX_LEVELS || d1[1] < 1 || d1[1] > 64 || d2[0] != d1[0] || d2[1] != d1[1]))
         rc = sb_h5r_fail(r, SB_ERR_INPUT, "event table of another shape (another build's event list) in", "/resume");
     hid_t g = rc ? -1 : H5Gopen2(f, "/stats", H5P_DEFAULT);
@@ -227,6 +249,7 @@ static int read_events(sb_h5r *r, hid_t f, sb_stats *s)
         for (int l = 0; l < SB_MAX_LEVELS; l++) {
             s->ev[l][e].count = cnt[l * ne + c];
             s->ev[l][e].seconds = sec[l * ne + c];
+            s->ev[l][e].self = self ? self[l * ne + c] : sec[l * ne + c];   /* older: as inclusive */
         }
     }
     free(names);
@@ -236,6 +259,7 @@ static int read_events(sb_h5r *r, hid_t f, sb_stats *s)
     if (g >= 0) H5Gclose(g);
     free(cnt);
     free(sec);
+    free(self);
     return rc;
 }
 

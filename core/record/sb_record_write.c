@@ -120,29 +120,61 @@ static int stats_rows(const sb_stats *s)
     return rows;
 }
 
-static int write_stats(sb_h5w *w, hid_t f, const sb_stats *s)
+/* seconds_total minus every event's exclusive seconds and the resumed
+ * processes' set-up: the time no event covers (issue 42) */
+static double unattributed(const sb_stats *s, const sb_resume_log *log, double extra)
+{
+    double u = s->seconds_total + extra - (log ? log->setup_seconds : 0.0);
+    for (int l = 0; l < SB_MAX_LEVELS; l++)
+        for (int e = 0; e < SB_EV_COUNT; e++) u -= s->ev[l][e].self;
+    return u - extra;
+}
+
+/* The per-level event tables; `extra` seconds (the record's own write) are
+ * added to event `xe` on level `xl` (xe < 0: none). */
+static void event_tables(const sb_stats *s, int rows, int xe, int xl, double extra, long *cnt, double *sec,
+                         double *self)
+{
+    for (int l = 0; l < rows; l++)
+        for (int e = 0; e < SB_EV_COUNT; e++) {
+            const int k = l * SB_EV_COUNT + e, add = e == xe && l == xl;
+            if (cnt) cnt[k] = s->ev[l][e].count + add;
+            sec[k] = s->ev[l][e].seconds + (add ? extra : 0.0);
+            self[k] = s->ev[l][e].self + (add ? extra : 0.0);
+        }
+}
+
+static int write_stats(sb_h5w *w, hid_t f, const sb_stats *s, const sb_run *r)
 {
     hid_t g = sb_h5w_group(w, f, "/stats");
     if (g < 0) return -1;
     int rows = stats_rows(s);
     long cnt[SB_MAX_LEVELS * SB_EV_COUNT];
-    double sec[SB_MAX_LEVELS * SB_EV_COUNT];
-    for (int l = 0; l < rows; l++)
-        for (int e = 0; e < SB_EV_COUNT; e++) {
-            cnt[l * SB_EV_COUNT + e] = s->ev[l][e].count;
-            sec[l * SB_EV_COUNT + e] = s->ev[l][e].seconds;
-        }
+    double sec[SB_MAX_LEVELS * SB_EV_COUNT], self[SB_MAX_LEVELS * SB_EV_COUNT];
+    const int xe = r->write_event > 0 && r->write_t0 > 0 ? r->write_event : -1;
+    const int xl = s->n_levels > 0 ? s->n_levels - 1 : 0;
+    if (xe >= 0 && xl >= rows) rows = xl + 1;
+    event_tables(s, rows, xe, xl, 0.0, cnt, sec, self);
     char names[SB_EV_COUNT][16];
     for (int e = 0; e < SB_EV_COUNT; e++) snprintf(names[e], sizeof names[e], "%s", sb_event_name((sb_event)e));
     hsize_t d2[2] = { (hsize_t)rows, SB_EV_COUNT }, d1 = (hsize_t)rows;
     int bad = 0;
     bad |= sb_h5w_dset_long(w, g, "events_count", 2, d2, cnt, "calls");
     bad |= sb_h5w_dset_dbl(w, g, "events_seconds", 2, d2, sec, "s");
+    bad |= sb_h5w_dset_dbl(w, g, "events_self_seconds", 2, d2, self, "s");
     bad |= sb_h5w_attr_str_array(w, g, "event_names", SB_EV_COUNT, sizeof names[0], &names[0][0]);
     bad |= sb_h5w_dset_long(w, g, "n_dofs", 1, &d1, s->n_dofs, "dofs");
     bad |= sb_h5w_dset_dbl(w, g, "chol_flops", 1, &d1, s->chol_flops, "flop");
     bad |= sb_h5w_dset_dbl(w, g, "chol_nnz_l", 1, &d1, s->chol_nnz_l, "entries");
     bad |= sb_h5w_dset_long(w, g, "matrix_nnz", 1, &d1, s->matrix_nnz, "entries");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_flops_sum", 1, &d1, s->chol_flops_sum, "flop");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_nnz_l_sum", 1, &d1, s->chol_nnz_l_sum, "entries");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_factor_entries", 1, &d1, s->chol_factor_entries, "entries");
+    bad |= sb_h5w_attr_dbl(w, g, "memory_estimate", s->mem_estimate);
+    bad |= sb_h5w_attr_dbl(w, g, "peak_rss_setup", s->peak_rss_setup);
+    bad |= sb_h5w_attr_dbl(w, g, "peak_rss_analyzed", s->peak_rss_analyzed);
+    bad |= sb_h5w_attr_dbl(w, g, "peak_rss", s->peak_rss);
+    bad |= sb_h5w_attr_dbl(w, g, "seconds_unattributed", unattributed(s, &r->resumed, 0.0));
     bad |= sb_h5w_attr_dbl(w, g, "work_assembly", s->work_assembly);
     bad |= sb_h5w_attr_dbl(w, g, "work_qp", s->work_qp);
     bad |= sb_h5w_attr_dbl(w, g, "seconds_total", s->seconds_total);
@@ -155,34 +187,49 @@ static int write_stats(sb_h5w *w, hid_t f, const sb_stats *s)
  * only where the unit does not depend on the method's DOF layout (||g||,
  * Delta, step norms mix position DOFs (m) with Hermite derivative DOFs). */
 const sb_record_column sb_record_iter_cols[] = {
-    { "step", offsetof(sb_iter_record, step), 1, "" },
-    { "iter", offsetof(sb_iter_record, iter), 1, "" },
-    { "level", offsetof(sb_iter_record, level), 1, "" },
-    { "f", offsetof(sb_iter_record, f), 0, "J" },
-    { "gnorm", offsetof(sb_iter_record, gnorm), 0, "" },
-    { "delta", offsetof(sb_iter_record, delta), 0, "" },
-    { "rho", offsetof(sb_iter_record, rho), 0, "" },
-    { "step_norm", offsetof(sb_iter_record, step_norm), 0, "" },
-    { "shift", offsetof(sb_iter_record, shift), 0, "" },
-    { "accepted", offsetof(sb_iter_record, accepted), 1, "" },
-    { "linear_iters", offsetof(sb_iter_record, linear_iters), 1, "" },
-    { "reason", offsetof(sb_iter_record, reason), 1, "" },
+    { "step", offsetof(sb_iter_record, step), 1, "", 0 },
+    { "iter", offsetof(sb_iter_record, iter), 1, "", 0 },
+    { "level", offsetof(sb_iter_record, level), 1, "", 0 },
+    { "f", offsetof(sb_iter_record, f), 0, "J", 0 },
+    { "gnorm", offsetof(sb_iter_record, gnorm), 0, "", 0 },
+    { "delta", offsetof(sb_iter_record, delta), 0, "", 0 },
+    { "rho", offsetof(sb_iter_record, rho), 0, "", 0 },
+    { "step_norm", offsetof(sb_iter_record, step_norm), 0, "", 0 },
+    { "shift", offsetof(sb_iter_record, shift), 0, "", 0 },
+    { "accepted", offsetof(sb_iter_record, accepted), 1, "", 0 },
+    { "linear_iters", offsetof(sb_iter_record, linear_iters), 1, "", 0 },
+    { "reason", offsetof(sb_iter_record, reason), 1, "", 0 },
+    { "seconds", offsetof(sb_iter_record, seconds), 0, "s", 1 },
+    { "seconds_assembly", offsetof(sb_iter_record, seconds_assembly), 0, "s", 1 },
+    { "seconds_analyze", offsetof(sb_iter_record, seconds_analyze), 0, "s", 1 },
+    { "seconds_factorize", offsetof(sb_iter_record, seconds_factorize), 0, "s", 1 },
+    { "seconds_solve", offsetof(sb_iter_record, seconds_solve), 0, "s", 1 },
+    { "seconds_contact", offsetof(sb_iter_record, seconds_contact), 0, "s", 1 },
 };
 const int sb_record_n_iter_cols = (int)(sizeof sb_record_iter_cols / sizeof *sb_record_iter_cols);
 const sb_record_column sb_record_step_cols[] = {
-    { "step", offsetof(sb_step_record, step), 1, "" },
-    { "t", offsetof(sb_step_record, t), 0, "" },
-    { "iterations", offsetof(sb_step_record, iterations), 1, "" },
-    { "reason", offsetof(sb_step_record, reason), 1, "" },
-    { "f", offsetof(sb_step_record, f), 0, "J" },
-    { "gnorm", offsetof(sb_step_record, gnorm), 0, "" },
-    { "seconds", offsetof(sb_step_record, seconds), 0, "s" },
-    { "work_assembly", offsetof(sb_step_record, work_assembly), 0, "WU" },
-    { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU" },
-    { "force_scale", offsetof(sb_step_record, force_scale), 0, "" },
-    { "gstop", offsetof(sb_step_record, gstop), 0, "" },
-    { "dofs", offsetof(sb_step_record, dofs), 1, "" },
-    { "triangles", offsetof(sb_step_record, triangles), 1, "" },
+    { "step", offsetof(sb_step_record, step), 1, "", 0 },
+    { "t", offsetof(sb_step_record, t), 0, "", 0 },
+    { "iterations", offsetof(sb_step_record, iterations), 1, "", 0 },
+    { "reason", offsetof(sb_step_record, reason), 1, "", 0 },
+    { "f", offsetof(sb_step_record, f), 0, "J", 0 },
+    { "gnorm", offsetof(sb_step_record, gnorm), 0, "", 0 },
+    { "seconds", offsetof(sb_step_record, seconds), 0, "s", 0 },
+    { "work_assembly", offsetof(sb_step_record, work_assembly), 0, "WU", 0 },
+    { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU", 0 },
+    { "force_scale", offsetof(sb_step_record, force_scale), 0, "", 0 },
+    { "gstop", offsetof(sb_step_record, gstop), 0, "", 0 },
+    { "dofs", offsetof(sb_step_record, dofs), 1, "", 0 },
+    { "triangles", offsetof(sb_step_record, triangles), 1, "", 0 },
+    { "seconds_assembly", offsetof(sb_step_record, seconds_assembly), 0, "s", 1 },
+    { "seconds_analyze", offsetof(sb_step_record, seconds_analyze), 0, "s", 1 },
+    { "seconds_factorize", offsetof(sb_step_record, seconds_factorize), 0, "s", 1 },
+    { "seconds_solve", offsetof(sb_step_record, seconds_solve), 0, "s", 1 },
+    { "seconds_contact", offsetof(sb_step_record, seconds_contact), 0, "s", 1 },
+    { "seconds_adapt", offsetof(sb_step_record, seconds_adapt), 0, "s", 1 },
+    { "seconds_record", offsetof(sb_step_record, seconds_record), 0, "s", 1 },
+    { "seconds_checkpoint", offsetof(sb_step_record, seconds_checkpoint), 0, "s", 1 },
+    { "peak_rss", offsetof(sb_step_record, peak_rss), 0, "B", 1 },
 };
 const int sb_record_n_step_cols = (int)(sizeof sb_record_step_cols / sizeof *sb_record_step_cols);
 
@@ -399,6 +446,40 @@ static int write_error(sb_h5w *w, hid_t f, const sb_run *r)
     return bad ? -1 : 0;
 }
 
+/* The record's own write so far (sb_run.write_event) into /stats: the event
+ * tables, seconds_total and seconds_unattributed rewritten in place. */
+static int patch_own_write(sb_h5w *w, hid_t f, const sb_stats *s, const sb_run *r)
+{
+    const double extra = sb_now() - r->write_t0;
+    int rows = stats_rows(s);
+    const int xl = s->n_levels > 0 ? s->n_levels - 1 : 0;
+    if (xl >= rows) rows = xl + 1;
+    long cnt[SB_MAX_LEVELS * SB_EV_COUNT];
+    double sec[SB_MAX_LEVELS * SB_EV_COUNT], self[SB_MAX_LEVELS * SB_EV_COUNT];
+    event_tables(s, rows, r->write_event, xl, extra, cnt, sec, self);
+    const double total = s->seconds_total + extra, un = unattributed(s, &r->resumed, 0.0);
+    int bad = 0;
+    hid_t g = H5Gopen2(f, "/stats", H5P_DEFAULT);
+    if (g < 0) return sb_h5w_fail(w, -1, "/stats (reopening)");
+    const char *dn[3] = { "events_count", "events_seconds", "events_self_seconds" };
+    const void *db[3] = { cnt, sec, self };
+    for (int k = 0; k < 3 && !bad; k++) {
+        hid_t d = H5Dopen2(g, dn[k], H5P_DEFAULT);
+        if (d < 0 || H5Dwrite(d, k ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, db[k]) < 0)
+            bad = sb_h5w_fail(w, -1, dn[k]);
+        if (d >= 0) H5Dclose(d);
+    }
+    const char *an[2] = { "seconds_total", "seconds_unattributed" };
+    const double av[2] = { total, un };
+    for (int k = 0; k < 2 && !bad; k++) {
+        hid_t a = H5Aopen(g, an[k], H5P_DEFAULT);
+        if (a < 0 || H5Awrite(a, H5T_NATIVE_DOUBLE, &av[k]) < 0) bad = sb_h5w_fail(w, -1, an[k]);
+        if (a >= 0) H5Aclose(a);
+    }
+    H5Gclose(g);
+    return bad;
+}
+
 /* Root attributes may exceed the 64 KiB limit of compact attribute storage
  * (scene_json): the 1.8 object format with dense attribute storage lifts it. */
 static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp, sb_h5w *w)
@@ -415,7 +496,7 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
     if (f < 0) return sb_h5w_fail(w, -1, "(file creation)");
     int bad = write_root(w, f, run);
     if (!bad) bad = write_params(w, f, run->params);
-    if (!bad) bad = write_stats(w, f, stats);
+    if (!bad) bad = write_stats(w, f, stats, run);
     if (!bad) bad = write_history(w, f, stats);
     if (!bad) bad = write_probes(w, f, run);
     if (!bad) bad = write_final(w, f, run);
@@ -424,6 +505,7 @@ static int write_file(const sb_run *run, const sb_stats *stats, const char *tmp,
     if (!bad) bad = sb_record_write_mesh(w, f, run);
     if (!bad) bad = sb_record_write_resume_log(w, f, &run->resumed);
     if (!bad && run->resume) bad = sb_record_write_resume(w, f, run->resume);
+    if (!bad && run->write_event > 0 && run->write_t0 > 0) bad = patch_own_write(w, f, stats, run);
     if (!bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) bad = sb_h5w_fail(w, -1, "(flush)");
     if (H5Fclose(f) < 0 && !bad) bad = sb_h5w_fail(w, -1, "(close)");
     return bad;

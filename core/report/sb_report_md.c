@@ -174,29 +174,53 @@ static void columns(FILE *out)
           "nothing expected or the run stopped early), apart from convergence (docs/trust.md).\n", out);
 }
 
-/* seconds per event and run; nested events (qp contains the subproblem's
- * factorizations and solves) do not add up to the total */
+/* seconds per event and run: exclusive ones where the record has them
+ * (format 3: they and `other` add up to the total), else inclusive ones
+ * (nested events, e.g. qp containing the subproblem's factorizations,
+ * overlap) */
+static const double *event_seconds(const sb_record_summary *s)
+{
+    return s->has_self ? s->seconds_self : s->seconds_event;
+}
+
 static void times(FILE *out, int n, const sb_record_summary *s)
 {
-    int show[SB_EV_COUNT], k = 0;
+    int show[SB_EV_COUNT], k = 0, any_self = 0, any_old = 0;
+    for (int i = 0; i < n; i++) {
+        any_self |= s[i].has_self;
+        any_old |= !s[i].has_self;
+    }
     for (int e = 0; e < SB_EV_COUNT; e++) {
         show[e] = 0;
-        for (int i = 0; i < n; i++) show[e] |= s[i].seconds_event[e] > 0;
+        for (int i = 0; i < n; i++) show[e] |= event_seconds(&s[i])[e] > 0;
         k += show[e];
     }
-    fputs("\n### Time per run (seconds)\n\nWall-clock seconds per event (docs/recorded_figures.md, /stats): hessian "
-          "= assemblies, qp = subproblem solves including their factorizations and solves, so the columns overlap "
-          "and do not add up to the total.\n\n| run | total", out);
+    fputs("\n### Time per run (seconds)\n\nWall-clock seconds per event (docs/recorded_figures.md, /stats): ", out);
+    if (any_self)
+        fputs("exclusive seconds, each event without the events timed inside it (hessian = assemblies, solver = the "
+              "step's own work outside every event, setup, samples, error, record = the harness), which with other "
+              "(the time no event covers) add up to the total", out);
+    if (any_self && any_old) fputs("; for records written before exclusive seconds were kept (marked *) ", out);
+    if (any_old)
+        fputs("inclusive seconds: hessian = assemblies, qp = subproblem solves including their factorizations and "
+              "solves, so the columns overlap and do not add up to the total", out);
+    fputs(".\n\n| run | total", out);
     for (int e = 0; e < SB_EV_COUNT; e++) if (show[e]) fprintf(out, " | %s", sb_event_name((sb_event)e));
+    if (any_self) fputs(" | other", out);
     fputs(" |\n|---|--:", out);
-    for (int e = 0; e < k; e++) fputs("|--:", out);
+    for (int e = 0; e < k + any_self; e++) fputs("|--:", out);
     fputs("|\n", out);
     for (int i = 0; i < n; i++) {
         char label[256];
         run_label(&s[i], label, sizeof label);
         md_cell(out, label);
-        fprintf(out, "| %.3f ", s[i].seconds);
-        for (int e = 0; e < SB_EV_COUNT; e++) if (show[e]) fprintf(out, "| %.3f ", s[i].seconds_event[e]);
+        fprintf(out, "| %.3f%s ", s[i].seconds, any_self && !s[i].has_self ? "*" : "");
+        const double *v = event_seconds(&s[i]);
+        for (int e = 0; e < SB_EV_COUNT; e++) if (show[e]) fprintf(out, "| %.3f ", v[e]);
+        if (any_self) {
+            if (s[i].has_self) fprintf(out, "| %.3f ", s[i].seconds_unattributed);
+            else fputs("| — ", out);
+        }
         fputs("|\n", out);
     }
 }

@@ -77,6 +77,19 @@ static double max_abs_diff(int n, const double *a, const double *b)
 
 /* Whether the user set a parameter on the command line (an explicit gtol
  * is honoured by the scaled rule as an absolute tolerance). */
+/* Inclusive seconds so far of the parts an iteration record keeps: assembly
+ * (energy, gradient, hessian), analyze, factorize, solve, collide. */
+static void iter_seconds(const sb_stats *st, double out[6])
+{
+    out[0] = sb_stats_event_total(st, SB_EV_ENERGY).seconds + sb_stats_event_total(st, SB_EV_GRADIENT).seconds +
+             sb_stats_event_total(st, SB_EV_HESSIAN).seconds;
+    out[1] = sb_stats_event_total(st, SB_EV_ANALYZE).seconds;
+    out[2] = sb_stats_event_total(st, SB_EV_FACTORIZE).seconds;
+    out[3] = sb_stats_event_total(st, SB_EV_SOLVE).seconds;
+    out[4] = sb_stats_event_total(st, SB_EV_COLLIDE).seconds;
+    out[5] = 0.0;
+}
+
 static int overridden(const sb_paramset *ps, const char *key)
 {
     for (int i = 0; i < ps->n; i++)
@@ -166,14 +179,18 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
 #define GRAD_OK(g) (scaled ? (g) <= gstop : (g) < gstop)
     if (!reason && GRAD_OK(info.gnorm)) reason = SB_REASON_GRAD_TOL;
     {
-        sb_iter_record r0 = { step, 0, F, info.f, info.gnorm, info.delta, 0, 0, 0, 1, 0, reason };
+        sb_iter_record r0 = { step, 0, F, info.f, info.gnorm, info.delta, 0, 0, 0, 1, 0, reason, 0, 0, 0, 0, 0, 0 };
         sb_stats_push_iter(&ctx->stats, &r0);
     }
     while (!reason) {
         if (it >= max_iter) { reason = SB_REASON_MAX_ITER; break; }
         memset(&info, 0, sizeof info);
         info.level = F;
+        double ev0[6], ev1[6], ti0 = sb_now();
+        iter_seconds(&ctx->stats, ev0);
         rc = type->iterate(state, p, x, &info);
+        iter_seconds(&ctx->stats, ev1);
+        const double ti1 = sb_now();
         it++;
         const int finite = isfinite(info.f) && isfinite(info.gnorm);
         const double xnorm = scaled ? sb_norm2(n, x) : 0.0;
@@ -213,7 +230,8 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
             if (stall_iter > 0 && stalled >= stall_iter) reason = SB_REASON_STALLED;
         }
         sb_iter_record r = { step, it, info.level, info.f, info.gnorm, info.delta, info.rho, info.step_norm,
-                             info.shift, info.accepted, info.linear_iters, reason };
+                             info.shift, info.accepted, info.linear_iters, reason, ti1 - ti0, ev1[0] - ev0[0],
+                             ev1[1] - ev0[1], ev1[2] - ev0[2], ev1[3] - ev0[3], ev1[4] - ev0[4] };
         sb_stats_push_iter(&ctx->stats, &r);
         if (ctx->monitor) ctx->monitor(ctx->monitor_data, &r);
     }

@@ -40,10 +40,10 @@ void sb_trs_free(sb_trs *t)
 int sb_trs_solve(sb_trs *t, sb_problem *p, int level, const double *g, double delta, int fresh,
                  int max_iter, double *s, sb_trs_result *r)
 {
-    double t0 = sb_now();
+    double t0 = sb_problem_clock(p);
     memset(r, 0, sizeof *r);
     int rc = t->type->solve(t->state, p, level, g, delta, fresh, max_iter, s, r);
-    sb_problem_count_qp(p, level, sb_now() - t0);
+    sb_problem_count_qp_since(p, level, t0);
     return rc;
 }
 
