@@ -50,6 +50,27 @@ HAVE_MPI   := 1
 endif
 endif
 
+# hypre's BoomerAMG for solver.linear=pcg-amg (core/linalg/sb_precond_amg.c,
+# docs/solvers.md): when Debian's libhypre-dev and OpenMPI are found.
+# Debian's hypre is built against OpenMPI (no sequential variant), so linking
+# it links libmpi; MPI is initialized only by the first pcg-amg set-up of a
+# process, so other runs never start it.  `make HYPRE=0` (and the sanitizer
+# builds) leave hypre out: pcg-amg is then refused with a sentence.
+HYPRE_INC ?= /usr/include/hypre
+ifeq ($(SAN),)
+ifneq ($(HYPRE),0)
+ifeq ($(HAVE_MPI),1)
+ifneq ($(wildcard $(HYPRE_INC)/HYPRE_parcsr_ls.h),)
+HAVE_HYPRE := 1
+endif
+endif
+endif
+endif
+ifeq ($(HAVE_HYPRE),1)
+$(BUILD)/core/linalg/sb_precond_amg.o: CFLAGS += -DSB_HAVE_HYPRE -I$(HYPRE_INC) $(MPI_CFLAGS)
+LDLIBS += -lHYPRE $(MPI_LIBS)
+endif
+
 LIB_C   := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c) methods/*/*.c tests/fixture/*.c))
 LIB_C   := $(filter-out core/cli/main.c,$(LIB_C))
 LIB_CXX := $(sort $(wildcard methods/*/*.cpp))

@@ -49,6 +49,13 @@ typedef struct sb_iter_record {
     int accepted;
     int linear_iters;    /* CG iterations (or 1 for a direct solve) */
     int reason;          /* sb_reason when the step ended here, else 0 */
+    /* Krylov linear solves (solver.linear = pcg-*, docs/solvers.md): the
+     * relative tolerance asked of the solve (the Eisenstat–Walker forcing
+     * term, or the fixed cg_rtol; 0 for a direct solve) and how it ended
+     * (sb_krylov_status: 0 converged or direct, 1 iteration cap, 2 negative
+     * curvature, 3 trust-region boundary; + 4 when a shift was needed) */
+    double krylov_rtol;
+    int krylov_status;
 } sb_iter_record;
 
 /* One time / load step. */

@@ -930,3 +930,9 @@ void sb_problem_count_cg(sb_problem *p, int level, int iters)
 {
     p->ctx->stats.ev[level][SB_EV_CG_ITER].count += iters;
 }
+
+void sb_problem_count_krylov(sb_problem *p, int level, int iters, double seconds)
+{
+    p->ctx->stats.ev[level][SB_EV_CG_ITER].count += iters;
+    p->ctx->stats.ev[level][SB_EV_CG_ITER].seconds += seconds;
+}

@@ -131,6 +131,9 @@ int    sb_problem_contact_measure(sb_problem *p, const double *x, double *min_di
 void sb_problem_count_qp(sb_problem *p, int level, double seconds);
 /* Account CG iterations on a level. */
 void sb_problem_count_cg(sb_problem *p, int level, int iters);
+/* Account a Krylov linear solve (solver.linear, sb_krylov.c): its CG
+ * iterations and its seconds (the preconditioner's set-up included). */
+void sb_problem_count_krylov(sb_problem *p, int level, int iters, double seconds);
 
 /* Self-contact (docs/contact.md): 1 once after a level's sparsity pattern
  * was replaced at the start of a step (the solver re-allocates its

@@ -166,6 +166,8 @@ const sb_record_column sb_record_iter_cols[] = {
     { "accepted", offsetof(sb_iter_record, accepted), 1, "" },
     { "linear_iters", offsetof(sb_iter_record, linear_iters), 1, "" },
     { "reason", offsetof(sb_iter_record, reason), 1, "" },
+    { "krylov_rtol", offsetof(sb_iter_record, krylov_rtol), 0, "" },
+    { "krylov_status", offsetof(sb_iter_record, krylov_status), 1, "" },
 };
 const int sb_record_n_iter_cols = (int)(sizeof sb_record_iter_cols / sizeof *sb_record_iter_cols);
 const sb_record_column sb_record_step_cols[] = {

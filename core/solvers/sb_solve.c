@@ -166,7 +166,7 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
 #define GRAD_OK(g) (scaled ? (g) <= gstop : (g) < gstop)
     if (!reason && GRAD_OK(info.gnorm)) reason = SB_REASON_GRAD_TOL;
     {
-        sb_iter_record r0 = { step, 0, F, info.f, info.gnorm, info.delta, 0, 0, 0, 1, 0, reason };
+        sb_iter_record r0 = { step, 0, F, info.f, info.gnorm, info.delta, 0, 0, 0, 1, 0, reason, 0, 0 };
         sb_stats_push_iter(&ctx->stats, &r0);
     }
     while (!reason) {
@@ -213,7 +213,8 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
             if (stall_iter > 0 && stalled >= stall_iter) reason = SB_REASON_STALLED;
         }
         sb_iter_record r = { step, it, info.level, info.f, info.gnorm, info.delta, info.rho, info.step_norm,
-                             info.shift, info.accepted, info.linear_iters, reason };
+                             info.shift, info.accepted, info.linear_iters, reason,
+                             info.linear_rtol, info.linear_status };
         sb_stats_push_iter(&ctx->stats, &r);
         if (ctx->monitor) ctx->monitor(ctx->monitor_data, &r);
     }
