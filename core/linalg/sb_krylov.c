@@ -3,6 +3,7 @@
 #include "sb_krylov.h"
 #include "sb_context.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,6 +43,12 @@ double sb_forcing_ew2(double gnorm, double gprev, double eta_prev)
     if (safe > 0.1) eta = fmax(eta, safe);
     eta = fmin(eta, eta_max);
     return fmax(eta, eta_min);
+}
+
+int sb_krylov_f_noise(double f, double f_trial, double pred)
+{
+    const double scale = 1e7 * DBL_EPSILON * fmax(fabs(f), fabs(f_trial));
+    return isfinite(f_trial) && pred > 0.0 && pred <= scale && fabs(f_trial - f) <= scale;
 }
 
 int sb_krylov_alloc(sb_krylov *k, sb_problem *p, int level, const sb_precond_type *type, const sb_precond_opts *o)

@@ -64,6 +64,18 @@ void sb_krylov_describe(const sb_krylov *k, char *buf, size_t len);
  * the first iteration of a step. */
 double sb_forcing_ew2(double gnorm, double gprev, double eta_prev);
 
+/* The round-off test of the Krylov paths' line search and trust-region
+ * ratio: an inexact Newton step leaves a residual in the stiff (membrane)
+ * directions whose Newton correction changes f by far less than the
+ * round-off of an energy summed over thousands of elements, which is well
+ * above the 1e4 eps |f| of the direct paths (sb_tr_ared_unreliable; on
+ * scordelis_lo, bhem res 4: corrections of 1e-14 J against |f| = 1.2e-3 J,
+ * and lsnewton stalled).  1 when the predicted and the actual change are
+ * both below 1e7 eps |f|: the decrease is then decided from gradients, the
+ * trapezoid rule (Conn, Gould & Toint §17.4.2), as the direct paths do
+ * below 1e4 eps |f|. */
+int sb_krylov_f_noise(double f, double f_trial, double pred);
+
 /* The choices of solver.linear (lsnewton, tr, damped) and its index. */
 enum { SB_LINEAR_CHOLMOD = 0, SB_LINEAR_PCG_LEGACY, SB_LINEAR_PCG_JACOBI, SB_LINEAR_PCG_MG, SB_LINEAR_PCG_AMG };
 extern const char *const sb_linear_names[];        /* cholmod, pcg-jacobi, pcg-mg, pcg-amg */

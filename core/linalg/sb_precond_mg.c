@@ -66,11 +66,11 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
     mg_state *m = st;
     sb_context *ctx = sb_problem_context(p);
     const sb_method_type *mt = sb_problem_method_type(p);
-    if (!sb_problem_has_hierarchy(p))
-        return sb_error(ctx, SB_ERR_UNSUPPORTED, "solver.linear=pcg-mg needs a method with a level hierarchy "
+    if (!(mt->flags & SB_METHOD_HIERARCHY) || mt->adapt)
+        return sb_error(ctx, SB_ERR_UNSUPPORTED, "solver.linear=pcg-mg needs a method with a fixed level hierarchy "
                         "(prolongation and restriction), but method %s has none: use pcg-jacobi, pcg-amg or cholmod",
                         mt->name);
-    if (level < 1)
+    if (level < 1 || !sb_problem_has_hierarchy(p))
         return sb_error(ctx, SB_ERR_INPUT, "solver.linear=pcg-mg needs at least 2 levels (one V-cycle over the "
                         "method's hierarchy), but --levels is %d", level + 1);
     m->nl = level + 1;

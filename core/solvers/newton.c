@@ -363,8 +363,9 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
                 rc = sb_problem_eval(p, s->F, s->xt, &ft, NULL, NULL);
                 if (rc < 0) return rc;
                 if (rc == SB_OK && isfinite(ft) && !(ft <= s->f + s->c1 * alpha * slope) &&
-                    sb_tr_ared_unreliable(s->f, ft, -alpha * slope) &&
-                    fabs(ft - s->f) <= 1e4 * DBL_EPSILON * fmax(fabs(s->f), fabs(ft))) {
+                    (s->krylov ? sb_krylov_f_noise(s->f, ft, -alpha * slope)
+                               : sb_tr_ared_unreliable(s->f, ft, -alpha * slope) &&
+                                 fabs(ft - s->f) <= 1e4 * DBL_EPSILON * fmax(fabs(s->f), fabs(ft)))) {
                     /* the decrease asked for, and the change of f found, are both
                      * below the round-off of f: decide by the gradients,
                      * ared = -(g + g_trial)^T s / 2 (as tr does, sb_trs.h; Conn,

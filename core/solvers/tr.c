@@ -183,7 +183,8 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     if (rc < 0) return rc;
     /* Alg. 4.1 line 3: rho = actual / predicted reduction (Eq. 4.2) */
     double rho = sb_tr_ratio(rc, t->f, ft, r.pred);
-    if (rc == SB_OK && sb_tr_ared_unreliable(t->f, ft, r.pred)) {
+    if (rc == SB_OK && (t->krylov ? sb_krylov_f_noise(t->f, ft, r.pred) || sb_tr_ared_unreliable(t->f, ft, r.pred)
+                                  : sb_tr_ared_unreliable(t->f, ft, r.pred))) {
         rc = sb_problem_eval(p, t->F, t->xt, &ft, t->gt, NULL);
         if (rc < 0) return rc;
         rho = rc == SB_OK ? sb_tr_ratio_grad(n, t->g, t->gt, t->s, r.pred) : -INFINITY;
