@@ -38,9 +38,10 @@ DEPS_STAMP := $(BUILD)/.deps-ok
 # MPI sweeps (`mpirun -n N shellbench sweep --study FILE`, docs/regression.md):
 # when OpenMPI's mpicc is found (scripts/ensure_deps.sh installs it) a second
 # binary, $(BUILD)/shellbench-mpi, is built with core/study/sb_sweep_mpi.c
-# compiled with MPI; build/shellbench and the tests never link libmpi (no
-# MPI library in ordinary runs, forked runs or sanitizer builds) and hand a
+# compiled with MPI; build/shellbench and the tests never call MPI for
+# sweeps (no MPI in ordinary runs, forked runs or sanitizer builds) and hand a
 # sweep started by an MPI launcher over to shellbench-mpi.  `make MPI=0`: no MPI.
+# (With hypre, below, they link libmpi, which only a pcg-amg run initializes.)
 MPICC ?= $(shell command -v mpicc 2>/dev/null)
 ifneq ($(MPI),0)
 ifneq ($(MPICC),)

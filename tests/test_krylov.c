@@ -13,6 +13,9 @@
  *     and the trampoline, small sizes;
  *   - the history records the forcing terms (Eisenstat–Walker, choice 2)
  *     and Krylov iteration counts; the forcing terms follow the formula;
+ *   - indefinite Hessians (the saddle fixture): lsnewton shifts and
+ *     escapes, tr ends on the boundary and escapes, damped records
+ *     not_posdef;
  *   - a Krylov solve stopped by its cap is a recorded outcome: damped stops
  *     with linear_solver; lsnewton goes on only with a descent direction;
  *   - bad requests are refused before any work with a sentence naming the
@@ -404,6 +407,42 @@ SB_TEST(a_capped_solve_is_a_recorded_outcome)
     json_decref(js);
 }
 
+/* the saddle fixture (x^2/2 + y^4/4 - y^2/2 next to its saddle): indefinite
+ * Hessians on each Krylov path */
+static json_t *saddle(const char *solver, int *ec)
+{
+    char scene[1024];
+    snprintf(scene, sizeof scene, "%s/tests/scenes/fixture_static.json", sb_test_root());
+    sb_run_request req;
+    sb_test_request(&req, scene, "fixture_saddle", solver, 0);
+    req.summary_json = 1;
+    const char *sets[1] = { "solver.linear=pcg-jacobi" };
+    req.sets = sets;
+    req.n_sets = 1;
+    return sb_test_run_json(&req, ec);
+}
+
+SB_TEST(indefinite_hessians_per_path)
+{
+    int ec;
+    /* lsnewton: CG meets negative curvature, shifts as its direct path, escapes */
+    json_t *js = saddle("lsnewton", &ec);
+    CHECK_EQ_INT(ec, 0);
+    CHECK_NEAR(js ? json_number_value(json_object_get(js, "f")) : 1, -0.25, 1e-12);
+    json_decref(js);
+    /* tr: Steihaug–Toint to the boundary along the negative curvature, escapes */
+    js = saddle("tr", &ec);
+    CHECK_EQ_INT(ec, 0);
+    CHECK_NEAR(js ? json_number_value(json_object_get(js, "f")) : 1, -0.25, 1e-12);
+    json_decref(js);
+    /* damped: NOT_POSDEF recorded, as its direct path */
+    js = saddle("damped", &ec);
+    CHECK_EQ_INT(ec, 1);
+    const char *reason = js ? json_string_value(json_object_get(js, "reason")) : NULL;
+    CHECK_MSG(reason && !strcmp(reason, "not_posdef"), "damped: reason %s", reason ? reason : "(none)");
+    json_decref(js);
+}
+
 static int refused(sb_test_state *T, const char *method, const char *solver, int res, int levels, const char *set,
                    const char *needle)
 {
@@ -449,6 +488,7 @@ int main(int argc, char **argv)
                                           SB_CASE(linearized_paths_match_cholmod),
                                           SB_CASE(history_records_forcing_terms),
                                           SB_CASE(a_capped_solve_is_a_recorded_outcome),
+                                          SB_CASE(indefinite_hessians_per_path),
                                           SB_CASE(bad_requests_are_refused_with_a_sentence), SB_END };
     return sb_test_main(argc, argv, cases);
 }
