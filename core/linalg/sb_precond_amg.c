@@ -73,6 +73,8 @@ typedef struct amg_state {
     long *vmap;                       /* position in H->val of every full entry */
     double *vals, *xz;
     long nnz_full;
+    const sb_pattern *pat;            /* the pattern the structure was built from, */
+    long pat_nnz;                     /* and its entries (a new pattern may reuse the address) */
     HYPRE_IJMatrix A;
     HYPRE_IJVector b, x;
     HYPRE_ParCSRMatrix pA;
@@ -101,27 +103,18 @@ static void amg_free(void *st)
     s->vals = s->xz = NULL;
 }
 
-static int amg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o)
+/* the full symmetric CSR structure of the upper CSC pattern (hypre wants
+ * whole rows), built at alloc and again when self-contact replaced the
+ * level's pattern */
+static int amg_structure(amg_state *s, const sb_pattern *pat)
 {
-    amg_state *s = st;
-    sb_context *ctx = sb_problem_context(p);
-    s->level = level;
-    s->n = sb_problem_n(p, level);
-    s->bs = sb_problem_block_size(p, level);
-    if (s->bs < 1 || s->n % s->bs) s->bs = 1;
-    s->strength = o ? o->amg_strength : 0.5;
-    if (!(s->strength >= 0.0 && s->strength < 1.0))
-        return sb_error(ctx, SB_ERR_INPUT, "solver.amg_strength must be in [0, 1) (BoomerAMG's strength threshold), "
-                        "got %g", s->strength);
-    if (amg_init())
-        return sb_error(ctx, SB_ERR_UNSUPPORTED, "solver.linear=pcg-amg: MPI could not be initialized for hypre");
-    const sb_pattern *pat = sb_problem_hessian(p, level)->pat;
     const int n = s->n;
+    free(s->ncols); free(s->cols); free(s->vmap); free(s->vals);
+    s->cols = NULL; s->vmap = NULL; s->vals = NULL;
+    s->pat = pat;
+    s->pat_nnz = pat->nnz;
     s->ncols = calloc((size_t)n, sizeof *s->ncols);
-    s->rows = malloc((size_t)n * sizeof *s->rows);
-    s->idx = malloc((size_t)n * sizeof *s->idx);
-    s->xz = malloc((size_t)n * sizeof *s->xz);
-    if (!s->ncols || !s->rows || !s->idx || !s->xz) return SB_ERR_NOMEM;
+    if (!s->ncols) return SB_ERR_NOMEM;
     for (int j = 0; j < n; j++)
         for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
             const int i = pat->rowind[k];
@@ -147,6 +140,30 @@ static int amg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *
             if (i != j) { s->cols[next[j]] = i; s->vmap[next[j]++] = k; }
         }
     free(start);
+    return SB_OK;
+}
+
+static int amg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o)
+{
+    amg_state *s = st;
+    sb_context *ctx = sb_problem_context(p);
+    s->level = level;
+    s->n = sb_problem_n(p, level);
+    s->bs = sb_problem_block_size(p, level);
+    if (s->bs < 1 || s->n % s->bs) s->bs = 1;
+    s->strength = o ? o->amg_strength : 0.5;
+    if (!(s->strength >= 0.0 && s->strength < 1.0))
+        return sb_error(ctx, SB_ERR_INPUT, "solver.amg_strength must be in [0, 1) (BoomerAMG's strength threshold), "
+                        "got %g", s->strength);
+    if (amg_init())
+        return sb_error(ctx, SB_ERR_UNSUPPORTED, "solver.linear=pcg-amg: MPI could not be initialized for hypre");
+    s->rows = malloc((size_t)s->n * sizeof *s->rows);
+    s->idx = malloc((size_t)s->n * sizeof *s->idx);
+    s->xz = malloc((size_t)s->n * sizeof *s->xz);
+    if (!s->rows || !s->idx || !s->xz) return SB_ERR_NOMEM;
+    int rc = amg_structure(s, sb_problem_hessian(p, level)->pat);
+    if (rc) return rc;
+    const int n = s->n;
     for (int i = 0; i < n; i++) s->rows[i] = s->idx[i] = i;
     memset(s->xz, 0, (size_t)n * sizeof *s->xz);
     if (HYPRE_IJVectorCreate(MPI_COMM_SELF, 0, n - 1, &s->b) || HYPRE_IJVectorSetObjectType(s->b, HYPRE_PARCSR) ||
@@ -164,6 +181,10 @@ static int amg_setup(void *st, sb_problem *p)
     sb_context *ctx = sb_problem_context(p);
     const sb_matrix *H = sb_problem_hessian(p, s->level);
     const int n = s->n;
+    if (H->pat != s->pat || H->pat->nnz != s->pat_nnz) {
+        int rc = amg_structure(s, H->pat);
+        if (rc) return rc;
+    }
     for (long k = 0; k < s->nnz_full; k++) s->vals[k] = H->val[s->vmap[k]];
     amg_release(s);
     if (HYPRE_IJMatrixCreate(MPI_COMM_SELF, 0, n - 1, 0, n - 1, &s->A))
