@@ -31,6 +31,7 @@
 
 #include "run_json.h"
 #include "sb_context.h"
+#include "sb_galerkin.h"
 #include "sb_krylov.h"
 #include "sb_run.h"
 #include "sb_run_state.h"
@@ -53,7 +54,8 @@ static int fix_open(fix *f, const char *scene, const char *method, int res, int 
     memset(f, 0, sizeof *f);
     sb_context_init(&f->ctx);
     char path[1024], err[1024];
-    snprintf(path, sizeof path, "%s/bench/scenes/%s.json", sb_test_root(), scene);
+    if (strchr(scene, '/')) snprintf(path, sizeof path, "%s", scene);
+    else snprintf(path, sizeof path, "%s/bench/scenes/%s.json", sb_test_root(), scene);
     if (sb_scene_load(path, &f->sc, err, sizeof err)) { fprintf(stderr, "%s\n", err); return -1; }
     f->mt = sb_method_find(method);
     sb_paramset_add(&f->ctx.params, "run", sb_solve_params);
@@ -191,6 +193,67 @@ static int mg_iters(sb_test_state *T, const char *method, int res, int levels, i
     }
     fix_close(&f);
     return it;
+}
+
+/* bhem's prolong_matrix is exactly what probing prolong() with unit
+ * vectors gives (the fallback it replaces), so Galerkin products keep
+ * their bits: same rows, columns, values */
+SB_TEST(bhem_prolong_matrix_equals_probing)
+{
+    /* and a closed cylinder: periodic in s, its seam identified (repeated
+     * coarse nodes in a stencil) */
+    char cyl[256];
+    snprintf(cyl, sizeof cyl, "/tmp/sb_test_krylov_cyl_%d.json", (int)getpid());
+    FILE *fp = fopen(cyl, "w");
+    if (fp) {
+        fputs("{\"name\": \"cyl\", \"domain\": {\"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [1, 1]}, "
+              "\"geometry\": {\"type\": \"cylinder\", \"radius\": 0.3, \"angle\": [0, 360], \"length\": 0.6}, "
+              "\"material\": {\"model\": \"stvk\", \"young\": 1e7, \"poisson\": 0.3, \"thickness\": 0.01, \"density\": 10}, "
+              "\"loads\": [{\"type\": \"pressure\", \"pressure\": 0.002}], "
+              "\"boundary\": [{\"type\": \"clamped\", \"on\": [\"bottom\"]}], "
+              "\"time\": {\"mode\": \"quasi_static\", \"steps\": 1}}\n", fp);
+        fclose(fp);
+    }
+    const char *scenes[3] = { "plate_clamped", "scordelis_lo", cyl };
+    for (int sc = 0; sc < 3; sc++) {
+        fix f;
+        int rc = fix_open(&f, scenes[sc], "bhem", 8, 3);
+        CHECK(rc == 0);
+        for (int lc = 0; lc < 2 && !rc; lc++) {
+            sb_csr S;
+            CHECK_EQ_INT(f.mt->prolong_matrix(f.ms, lc, &S), 0);
+            const int nc = sb_problem_n(f.p, lc), nf = sb_problem_n(f.p, lc + 1);
+            CHECK_EQ_INT(S.nr, nf);
+            CHECK_EQ_INT(S.nc, nc);
+            double *e = calloc(nc, sizeof(double)), *y = malloc(nf * sizeof(double));
+            long *next = malloc((nf + 1) * sizeof(long));
+            for (int i = 0; i < nf; i++) next[i] = S.rp[i];
+            int bad = 0;
+            for (int j = 0; j < nc; j++) {
+                e[j] = 1.0;
+                f.mt->prolong(f.ms, lc, e, y);
+                e[j] = 0.0;
+                for (int i = 0; i < nf; i++) {
+                    if (y[i] == 0.0) continue;
+                    /* probing finds the entries column by column: each row's next */
+                    if (next[i] >= S.rp[i + 1] || S.ci[next[i]] != j ||
+                        memcmp(&S.v[next[i]], &y[i], sizeof(double)) != 0) bad++;
+                    next[i]++;
+                }
+            }
+            for (int i = 0; i < nf; i++) if (next[i] != S.rp[i + 1]) bad++;
+            CHECK_MSG(bad == 0, "%s level %d: %d entries differ from probing", scenes[sc], lc, bad);
+            free(e); free(y); free(next);
+            sb_csr_free(&S);
+        }
+        if (!rc && sc == 2) {
+            char info[512];
+            f.mt->describe(f.ms, info, sizeof info);
+            CHECK_MSG(strstr(info, "periodic") != NULL, "the cylinder is not periodic: %s", info);
+        }
+        fix_close(&f);
+    }
+    remove(cyl);
 }
 
 SB_TEST(pcg_mg_iterations_do_not_grow_with_size)
@@ -483,6 +546,7 @@ SB_TEST(bad_requests_are_refused_with_a_sentence)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = { SB_CASE(preconditioners_are_symmetric_positive_definite),
+                                          SB_CASE(bhem_prolong_matrix_equals_probing),
                                           SB_CASE(pcg_mg_iterations_do_not_grow_with_size),
                                           SB_CASE(every_path_reaches_the_probe_values_of_cholmod),
                                           SB_CASE(linearized_paths_match_cholmod),
