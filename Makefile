@@ -38,9 +38,10 @@ DEPS_STAMP := $(BUILD)/.deps-ok
 # MPI sweeps (`mpirun -n N shellbench sweep --study FILE`, docs/regression.md):
 # when OpenMPI's mpicc is found (scripts/ensure_deps.sh installs it) a second
 # binary, $(BUILD)/shellbench-mpi, is built with core/study/sb_sweep_mpi.c
-# compiled with MPI; build/shellbench and the tests never link libmpi (no
-# MPI library in ordinary runs, forked runs or sanitizer builds) and hand a
+# compiled with MPI; build/shellbench and the tests never call MPI for
+# sweeps (no MPI in ordinary runs, forked runs or sanitizer builds) and hand a
 # sweep started by an MPI launcher over to shellbench-mpi.  `make MPI=0`: no MPI.
+# (With hypre, below, they link libmpi, which only a pcg-amg run initializes.)
 MPICC ?= $(shell command -v mpicc 2>/dev/null)
 ifneq ($(MPI),0)
 ifneq ($(MPICC),)
@@ -48,6 +49,27 @@ MPI_CFLAGS := $(shell $(MPICC) --showme:compile 2>/dev/null)
 MPI_LIBS   := $(shell $(MPICC) --showme:link 2>/dev/null)
 HAVE_MPI   := 1
 endif
+endif
+
+# hypre's BoomerAMG for solver.linear=pcg-amg (core/linalg/sb_precond_amg.c,
+# docs/solvers.md): when Debian's libhypre-dev and OpenMPI are found.
+# Debian's hypre is built against OpenMPI (no sequential variant), so linking
+# it links libmpi; MPI is initialized only by the first pcg-amg set-up of a
+# process, so other runs never start it.  `make HYPRE=0` (and the sanitizer
+# builds) leave hypre out: pcg-amg is then refused with a sentence.
+HYPRE_INC ?= /usr/include/hypre
+ifeq ($(SAN),)
+ifneq ($(HYPRE),0)
+ifeq ($(HAVE_MPI),1)
+ifneq ($(wildcard $(HYPRE_INC)/HYPRE_parcsr_ls.h),)
+HAVE_HYPRE := 1
+endif
+endif
+endif
+endif
+ifeq ($(HAVE_HYPRE),1)
+$(BUILD)/core/linalg/sb_precond_amg.o: CFLAGS += -DSB_HAVE_HYPRE -I$(HYPRE_INC) $(MPI_CFLAGS)
+LDLIBS += -lHYPRE $(MPI_LIBS)
 endif
 
 LIB_C   := $(sort $(wildcard $(CORE_DIRS:%=core/%/*.c) methods/*/*.c tests/fixture/*.c))

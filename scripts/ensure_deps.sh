@@ -27,6 +27,8 @@ command -v node >/dev/null 2>&1                   || need+=(nodejs)
 # MPI sweeps (mpirun -n N shellbench sweep --study FILE; optional: the build leaves MPI out without mpicc)
 command -v mpicc >/dev/null 2>&1                  || need+=(libopenmpi-dev)
 command -v mpirun >/dev/null 2>&1                 || need+=(openmpi-bin)
+# hypre's BoomerAMG (solver.linear=pcg-amg; optional: `make HYPRE=0` builds without)
+have_hdr /usr/include/hypre/HYPRE_parcsr_ls.h     || need+=(libhypre-dev)
 # `make fuzz` only (`ensure_deps.sh fuzz`): clang with libFuzzer and its sanitizer runtimes
 if [ "${1:-}" = fuzz ]; then
   probe=$(mktemp -d)

@@ -67,6 +67,13 @@ typedef struct sb_iter_record {
     double seconds_assembly;   /* energy + gradient + hessian (contact terms included) */
     double seconds_analyze, seconds_factorize, seconds_solve;
     double seconds_contact;    /* collide */
+    /* Krylov linear solves (solver.linear = pcg-*, docs/solvers.md): the
+     * relative tolerance asked of the solve (the Eisenstat–Walker forcing
+     * term, or the fixed cg_rtol; 0 for a direct solve) and how it ended
+     * (sb_krylov_status: 0 converged or direct, 1 iteration cap, 2 negative
+     * curvature, 3 trust-region boundary; + 4 when a shift was needed) */
+    double krylov_rtol;
+    int krylov_status;
 } sb_iter_record;
 
 /* One time / load step. */

@@ -1036,3 +1036,18 @@ void sb_problem_count_cg(sb_problem *p, int level, int iters)
 {
     p->ctx->stats.ev[level][SB_EV_CG_ITER].count += iters;
 }
+
+/* A Krylov solve or its preconditioner's set-up is one `cg_iter` event,
+ * begun with sb_problem_krylov_begin so that its exclusive seconds exclude
+ * the events inside it (a coarse factorization, Galerkin products); the
+ * event counts the CG iterations (0 for a set-up), not the calls */
+double sb_problem_krylov_begin(sb_problem *p)
+{
+    return sb_stats_begin(&p->ctx->stats);
+}
+
+void sb_problem_count_krylov(sb_problem *p, int level, int iters, double t0)
+{
+    sb_stats_event(&p->ctx->stats, level, SB_EV_CG_ITER, t0);
+    p->ctx->stats.ev[level < 0 || level >= SB_MAX_LEVELS ? 0 : level][SB_EV_CG_ITER].count += iters - 1;
+}

@@ -156,6 +156,11 @@ double sb_problem_clock(sb_problem *p);
 void sb_problem_count_qp_since(sb_problem *p, int level, double t0);
 /* Account CG iterations on a level. */
 void sb_problem_count_cg(sb_problem *p, int level, int iters);
+/* Account a Krylov linear solve or its preconditioner's set-up
+ * (solver.linear, sb_krylov.c) as one `cg_iter` event begun at t0 =
+ * sb_problem_krylov_begin(p), counting its CG iterations (0 for a set-up). */
+double sb_problem_krylov_begin(sb_problem *p);
+void sb_problem_count_krylov(sb_problem *p, int level, int iters, double t0);
 
 /* Self-contact (docs/contact.md): 1 once after a level's sparsity pattern
  * was replaced at the start of a step (the solver re-allocates its

@@ -205,6 +205,8 @@ const sb_record_column sb_record_iter_cols[] = {
     { "seconds_factorize", offsetof(sb_iter_record, seconds_factorize), 0, "s", 1 },
     { "seconds_solve", offsetof(sb_iter_record, seconds_solve), 0, "s", 1 },
     { "seconds_contact", offsetof(sb_iter_record, seconds_contact), 0, "s", 1 },
+    { "krylov_rtol", offsetof(sb_iter_record, krylov_rtol), 0, "", 0 },
+    { "krylov_status", offsetof(sb_iter_record, krylov_status), 1, "", 0 },
 };
 const int sb_record_n_iter_cols = (int)(sizeof sb_record_iter_cols / sizeof *sb_record_iter_cols);
 const sb_record_column sb_record_step_cols[] = {

@@ -5,12 +5,26 @@
 #include "sb_solver.h"
 #include "sb_context.h"
 #include "sb_trs.h"
+#include "sb_krylov.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* solver.linear and the Krylov paths' options (docs/solvers.md "Linear
+ * solvers"), shared by lsnewton and damped */
+#define KRYLOV_PARAMS(RTOL_DEF, RTOL_HELP, MAXIT_DEF)                                                                  \
+    { "cg_rtol", SB_PARAM_REAL, RTOL_DEF, -1, 0.5, NULL, RTOL_HELP },                                                  \
+    { "cg_max_iter", SB_PARAM_INT, MAXIT_DEF, 1, 1000000000, NULL, "Krylov paths: CG iteration cap per linear solve" }, \
+    { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,                                                                       \
+      "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },               \
+    { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,                                                               \
+      "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" }
+#define LINEAR_HELP "linear solver of the Newton step: cholmod (sparse Cholesky), pcg-jacobi (CG, node-block Jacobi), " \
+    "pcg-mg (CG, one V-cycle of the method's hierarchy), pcg-amg (CG, hypre BoomerAMG)"
+#define EW_HELP "Krylov paths: stop CG at ||H d + g|| <= cg_rtol ||g||; -1: Eisenstat-Walker forcing terms (choice 2)"
 
 static const sb_param_def lsnewton_params[] = {
     { "c1", SB_PARAM_REAL, 1e-4, 1e-12, 0.5, NULL, "Armijo sufficient-decrease constant (Nocedal & Wright Alg. 3.1)" },
@@ -20,15 +34,19 @@ static const sb_param_def lsnewton_params[] = {
       "first diagonal shift, relative to max|H_ij|, when H is not positive definite" },
     { "shift_factor", SB_PARAM_REAL, 10, 1.1, 1e6, NULL, "shift growth per failed factorization" },
     { "max_shifts", SB_PARAM_INT, 40, 1, 1000, NULL, "shifted factorizations before failure" },
+    { "linear", SB_PARAM_CHOICE, 0, 0, 0, sb_linear_names, LINEAR_HELP },
+    KRYLOV_PARAMS(-1, EW_HELP, 1000),
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
 static const sb_param_def damped_params[] = {
     { "alpha", SB_PARAM_REAL, 0.3, 1e-6, 1, NULL, "constant step length (RMTR paper §7.4.1: 0.3)" },
+    { "linear", SB_PARAM_CHOICE, 0, 0, 0, sb_linear_names, LINEAR_HELP },
+    KRYLOV_PARAMS(-1, EW_HELP, 1000),
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
-static const char *const linear_choices[] = { "cholmod", "pcg", NULL };
+static const char *const linear_choices[] = { "cholmod", "pcg", "pcg-jacobi", "pcg-mg", "pcg-amg", NULL };
 
 /* The linear solve of the linearized step: CHOLMOD (default) or, as the
  * sqrt3 paper (Bender & Deul §4.2.5, Baraff & Witkin) does, preconditioned CG
@@ -38,11 +56,16 @@ static const char *const linear_choices[] = { "cholmod", "pcg", NULL };
  * loose cg_rtol is recorded as a linear-solver failure, never hidden. */
 static const sb_param_def linearized_params[] = {
     { "linear", SB_PARAM_CHOICE, 0, 0, 0, linear_choices,
-      "linear solver of the single step: cholmod (sparse Cholesky) or pcg (preconditioned CG, sqrt3 paper Eq. 21)" },
-    { "cg_rtol", SB_PARAM_REAL, 1e-10, 1e-16, 0.5, NULL, "linear=pcg: stop at ||r|| <= cg_rtol ||g||" },
-    { "cg_max_iter", SB_PARAM_INT, 10000, 1, 1000000000, NULL, "linear=pcg: iteration cap" },
+      "linear solver of the single step: cholmod (sparse Cholesky), pcg (preconditioned CG, sqrt3 paper Eq. 21, "
+      "preconditioner cg_precond), pcg-jacobi, pcg-mg, pcg-amg (as lsnewton's)" },
+    { "cg_rtol", SB_PARAM_REAL, 1e-10, 1e-16, 0.5, NULL, "linear=pcg*: stop at ||r|| <= cg_rtol ||g||" },
+    { "cg_max_iter", SB_PARAM_INT, 10000, 1, 1000000000, NULL, "linear=pcg*: iteration cap" },
     { "cg_precond", SB_PARAM_CHOICE, 2, 0, 0, sb_trs_precond_names,
       "linear=pcg: preconditioner (none, jacobi, block = 3x3 node blocks, sgs, schwarz)" },
+    { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,
+      "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },
+    { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
+      "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -55,6 +78,11 @@ typedef struct newton_state {
     int max_backtracks, max_shifts;
     int pcg, cg_max_iter;              /* linearized with linear=pcg */
     sb_trs cg;
+    /* solver.linear = pcg-jacobi | pcg-mg | pcg-amg (sb_krylov.h) */
+    int krylov;
+    sb_krylov kr;
+    double cg_rtol;                    /* < 0: Eisenstat–Walker forcing */
+    double eta, gprev;                 /* the last forcing term and the ||g|| it was computed at */
     double *g, *gt, *d, *xt;
     double f, gnorm;
 } newton_state;
@@ -71,6 +99,20 @@ static int alloc_common(newton_state *s, sb_problem *p, newton_kind kind)
     return s->g && s->gt && s->d && s->xt ? SB_OK : SB_ERR_NOMEM;
 }
 
+/* the Krylov path of solver.linear, when chosen (refused here, before any
+ * work, when the method or the build cannot do it) */
+static int krylov_alloc(newton_state *s, sb_problem *p, const sb_paramset *ps)
+{
+    const int kind = sb_linear_kind(sb_param_choice(ps, "solver.linear"));
+    const sb_precond_type *pt = sb_linear_precond(kind);
+    if (!pt) return SB_OK;
+    s->krylov = 1;
+    s->cg_rtol = sb_param(ps, "solver.cg_rtol");
+    s->cg_max_iter = sb_param_int(ps, "solver.cg_max_iter");
+    sb_precond_opts o = { sb_param_int(ps, "solver.mg_sweeps"), sb_param(ps, "solver.amg_strength") };
+    return sb_krylov_alloc(&s->kr, p, s->F, pt, &o);
+}
+
 static int lsnewton_alloc(void *st, sb_problem *p, const sb_paramset *ps)
 {
     newton_state *s = st;
@@ -80,14 +122,16 @@ static int lsnewton_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     s->shift0 = sb_param(ps, "solver.shift0");
     s->shift_factor = sb_param(ps, "solver.shift_factor");
     s->max_shifts = sb_param_int(ps, "solver.max_shifts");
-    return alloc_common(s, p, KIND_LS);
+    int rc = alloc_common(s, p, KIND_LS);
+    return rc ? rc : krylov_alloc(s, p, ps);
 }
 
 static int damped_alloc(void *st, sb_problem *p, const sb_paramset *ps)
 {
     newton_state *s = st;
     s->alpha = sb_param(ps, "solver.alpha");
-    return alloc_common(s, p, KIND_DAMPED);
+    int rc = alloc_common(s, p, KIND_DAMPED);
+    return rc ? rc : krylov_alloc(s, p, ps);
 }
 
 static int linearized_alloc(void *st, sb_problem *p, const sb_paramset *ps)
@@ -95,7 +139,8 @@ static int linearized_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     newton_state *s = st;
     int rc = alloc_common(s, p, KIND_LINEARIZED);
     if (rc) return rc;
-    s->pcg = sb_param_int(ps, "solver.linear") == 1;
+    if ((rc = krylov_alloc(s, p, ps))) return rc;
+    s->pcg = sb_linear_kind(sb_param_choice(ps, "solver.linear")) == SB_LINEAR_PCG_LEGACY;
     if (!s->pcg) return SB_OK;
     s->cg_max_iter = sb_param_int(ps, "solver.cg_max_iter");
     if ((rc = sb_trs_alloc(&s->cg, &sb_trs_stcg, s->n))) return rc;
@@ -107,7 +152,17 @@ static int linearized_alloc(void *st, sb_problem *p, const sb_paramset *ps)
 static void linearized_describe(const void *st, char *buf, size_t len)
 {
     const newton_state *s = st;
-    snprintf(buf, len, "%s", s->pcg ? "linear solve: preconditioned CG (sqrt3 paper §4.2.5)" : "linear solve: CHOLMOD");
+    if (s->krylov) sb_krylov_describe(&s->kr, buf, len);
+    else snprintf(buf, len, "%s", s->pcg ? "linear solve: preconditioned CG (sqrt3 paper §4.2.5)" : "linear solve: CHOLMOD");
+}
+
+/* lsnewton and damped: nothing is said for the direct path (its records
+ * stay as they were); the Krylov paths name themselves */
+static void newton_describe(const void *st, char *buf, size_t len)
+{
+    const newton_state *s = st;
+    if (s->krylov) sb_krylov_describe(&s->kr, buf, len);
+    else if (len) buf[0] = 0;
 }
 
 static void newton_free(void *st)
@@ -118,6 +173,7 @@ static void newton_free(void *st)
     free(s->d);
     free(s->xt);
     if (s->pcg) sb_trs_free(&s->cg);
+    if (s->krylov) sb_krylov_free(&s->kr);
 }
 
 static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info *info)
@@ -128,7 +184,75 @@ static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info 
     info->f = s->f;
     info->gnorm = s->gnorm;
     info->delta = INFINITY;
+    s->eta = 0.0;          /* Eisenstat–Walker starts afresh each step */
+    s->gprev = 0.0;
     return rc;
+}
+
+/* d ~ -H^{-1} g by preconditioned CG (solver.linear = pcg-*).
+ *   tolerance  ||H d + g|| <= eta ||g||, eta the Eisenstat–Walker forcing
+ *              term (choice 2) or the fixed cg_rtol (linearized: 1e-10);
+ *   indefinite CG meets d^T H d <= 0: lsnewton shifts as its direct path
+ *              does (H + tau I, tau from shift0 max|H| grown by shift_factor,
+ *              at least twice the curvature CG found, up to max_shifts
+ *              solves; Nocedal & Wright Alg. 3.3), damped and linearized
+ *              record NOT_POSDEF as theirs do;
+ *   the cap    a solve that does not reach its tolerance is recorded
+ *              (krylov_status 1): lsnewton uses its d only when it is a
+ *              descent direction (the line search then judges it), damped
+ *              and linearized stop with linear_solver. */
+static int krylov_direction(newton_state *s, sb_problem *p, sb_iterate_info *info, double *shift_out)
+{
+    const int n = s->n;
+    double eta = s->cg_rtol >= 0.0 ? s->cg_rtol : sb_forcing_ew2(s->gnorm, s->gprev, s->eta);
+    if (s->kind == KIND_LINEARIZED) eta = s->cg_rtol;
+    s->eta = eta;
+    s->gprev = s->gnorm;
+    info->linear_rtol = eta;
+    sb_krylov_result r;
+    double shift = 0.0;
+    int iters = 0;
+    int rc = sb_krylov_setup(&s->kr, p);
+    if (rc < 0) return rc;
+    if (rc == SB_OK) {
+        rc = sb_krylov_solve(&s->kr, p, s->g, INFINITY, eta, s->cg_max_iter, s->d, &r);
+        if (rc < 0) return rc;
+        iters += r.iters;
+    } else r.status = SB_KRYLOV_NEGCURV, r.curvature = 0.0;
+    if (r.status == SB_KRYLOV_NEGCURV && s->kind == KIND_LS) {
+        double scale = sb_matrix_norm_max(sb_problem_hessian(p, s->F));
+        shift = s->shift0 * (scale > 0 ? scale : 1.0);
+        for (int k = 0; k < s->max_shifts && r.status == SB_KRYLOV_NEGCURV; k++) {
+            /* the Rayleigh quotient CG met bounds lambda_min(H + old shift) from above */
+            if (k > 0) shift = fmax(shift * s->shift_factor, shift - 2.0 * r.curvature);
+            sb_krylov_shift(&s->kr, p, shift);
+            rc = sb_krylov_setup(&s->kr, p);
+            if (rc < 0) break;
+            if (rc == SB_NOT_POSDEF) { r.status = SB_KRYLOV_NEGCURV; r.curvature = 0.0; continue; }
+            rc = sb_krylov_solve(&s->kr, p, s->g, INFINITY, eta, s->cg_max_iter, s->d, &r);
+            if (rc < 0) break;
+            iters += r.iters;
+        }
+        sb_krylov_unshift(&s->kr, p);
+        if (rc < 0) return rc;
+    }
+    *shift_out = shift;
+    info->shift = shift;
+    info->linear_iters = iters;
+    info->linear_status = (int)r.status + (shift > 0.0 ? 4 : 0);
+    if (r.status == SB_KRYLOV_NEGCURV) {
+        info->fail = SB_REASON_NOT_POSDEF;
+        return SB_OK;
+    }
+    if (!sb_all_finite(n, s->d)) {
+        info->fail = SB_REASON_NONFINITE;
+        return SB_OK;
+    }
+    if (r.status == SB_KRYLOV_CAP && (s->kind != KIND_LS || !(sb_dot(n, s->g, s->d) < 0.0))) {
+        info->fail = SB_REASON_LINEAR_SOLVER;
+        return SB_OK;
+    }
+    return SB_OK;
 }
 
 /* d = -(H + shift I)^{-1} g.  lsnewton: on a non-positive-definite H the
@@ -138,6 +262,11 @@ static int direction(newton_state *s, sb_problem *p, sb_iterate_info *info)
 {
     double shift = 0.0;
     int rc;
+    if (s->krylov) {
+        rc = krylov_direction(s, p, info, &shift);
+        if (rc < 0 || info->fail) return rc < 0 ? rc : SB_OK;
+        goto judge;
+    }
     if (s->pcg) {
         /* CG from 0 on H d = -g without a radius; negative curvature means
          * H is not positive definite (recorded as such) */
@@ -179,7 +308,7 @@ static int direction(newton_state *s, sb_problem *p, sb_iterate_info *info)
     if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
     info->linear_iters = 1;
 judge:
-    if (rc == SB_OK && shift == 0.0) {
+    if (rc == SB_OK && shift == 0.0 && !(s->krylov && info->linear_status != SB_KRYLOV_CONVERGED)) {
         /* the unshifted Newton correction (limiting-accuracy test, sb_solve.c) */
         info->has_correction = 1;
         info->correction = sb_norm2(s->n, s->d);
@@ -234,8 +363,9 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
                 rc = sb_problem_eval(p, s->F, s->xt, &ft, NULL, NULL);
                 if (rc < 0) return rc;
                 if (rc == SB_OK && isfinite(ft) && !(ft <= s->f + s->c1 * alpha * slope) &&
-                    sb_tr_ared_unreliable(s->f, ft, -alpha * slope) &&
-                    fabs(ft - s->f) <= 1e4 * DBL_EPSILON * fmax(fabs(s->f), fabs(ft))) {
+                    (s->krylov ? sb_krylov_f_noise(s->f, ft, -alpha * slope)
+                               : sb_tr_ared_unreliable(s->f, ft, -alpha * slope) &&
+                                 fabs(ft - s->f) <= 1e4 * DBL_EPSILON * fmax(fabs(s->f), fabs(ft)))) {
                     /* the decrease asked for, and the change of f found, are both
                      * below the round-off of f: decide by the gradients,
                      * ared = -(g + g_trial)^T s / 2 (as tr does, sb_trs.h; Conn,
@@ -287,12 +417,12 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
 
 const sb_solver_type sb_solver_lsnewton = {
     "lsnewton", "Newton with backtracking Armijo line search; shifted Hessian when indefinite",
-    sizeof(newton_state), lsnewton_params, 0, lsnewton_alloc, newton_set, newton_iterate, newton_free, NULL,
+    sizeof(newton_state), lsnewton_params, 0, lsnewton_alloc, newton_set, newton_iterate, newton_free, newton_describe,
 };
 
 const sb_solver_type sb_solver_damped = {
     "damped", "Newton with constant step 0.3 and no globalization (may diverge: recorded)",
-    sizeof(newton_state), damped_params, 0, damped_alloc, newton_set, newton_iterate, newton_free, NULL,
+    sizeof(newton_state), damped_params, 0, damped_alloc, newton_set, newton_iterate, newton_free, newton_describe,
 };
 
 const sb_solver_type sb_solver_linearized = {

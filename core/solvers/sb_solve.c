@@ -179,7 +179,7 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
 #define GRAD_OK(g) (scaled ? (g) <= gstop : (g) < gstop)
     if (!reason && GRAD_OK(info.gnorm)) reason = SB_REASON_GRAD_TOL;
     {
-        sb_iter_record r0 = { step, 0, F, info.f, info.gnorm, info.delta, 0, 0, 0, 1, 0, reason, 0, 0, 0, 0, 0, 0 };
+        sb_iter_record r0 = { step, 0, F, info.f, info.gnorm, info.delta, 0, 0, 0, 1, 0, reason, 0, 0, 0, 0, 0, 0, 0, 0 };
         sb_stats_push_iter(&ctx->stats, &r0);
     }
     while (!reason) {
@@ -231,7 +231,8 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
         }
         sb_iter_record r = { step, it, info.level, info.f, info.gnorm, info.delta, info.rho, info.step_norm,
                              info.shift, info.accepted, info.linear_iters, reason, ti1 - ti0, ev1[0] - ev0[0],
-                             ev1[1] - ev0[1], ev1[2] - ev0[2], ev1[3] - ev0[3], ev1[4] - ev0[4] };
+                             ev1[1] - ev0[1], ev1[2] - ev0[2], ev1[3] - ev0[3], ev1[4] - ev0[4],
+                             info.linear_rtol, info.linear_status };
         sb_stats_push_iter(&ctx->stats, &r);
         if (ctx->monitor) ctx->monitor(ctx->monitor_data, &r);
     }

@@ -37,6 +37,10 @@ typedef struct sb_iterate_info {
     /* single-step solvers: normwise backward error of the linear solve,
      * ||H d + g|| / (||H||_F ||d|| + ||g||) (0 when not computed) */
     double linear_residual;
+    /* Krylov linear solves: the relative tolerance asked and the outcome
+     * (sb_iter_record.krylov_rtol / krylov_status) */
+    double linear_rtol;
+    int linear_status;
 } sb_iterate_info;
 
 typedef struct sb_solver_type {

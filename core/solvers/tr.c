@@ -4,6 +4,7 @@
  * accepted steps (paper §7.4.2), subproblem by dogleg or Steihaug–Toint CG. */
 #include "sb_solver.h"
 #include "sb_trs.h"
+#include "sb_krylov.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -26,6 +27,15 @@ static const sb_param_def tr_params[] = {
     { "rho", SB_PARAM_CHOICE, 0, 0, 0, tr_rho_names,
       "ratio (4.2): robust (round-off-sized reductions count as agreement, or are taken from gradients) or paper "
       "(the plain quotient of Eq. 4.2, issue 43)" },
+    { "linear", SB_PARAM_CHOICE, 0, 0, 0, sb_linear_names,
+      "linear solver of the subproblem: cholmod (the trs choice, as before) or Steihaug–Toint CG preconditioned by "
+      "pcg-jacobi (node-block Jacobi), pcg-mg (a V-cycle of the method's hierarchy), pcg-amg (hypre BoomerAMG)" },
+    { "cg_rtol", SB_PARAM_REAL, -1, -1, 0.5, NULL,
+      "pcg-*: stop CG at ||H s + g|| <= cg_rtol ||g||; -1: Eisenstat-Walker forcing terms (choice 2)" },
+    { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,
+      "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },
+    { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
+      "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -38,6 +48,11 @@ typedef struct tr_state {
     double *g, *gt, *s, *xt;
     double f, delta, gnorm;
     int fresh;
+    /* solver.linear = pcg-*: Steihaug–Toint CG with a preconditioner of
+     * sb_precond.h instead of the trs choice (sb_krylov.h) */
+    int krylov;
+    sb_krylov kr;
+    double cg_rtol, eta, gprev;
 } tr_state;
 
 static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
@@ -63,6 +78,13 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         sb_trs_set_shift_indefinite(&t->trs, sb_param_int(ps, "solver.indefinite"));
         sb_trs_set_cg_precond(&t->trs, sb_param_int(ps, "solver.cg_precond"));
     }
+    const sb_precond_type *pt = sb_linear_precond(sb_linear_kind(sb_param_choice(ps, "solver.linear")));
+    if (rc == SB_OK && pt) {
+        t->krylov = 1;
+        t->cg_rtol = sb_param(ps, "solver.cg_rtol");
+        sb_precond_opts o = { sb_param_int(ps, "solver.mg_sweeps"), sb_param(ps, "solver.amg_strength") };
+        rc = sb_krylov_alloc(&t->kr, p, t->F, pt, &o);
+    }
     return rc;
 }
 
@@ -70,6 +92,7 @@ static void tr_free(void *st)
 {
     tr_state *t = st;
     sb_trs_free(&t->trs);
+    if (t->krylov) sb_krylov_free(&t->kr);
     free(t->g);
     free(t->gt);
     free(t->s);
@@ -83,10 +106,51 @@ static int tr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *inf
     int rc = sb_problem_eval(p, t->F, x, &t->f, t->g, sb_problem_hessian(p, t->F));
     t->gnorm = sb_problem_norm(p, t->F, t->g);
     t->fresh = 1;
+    t->eta = t->gprev = 0.0;   /* Eisenstat–Walker starts afresh each step */
     info->f = t->f;
     info->gnorm = t->gnorm;
     info->delta = t->delta;
     return rc;
+}
+
+/* The subproblem by preconditioned Steihaug–Toint CG (solver.linear =
+ * pcg-*): the preconditioner is set up once per Hessian (after accepted
+ * steps), the tolerance is the Eisenstat–Walker forcing term of the
+ * current ||g|| (kept while steps are rejected), negative curvature ends
+ * the step on the boundary (Steihaug–Toint), and a solve that reaches its
+ * cap is a truncated step judged by the ratio test like any other
+ * (recorded as krylov_status 1). */
+static int tr_krylov_step(tr_state *t, sb_problem *p, sb_trs_result *r, sb_iterate_info *info)
+{
+    if (t->fresh) {
+        t->eta = t->cg_rtol >= 0.0 ? t->cg_rtol : sb_forcing_ew2(t->gnorm, t->gprev, t->eta);
+        t->gprev = t->gnorm;
+        int rc = sb_krylov_setup(&t->kr, p);
+        if (rc < 0) return rc;
+        /* SB_NOT_POSDEF (AMG set-up on an indefinite H): CG runs with the
+         * preconditioner as it is and restarts without it if it misbehaves */
+    }
+    double t0 = sb_now();
+    sb_krylov_result kr;
+    int rc = sb_krylov_solve(&t->kr, p, t->g, t->delta, t->eta, t->cg_max, t->s, &kr);
+    sb_problem_count_qp(p, t->F, sb_now() - t0);
+    if (rc < 0) return rc;
+    memset(r, 0, sizeof *r);
+    r->pred = kr.pred;
+    r->snorm = kr.snorm;
+    r->iters = kr.iters;
+    r->boundary = kr.status == SB_KRYLOV_BOUNDARY;
+    r->newton = kr.status == SB_KRYLOV_CONVERGED;
+    info->linear_rtol = t->eta;
+    info->linear_status = (int)kr.status;
+    return SB_OK;
+}
+
+static void tr_describe(const void *st, char *buf, size_t len)
+{
+    const tr_state *t = st;
+    if (t->krylov) sb_krylov_describe(&t->kr, buf, len);
+    else if (len) buf[0] = 0;
 }
 
 /* Alg. 4.3, lines 2 and 7 with delta = infinity on the finest level. */
@@ -103,7 +167,8 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     const int n = t->n;
     sb_trs_result r;
     /* Alg. 4.1 line 2: constrained QP */
-    int rc = sb_trs_solve(&t->trs, p, t->F, t->g, t->delta, t->fresh, t->cg_max, t->s, &r);
+    int rc = t->krylov ? tr_krylov_step(t, p, &r, info)
+                       : sb_trs_solve(&t->trs, p, t->F, t->g, t->delta, t->fresh, t->cg_max, t->s, &r);
     if (rc < 0) return rc;
     t->fresh = 0;
     /* contact step filter (docs/contact.md): a step that would carry a
@@ -127,7 +192,8 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     double rho = sb_tr_ratio(rc, t->f, ft, r.pred);
     if (t->rho_paper)   /* Eq. (4.2) exactly: (f(x) - f(x + s)) / (m(0) - m(s)), round-off and all */
         rho = rc == SB_OK && isfinite(ft) && r.pred > 0.0 ? (t->f - ft) / r.pred : -INFINITY;
-    else if (rc == SB_OK && sb_tr_ared_unreliable(t->f, ft, r.pred)) {
+    else if (rc == SB_OK && (t->krylov ? sb_krylov_f_noise(t->f, ft, r.pred) || sb_tr_ared_unreliable(t->f, ft, r.pred)
+                                       : sb_tr_ared_unreliable(t->f, ft, r.pred))) {
         rc = sb_problem_eval(p, t->F, t->xt, &ft, t->gt, NULL);
         if (rc < 0) return rc;
         rho = rc == SB_OK ? sb_tr_ratio_grad(n, t->g, t->gt, t->s, r.pred) : -INFINITY;
@@ -168,5 +234,5 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
 
 const sb_solver_type sb_solver_tr = {
     "tr", "single-level trust region, RMTR paper Alg. 4.1 + 4.3 (dogleg or Steihaug–Toint CG)",
-    sizeof(tr_state), tr_params, SB_SOLVER_TRUST_REGION, tr_alloc, tr_set, tr_iterate, tr_free, NULL,
+    sizeof(tr_state), tr_params, SB_SOLVER_TRUST_REGION, tr_alloc, tr_set, tr_iterate, tr_free, tr_describe,
 };

@@ -184,6 +184,8 @@ int  bhem_material_state(bhem_state *S, int level, const double *x, sb_material_
 int  bhem_transfer_build(bhem_state *S, int lc);
 int  bhem_prolong(const bhem_state *S, int lc, const double *xc, double *xf);
 int  bhem_restrict(const bhem_state *S, int lc, const double *gf, double *gc);
+struct sb_csr;
+int  bhem_prolong_matrix(const bhem_state *S, int lc, struct sb_csr *I);
 int  bhem_project(const bhem_state *S, int lc, const double *xf, double *xc);
 
 /* ---- rendering (bhem_ray.c) ------------------------------------------------ */

@@ -262,6 +262,7 @@ static int bhem_eval_points(const void *state, int level, const double *x, int n
 
 static int bhem_prolong_op(void *state, int lc, const double *xc, double *xf) { return bhem_prolong(state, lc, xc, xf); }
 static int bhem_restrict_op(void *state, int lc, const double *gf, double *gc) { return bhem_restrict(state, lc, gf, gc); }
+static int bhem_prolong_matrix_op(const void *state, int lc, struct sb_csr *I) { return bhem_prolong_matrix(state, lc, I); }
 static int bhem_project_op(void *state, int lc, const double *xf, double *xc) { return bhem_project(state, lc, xf, xc); }
 
 static void bhem_describe(const void *state, char *buf, size_t len)
@@ -298,6 +299,7 @@ const sb_method_type sb_method_bhem = {
     .prolong = bhem_prolong_op,
     .restrict_adj = bhem_restrict_op,
     .project = bhem_project_op,
+    .prolong_matrix = bhem_prolong_matrix_op,
     .estimate = bhem_estimate,
     .describe = bhem_describe,
     .surface = bhem_surface,

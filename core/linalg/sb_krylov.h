@@ -1,0 +1,86 @@
+/* sb_krylov.h — preconditioned conjugate gradients on the Hessian of one
+ * level (solver.linear = pcg-jacobi | pcg-mg | pcg-amg, docs/solvers.md),
+ * with the preconditioner as a constant type (sb_precond.h), workspaces
+ * allocated once per run, and Steihaug–Toint truncation when a trust-region
+ * radius is given.  CG iterations (and the seconds of the solves, the
+ * preconditioner's set-up included) are counted here, once. */
+#ifndef SB_KRYLOV_H
+#define SB_KRYLOV_H
+
+#include "sb_precond.h"
+
+/* What one solve found (the per-iteration record keeps status and rtol). */
+typedef enum {
+    SB_KRYLOV_CONVERGED = 0,   /* ||H s + g|| <= rtol ||g|| */
+    SB_KRYLOV_CAP = 1,         /* the iteration cap came first: s is inexact beyond rtol */
+    SB_KRYLOV_NEGCURV = 2,     /* d^T H d <= 0 met (H not positive definite along d) */
+    SB_KRYLOV_BOUNDARY = 3     /* ended on the trust-region boundary (Steihaug–Toint) */
+} sb_krylov_status;
+
+typedef struct sb_krylov_result {
+    sb_krylov_status status;
+    int iters;
+    int precond_restart;   /* the preconditioner gave r^T M^{-1} r <= 0: CG restarted without it */
+    double curvature;      /* d^T H d / d^T d where negative curvature was met */
+    double relres;         /* ||H s + g|| / ||g|| at the end (the recursive residual) */
+    double snorm;          /* ||s|| */
+    double pred;           /* -(g^T s + s^T H s / 2) */
+} sb_krylov_result;
+
+typedef struct sb_krylov {
+    int n, level;
+    const sb_precond_type *type;
+    void *pstate;
+    double *r, *z, *d, *Hd, *diag0;
+    int shifted;           /* the level's Hessian holds diag0 + shift */
+} sb_krylov;
+
+/* Workspaces and the preconditioner's alloc (which refuses what cannot work
+ * with a sentence in the context). */
+int  sb_krylov_alloc(sb_krylov *k, sb_problem *p, int level, const sb_precond_type *type, const sb_precond_opts *o);
+void sb_krylov_free(sb_krylov *k);
+/* The preconditioner of the level's Hessian as last assembled (or shifted):
+ * once per Newton iteration.  SB_OK, SB_NOT_POSDEF or an error. */
+int  sb_krylov_setup(sb_krylov *k, sb_problem *p);
+/* Replace the level's Hessian by H + shift I in place (the diagonal kept,
+ * so sb_krylov_unshift restores the same bits); set up again after it. */
+int  sb_krylov_shift(sb_krylov *k, sb_problem *p, double shift);
+void sb_krylov_unshift(sb_krylov *k, sb_problem *p);
+/* s ~ -H^{-1} g from s = 0 by PCG: stops at ||r|| <= rtol ||g||, at
+ * max_iter iterations, at negative curvature (to the boundary when delta is
+ * finite, else where it was met), or on the boundary ||s|| = delta
+ * (Steihaug 1983, Toint 1981; Nocedal & Wright Alg. 7.2; the trust region is
+ * Euclidean, as sb_trs.c's). */
+int  sb_krylov_solve(sb_krylov *k, sb_problem *p, const double *g, double delta, double rtol, int max_iter,
+                     double *s, sb_krylov_result *res);
+void sb_krylov_describe(const sb_krylov *k, char *buf, size_t len);
+
+/* Eisenstat & Walker (1996), choice 2, with their safeguards:
+ *   eta_k = gamma (||g_k|| / ||g_{k-1}||)^alpha,  gamma = 0.9, alpha = 2,
+ *   eta_k = max(eta_k, gamma eta_{k-1}^alpha)  when gamma eta_{k-1}^alpha > 0.1,
+ *   eta_k = min(eta_k, eta_max = 0.9),  eta_0 = 0.5,
+ * and a floor of 1e-10 (below it CG meets its round-off).  gprev <= 0:
+ * the first iteration of a step. */
+double sb_forcing_ew2(double gnorm, double gprev, double eta_prev);
+
+/* The round-off test of the Krylov paths' line search and trust-region
+ * ratio: an inexact Newton step leaves a residual in the stiff (membrane)
+ * directions whose Newton correction changes f by far less than the
+ * round-off of an energy summed over thousands of elements, which is well
+ * above the 1e4 eps |f| of the direct paths (sb_tr_ared_unreliable; on
+ * scordelis_lo, bhem res 4: corrections of 1e-14 J against |f| = 1.2e-3 J,
+ * and lsnewton stalled).  1 when the predicted and the actual change are
+ * both below 1e7 eps |f|: the decrease is then decided from gradients, the
+ * trapezoid rule (Conn, Gould & Toint §17.4.2), as the direct paths do
+ * below 1e4 eps |f|. */
+int sb_krylov_f_noise(double f, double f_trial, double pred);
+
+/* The choices of solver.linear (lsnewton, tr, damped) and its index. */
+enum { SB_LINEAR_CHOLMOD = 0, SB_LINEAR_PCG_LEGACY, SB_LINEAR_PCG_JACOBI, SB_LINEAR_PCG_MG, SB_LINEAR_PCG_AMG };
+extern const char *const sb_linear_names[];        /* cholmod, pcg-jacobi, pcg-mg, pcg-amg */
+/* the SB_LINEAR_* of a choice name; -1 when unknown */
+int sb_linear_kind(const char *name);
+/* the preconditioner type of a Krylov kind, NULL for cholmod / legacy */
+const sb_precond_type *sb_linear_precond(int kind);
+
+#endif
