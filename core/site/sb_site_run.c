@@ -79,7 +79,7 @@ static void extra_read(const char *path, extra *x)
         if (g >= 0) H5Gclose(g);
         for (int k = 0; k < x->nev; k++) {
             x->names[k][15] = 0;
-            if (!x->names[k][0]) snprintf(x->names[k], 16, "event %d", k);
+            if (!x->names[k][0]) snprintf(x->names[k], 16, "event %d", k % 1000);   /* k < SB_EV_COUNT */
         }
     }
     free(c), free(s);
