@@ -36,6 +36,11 @@ RUN_TARGETS = (1000, 4000, 16000)          # what this session ran (README of th
 EVENTS = ("energy", "gradient", "hessian", "analyze", "factorize", "solve", "cg_iter", "qp", "transfer", "adapt",
           "collide", "record", "galerkin", "checkpoint", "setup", "samples", "error", "progress", "solver")
 COMPONENTS = ("assembly", "analyze", "factorize", "solve", "cg_iter", "collide", "record", "samples", "setup")
+# what each component's fitted exponent is per: the solver's parts per
+# outer iteration (Newton iteration, TR iteration, V-cycle), the per-step
+# harness parts per step, set-up per run
+NORM = {"assembly": "iteration", "analyze": "run", "factorize": "iteration", "solve": "iteration",
+        "cg_iter": "iteration", "collide": "iteration", "record": "step", "samples": "step", "setup": "run"}
 ACCURACY_TARGET = {"plate_simply_supported": 1e-3}
 # t_{0.975, df}, df = 1..10
 T975 = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)
@@ -122,21 +127,32 @@ def fnum(x):
 
 
 def load_rows():
+    """the records and digests present, and the rows of DIR/records.csv whose
+    record is not present (a clean clone holds digests of the largest size
+    only, the extract holds every run); the union is written back"""
     paths = sorted(p for p in glob.glob(os.path.join(DIR, "*", "*.h5")))
-    rows = [r for r in (read_record(p) for p in paths) if r]
+    fresh = [r for r in (read_record(p) for p in paths) if r]
     csvp = os.path.join(DIR, "records.csv")
+    old = []
+    try:
+        with open(csvp) as fh:
+            old = list(csv.DictReader(fh))
+    except OSError:
+        pass
+    have = {r["file"] for r in fresh}
+    kept = [r for r in old if r["file"] not in have]
+    rows = sorted([{k: ("%.6g" % v if isinstance(v, float) else str(v)) for k, v in r.items()} for r in fresh] + kept,
+                  key=lambda r: r["file"])
     if rows:
         keys = list(rows[0].keys())
-        with open(csvp, "w", newline="") as fh:
+        with open(csvp + ".tmp", "w", newline="") as fh:
             w = csv.DictWriter(fh, fieldnames=keys)
             w.writeheader()
             for r in rows:
-                w.writerow({k: ("%.6g" % r[k] if isinstance(r[k], float) else r[k]) for k in keys})
-        src = "%d records and digests in %s (extract written to %s)" % (len(rows), DIR, csvp)
-    else:
-        with open(csvp) as fh:
-            rows = list(csv.DictReader(fh))
-        src = "%s (the extract of %d records; the records themselves are not in this checkout)" % (csvp, len(rows))
+                w.writerow(r)
+        os.replace(csvp + ".tmp", csvp)
+    src = ("%d runs: %d records or digests in `%s`, %d from the extract `%s` whose records are not in this checkout"
+           % (len(rows), len(fresh), DIR, len(kept), csvp))
     for r in rows:
         for k in list(r.keys()):
             if k not in ("scene", "method", "solver", "reason", "build_id", "blas_core", "openblas_num_threads",
@@ -147,6 +163,10 @@ def load_rows():
             r[c] = r["self_" + c]
         r["config"] = "%s/%s" % (r["method"], r["solver"])
         r["per_iter"] = r["seconds_total"] / r["iterations"] if r["iterations"] > 0 else float("nan")
+        # normalized for the fits: per iteration, per step, per run (NORM)
+        for c in COMPONENTS:
+            d = {"iteration": r["iterations"], "step": r["steps_done"], "run": 1}[NORM[c]]
+            r["n_" + c] = r[c] / d if d > 0 else float("nan")
         r["target"] = min(TARGETS, key=lambda t: abs(math.log(r["n_dofs"] / t)))
     return rows, src
 
@@ -339,21 +359,24 @@ def main():
             "here.  Wall seconds under load 5–7 understate both rates.", ""]
     # --- exponents
     out += ["## Fitted exponents", "",
-            "y = c n^p by least squares in log-log over the largest (up to four) sizes of each configuration; "
+            "y = c n^p by least squares in log-log over the largest (up to four) sizes of each configuration, y "
+            "the run's total seconds, its seconds per outer iteration, each component's exclusive seconds per "
+            "outer iteration (/iter), per step (/step) or per run (/run), and the peak memory; "
             "± is the 95 % Student-t half-width, t_{0.975,m−2} s/√Sxx (m points; with m = 3, t = 12.7, so the "
             "intervals are wide: three sizes a factor 4 apart are what ran).  Components below 1 ms at every size "
             "are left out (—) as timer noise.", ""]
     for s in scenes:
         configs = sorted({r["config"] for r in rows if r["scene"] == s})
         out += ["### %s" % s, "", "![%s](scaling-%s.png)" % (s, s), "",
-                "| method/solver | sizes (dofs) | total | per iteration | " + " | ".join(COMPONENTS) + " | peak memory |",
+                "| method/solver | sizes (dofs) | total | per iteration | " + " | ".join(
+                    "%s /%s" % (c, NORM[c][:4] if NORM[c] != "iteration" else "iter") for c in COMPONENTS) + " | peak memory |",
                 "|---|---|" + "--:|" * (len(COMPONENTS) + 3)]
         for c in configs:
             ns, _ = series(rows, s, c, "seconds_total")
             cells = []
-            for comp in ("seconds_total", "per_iter") + COMPONENTS + ("peak_rss",):
+            for comp in ("seconds_total", "per_iter") + tuple("n_" + c for c in COMPONENTS) + ("peak_rss",):
                 n2, ys = series(rows, s, c, comp)
-                if comp not in ("peak_rss", "seconds_total", "per_iter") and max(ys + [0]) < 1e-3:
+                if comp.startswith("n_") and max(series(rows, s, c, comp[2:])[1] + [0]) < 1e-3:
                     cells.append("—")
                 else:
                     cells.append(fmt_fit(*fit(n2, ys)))
@@ -381,6 +404,41 @@ def main():
                     100 * harness))
         out.append("")
         plot(rows, s, configs, os.path.join(DIR, "scaling-%s.png" % s))
+    # --- the issue's O(n^1.1) goal for the harness parts
+    out += ["## Harness parts against the O(n^1.1) goal", "",
+            "The issue asks that nothing but factorization and the solve grow faster than n^1.1.  Fitted "
+            "exponents of the harness parts (samples and record per step, setup per run) and of assembly (per "
+            "iteration) and the symbolic analysis (per run), per configuration, over the sizes run; "
+            "*above* = the whole 95 % interval above 1.1, *below* = the whole interval at or below 1.1, "
+            "else undecided at these sizes.", "",
+            "| scene | part | above 1.1 | below | undecided | largest exponent (configuration) |",
+            "|---|---|--:|--:|--:|---|"]
+    for s in scenes:
+        configs = sorted({r["config"] for r in rows if r["scene"] == s})
+        for comp in ("samples", "record", "setup", "assembly", "analyze"):
+            up = lo = und = 0
+            best = None
+            for c in configs:
+                ns, ys = series(rows, s, c, "n_" + comp)
+                if max(series(rows, s, c, comp)[1] + [0]) < 1e-3:
+                    continue
+                p_, hw, m = fit(ns, ys)
+                if not math.isfinite(p_):
+                    continue
+                if math.isfinite(hw) and p_ - hw > 1.1:
+                    up += 1
+                elif math.isfinite(hw) and p_ + hw <= 1.1:
+                    lo += 1
+                else:
+                    und += 1
+                if best is None or p_ > best[0]:
+                    best = (p_, c, hw, m)
+            if best:
+                out.append("| %s | %s | %d | %d | %d | %s (%s) |" % (s, comp, up, lo, und, fmt_fit(best[0], best[2], best[3]),
+                                                                    best[1]))
+    out += ["", "With two or three sizes a factor 4 apart most exponents are undecided; fixed per-run costs "
+            "(process start, HDF5, sample grids of 21 × 21 points) make small-size exponents of the harness parts "
+            "low, not high.  The 6.4e4–1e6 sizes decide the goal.", ""]
     # --- memory estimate
     out += ["## Memory: estimate against measured peak", "",
             "`memory_estimate` (what `run.max_memory` is checked against) over `peak_rss`, per run; the issue's "
