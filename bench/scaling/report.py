@@ -50,7 +50,8 @@ ROOT_ATTRS = ("scene_name", "method", "solver", "levels", "res", "n_dofs", "stat
 STATS_ATTRS = ("seconds_total", "seconds_unattributed", "peak_rss", "peak_rss_setup", "peak_rss_analyzed",
                "memory_estimate", "work_assembly")
 DATASETS = ("/stats/events_self_seconds", "/stats/events_seconds", "/stats/chol_flops_sum", "/stats/n_dofs",
-            "/history/steps/iterations", "/history/iterations/linear_iters", "/history/iterations/level")
+            "/history/steps/iterations", "/history/iterations/linear_iters", "/history/iterations/level",
+            "/history/iterations/iter")
 
 NUM = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-?(inf|nan)$", re.I)
 
@@ -115,6 +116,12 @@ def read_record(path):
     row["iterations"] = sum(v.get("/history/steps/iterations", []))
     lv, li = v.get("/history/iterations/level", []), v.get("/history/iterations/linear_iters", [])
     row["linear_iters"] = sum(li)
+    top = max(lv) if lv else 0
+    # outer iterations whose top was the finest level (rmtr's nested start
+    # records V-cycles with a coarser top under their level; each step's
+    # iteration-0 record is not an iteration)
+    it = v.get("/history/iterations/iter", [])
+    row["iters_finest"] = sum(1 for k, l in enumerate(lv) if l == top and (k >= len(it) or it[k] > 0))
     row["file"] = os.path.relpath(path, DIR)
     return row
 
@@ -210,13 +217,13 @@ def crossing(ns, a, b):
     if len(pts) < 1:
         return "—"
     if pts[0][2] >= pts[0][1]:
-        return "already at %d" % pts[0][0]
+        return "already at the smallest, %d" % pts[0][0]
     for (n0, x0, y0), (n1, x1, y1) in zip(pts, pts[1:]):
         d0, d1 = math.log(y0 / x0), math.log(y1 / x1)
         if d0 < 0 <= d1:
             t = d0 / (d0 - d1)
             return "%.0f" % math.exp(math.log(n0) + t * (math.log(n1) - math.log(n0)))
-    return "not up to %d (ratio %.2g there)" % (pts[-1][0], pts[-1][2] / pts[-1][1])
+    return "not up to %d (%.2g of it there)" % (pts[-1][0], pts[-1][2] / pts[-1][1])
 
 
 def dgemm():
@@ -266,6 +273,26 @@ def plot(rows, scene, configs, png):
     except (OSError, subprocess.CalledProcessError) as e:
         sys.stderr.write("report.py: gnuplot failed for %s: %s\n" % (png, getattr(e, "stderr", e)))
         return False
+
+
+def picture(rows, scene):
+    """thumb-SCENE.png of the largest converged run (shellbench render, from
+    its record); kept as it is when that record is a digest without its state
+    or absent (a clean clone); the caption names the run"""
+    ok = [r for r in rows if r["scene"] == scene and r["status"] == 0]
+    if not ok:
+        return "No run of %s converged: no picture." % scene
+    r = max(ok, key=lambda r: (r["n_dofs"], -r["seconds_total"]))
+    png = os.path.join(DIR, "thumb-%s.png" % scene)
+    rec = os.path.join(DIR, r["file"])
+    shellbench = os.environ.get("SB_BIN", "build/shellbench")
+    if os.path.exists(rec):
+        subprocess.run([shellbench, "render", rec, "--out", png, "--size", "240x180", "--spp", "4", "--quiet",
+                        "--color", "curvature"], capture_output=True)
+    if not os.path.exists(png):
+        return "No picture (the record of %s is not in this checkout)." % r["file"]
+    return "![%s](thumb-%s.png)  \nThe largest converged run: %s, %d dofs, %.1f s (`shellbench render`, " \
+           "curvature colours)." % (scene, scene, r["config"], r["n_dofs"], r["seconds_total"])
 
 
 def mb(x):
@@ -367,7 +394,7 @@ def main():
             "are left out (—) as timer noise.", ""]
     for s in scenes:
         configs = sorted({r["config"] for r in rows if r["scene"] == s})
-        out += ["### %s" % s, "", "![%s](scaling-%s.png)" % (s, s), "",
+        out += ["### %s" % s, "", picture(rows, s), "", "![%s](scaling-%s.png)" % (s, s), "",
                 "| method/solver | sizes (dofs) | total | per iteration | " + " | ".join(
                     "%s /%s" % (c, NORM[c][:4] if NORM[c] != "iteration" else "iter") for c in COMPONENTS) + " | peak memory |",
                 "|---|---|" + "--:|" * (len(COMPONENTS) + 3)]
@@ -384,7 +411,7 @@ def main():
         # per iteration / per step and crossings
         out += ["", "Per iteration (Newton iteration, TR iteration or V-cycle) and per step, and where components "
                 "cross (dofs at which the second overtakes the first, log-log interpolation between sizes):", "",
-                "| method/solver | dofs | status | iterations | s / iteration | s / step | factorize overtakes assembly "
+                "| method/solver | dofs | status | iterations (finest top) | s / iteration | s / step | factorize overtakes assembly "
                 "| collide overtakes assembly | samples+record+setup share |", "|---|--:|---|--:|--:|--:|---|---|--:|"]
         for c in configs:
             rs = sorted((r for r in rows if r["scene"] == s and r["config"] == c), key=lambda r: r["n_dofs"])
@@ -397,8 +424,9 @@ def main():
             for k, r in enumerate(rs):
                 it = r["iterations"]
                 harness = (r["samples"] + r["record"] + r["setup"]) / r["seconds_total"] if r["seconds_total"] else 0
-                out.append("| %s | %d | %s | %d | %s | %.3g | %s | %s | %.1f %% |" % (
+                out.append("| %s | %d | %s | %d (%d) | %s | %.3g | %s | %s | %.1f %% |" % (
                     c if k == 0 else "", r["n_dofs"], "converged" if r["status"] == 0 else r["reason"], it,
+                    r.get("iters_finest", it),
                     "%.3g" % (r["seconds_total"] / it) if it else "—",
                     r["seconds_total"] / max(r["steps_done"], 1), fx if k == 0 else "", cx if k == 0 else "",
                     100 * harness))
