@@ -48,7 +48,7 @@ T975 = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)
 ROOT_ATTRS = ("scene_name", "method", "solver", "levels", "res", "n_dofs", "status", "reason", "steps_planned",
               "steps_done", "build_id", "blas_core", "openblas_num_threads", "started", "cpu_model")
 STATS_ATTRS = ("seconds_total", "seconds_unattributed", "peak_rss", "peak_rss_setup", "peak_rss_analyzed",
-               "memory_estimate", "work_assembly")
+               "memory_estimate", "work_assembly", "not_posdef")
 DATASETS = ("/stats/events_self_seconds", "/stats/events_seconds", "/stats/chol_flops_sum", "/stats/n_dofs",
             "/history/steps/iterations", "/history/iterations/linear_iters", "/history/iterations/level",
             "/history/iterations/iter")
@@ -235,9 +235,13 @@ def dgemm():
     return (float(m.group(1)) if m else None), txt
 
 
+COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22",
+          "#17becf", "#000000", "#aec7e8")
+
+
 def plot(rows, scene, configs, png):
     panels = list(COMPONENTS) + ["peak_rss"]
-    gp = ["set terminal pngcairo size 1200,880 font ',8' noenhanced", "set output '%s.tmp'" % png,
+    gp = ["set terminal pngcairo size 1000,740 font ',7' noenhanced", "set output '%s.tmp'" % png,
           "set multiplot layout 3,4 title '%s: exclusive seconds per component and peak memory against dofs "
           "(log-log, one curve per method/solver)'" % scene, "set logscale xy", "set xrange [5e2:3e4]",
           "set format x '%.0e'", "set format y '%g'", "set grid", "set key off"]
@@ -251,7 +255,8 @@ def plot(rows, scene, configs, png):
         for i, c in enumerate(configs):
             pts = data[(c, comp)]
             if pts:
-                plots.append(("'-' using 1:2 with linespoints lw 1.5 pt %d lc %d title '%s'" % (i % 13 + 1, i + 1, c),
+                plots.append(("'-' using 1:2 with linespoints lw 1.5 pt %d lc rgb '%s' title '%s'" % (
+                    i % 13 + 1, COLORS[i % len(COLORS)], c),
                               pts))
         gp.append("set title '%s'" % (comp + (" (MB)" if comp == "peak_rss" else " (s)")))
         if not plots:
@@ -263,8 +268,9 @@ def plot(rows, scene, configs, png):
             gp += ["%g %g" % xy for xy in pts] + ["e"]
     # the key as a panel of its own
     gp += ["set key center center", "unset border", "unset tics", "unset grid", "unset title", "unset logscale",
-           "set yrange [0:1]", "plot " + ", ".join("2 with linespoints lw 1.5 pt %d lc %d title '%s'" %
-                                                   (i % 13 + 1, i + 1, c) for i, c in enumerate(configs)),
+           "set yrange [0:1]", "plot " + ", ".join("2 with linespoints lw 1.5 pt %d lc rgb '%s' title '%s'" %
+                                                   (i % 13 + 1, COLORS[i % len(COLORS)], c)
+                                                   for i, c in enumerate(configs)),
            "unset multiplot"]
     try:
         subprocess.run(["gnuplot"], input="\n".join(gp) + "\n", text=True, check=True, capture_output=True)
@@ -341,6 +347,22 @@ def main():
                     if best:
                         why += " (best error %.2g: %s)" % (best["error_probe"], best["config"])
                 out.append("| %s | %d | %s | — | — | — | %d / %d |" % (s, t, why, conv, len(rs)))
+    for s in scenes:
+        rs = [r for r in rows if r["scene"] == s and r["status"] != 0]
+        if not rs:
+            continue
+        why = {}
+        for r in rs:
+            why[r["reason"]] = why.get(r["reason"], 0) + 1
+        coarse = [r for r in rs if r["solver"] == "rmtr" and r.get("iters_finest", 1) == 0]
+        out.append("")
+        out.append("*%s*, not converged: %s%s." % (s, ", ".join("%d %s" % (n, k) for k, n in sorted(why.items())),
+                   ("; %d rmtr runs spent the whole cap in the nested start's coarser-top V-cycles (no finest-level "
+                    "V-cycle: their per-iteration cost is not the finest level's; the study files now give rmtr 4× "
+                    "the cap)" % len(coarse)) if coarse else ""))
+    out += ["", "`max_iter`: the cap of 100 iterations per step; `single_step_residual`: the linearized solve's "
+            "one Newton step per time step left too large a residual (dt = 1 s on the trampoline and drape, "
+            "0.01 s on the sphere; its dt limit is far below, results/dt_stability/report.md)."]
     out += ["", "**Sizes run**: dof targets %s (%d records).  **Not run in this session**: 6.4e4 and 2.56e5 "
             "(`scaling.json`) and 1e6 (`scaling_large.json`).  To run them, in pieces and resumably "
             "(a finished record is never redone; a killed run continues from its checkpoint):" %
@@ -349,7 +371,7 @@ def main():
             "    OPENBLAS_NUM_THREADS=1 nice build/shellbench sweep --study bench/studies/scaling.json --jobs 1 --max-runs 10",
             "    # ... the same command again until it exits 0 (4 = stopped by --max-runs, more to do)",
             "    OPENBLAS_NUM_THREADS=1 nice build/shellbench sweep --study bench/studies/scaling_large.json --jobs 1 --max-runs 5",
-            "    python3 bench/scaling/report.py results/scaling", "",
+            "    python3 bench/scaling/report.py results/scaling   # results/scaling_large for the large study", "",
             "Bounds (stated in the study files): at most 100 iterations per step (`run.max_iter`; a run that hits "
             "it is *not converged* and still counts per iteration and per step); cloth over a sphere is its first "
             "12 of 30 steps (`bench/scaling/scenes/cloth_sphere_s12.json`, contact from about step 7); the "
@@ -368,8 +390,10 @@ def main():
         out += ["DGEMM: not measured (no %s/dgemm.txt; `build/bench/bench_dgemm > %s/dgemm.txt`)." % (DIR, DIR), ""]
     out += ["CHOLMOD's achieved rate = `chol_flops_sum` / inclusive `factorize` seconds (all levels), the largest "
             "runs of each method (lsnewton; its factorizations dominate):", "",
-            "| scene | method/solver | dofs | factorizations' flops | factorize s | GFLOP/s | share of DGEMM (1 core) |",
-            "|---|---|--:|--:|--:|--:|--:|"]
+            "| scene | method/solver | dofs | factorizations' flops | factorize s | indefinite factorizations | GFLOP/s "
+            "| share of DGEMM (1 core) |",
+            "|---|---|--:|--:|--:|--:|--:|--:|"]
+    clean = []
     for s in scenes:
         for r in sorted((r for r in rows if r["scene"] == s and r["solver"] == "lsnewton"),
                         key=lambda r: (r["method"], r["n_dofs"])):
@@ -377,13 +401,23 @@ def main():
                     q["n_dofs"] for q in rows if q["scene"] == s and q["config"] == r["config"]):
                 continue
             g = r["chol_flops_sum"] / r["incl_factorize"] / 1e9
-            out.append("| %s | %s | %d | %.3g | %.2f | %.2f | %s |" % (
-                s, r["config"], r["n_dofs"], r["chol_flops_sum"], r["incl_factorize"], g,
-                "%.0f %%" % (100 * g / g1) if g1 else "—"))
-    out += ["", "At these sizes the supernodes are small (a 2-D mesh's top separator has ~sqrt(n) × block "
-            "columns), so CHOLMOD spends its time in small dense blocks and sparse bookkeeping far below DGEMM's "
-            "rate; the issue's goal (half the dense rate at ≥ 1e5 dofs) can only be judged at the sizes not run "
-            "here.  Wall seconds under load 5–7 understate both rates.", ""]
+            npd = r.get("not_posdef", 0)
+            npd = npd if math.isfinite(npd) else 0
+            if npd == 0:
+                clean.append(g)
+            le = "≤ " if npd > 0 else ""
+            out.append("| %s | %s | %d | %.3g | %.2f | %d | %s%.2f | %s |" % (
+                s, r["config"], r["n_dofs"], r["chol_flops_sum"], r["incl_factorize"], npd, le, g,
+                (le + "%.0f %%" % (100 * g / g1)) if g1 else "—"))
+    out += ["", "A factorization that meets an indefinite matrix (lsnewton's shifted retries on the nonconvex "
+            "drape, contact) stops early but `chol_flops_sum` counts the analysis's full flops for it, so rates "
+            "of runs with indefinite factorizations are upper bounds (≤).  The others: %s GFLOP/s, %s of the "
+            "one-core DGEMM rate.  At ≤ 1.7e4 dofs a 2-D mesh's supernodes are small (the top separator has "
+            "~√n nodes), so CHOLMOD spends much of its time in small dense blocks and sparse bookkeeping; the "
+            "issue's goal (half the dense rate at ≥ 1e5 dofs) is judged at the sizes not run here.  Wall seconds "
+            "under load 5–7 understate the rates." % (
+                ("%.1f–%.1f" % (min(clean), max(clean))) if clean else "—",
+                ("%.0f–%.0f %%" % (100 * min(clean) / g1, 100 * max(clean) / g1)) if clean and g1 else "—"), ""]
     # --- exponents
     out += ["## Fitted exponents", "",
             "y = c n^p by least squares in log-log over the largest (up to four) sizes of each configuration, y "
