@@ -85,4 +85,9 @@ void sb_escape_print(FILE *f, const char *fmt, ...) __attribute__((format(printf
 #define SB_MAX_LEVELS 8
 #define SB_NAME_LEN 64
 
+/* The path of `target` (relative to the current directory) as seen from the
+ * directory `dir`, into buf: a relative link.  0, or -1 when either path
+ * does not exist. */
+int sb_path_relative(const char *dir, const char *target, char *buf, size_t len);
+
 #endif

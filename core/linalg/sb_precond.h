@@ -51,5 +51,7 @@ int sb_precond_have_amg(void);
  * preconditioner positive definite.  Returns 1 when the block was positive
  * definite, else 0.  bs <= 12. */
 int sb_block_inverse_spd(int bs, double *A);
+/* the same without the fallback: 0, A unchanged, when A is not SPD */
+int sb_spd_block_inverse(int bs, double *A);
 
 #endif

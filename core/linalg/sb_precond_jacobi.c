@@ -10,25 +10,22 @@
 #include <stdlib.h>
 #include <string.h>
 
-int sb_block_inverse_spd(int bs, double *A)
+/* Inverse of the symmetric bs x bs block A (row-major) in place through
+ * Cholesky (bs <= 12); returns 0, A unchanged, when A is not positive
+ * definite (the trust-region CG's block preconditioners and node-block
+ * Jacobi share it). */
+int sb_spd_block_inverse(int bs, double *A)
 {
-    double L[144], Li[144], d[12];
-    for (int i = 0; i < bs; i++) d[i] = A[i * bs + i];
-    int ok = 1;
-    for (int i = 0; i < bs && ok; i++)
+    double L[144], Li[144];
+    for (int i = 0; i < bs; i++)
         for (int j = 0; j <= i; j++) {
             double v = A[i * bs + j];
             for (int k = 0; k < j; k++) v -= L[i * bs + k] * L[j * bs + k];
             if (i == j) {
-                if (!(v > 0.0)) { ok = 0; break; }
+                if (!(v > 0.0)) return 0;
                 L[i * bs + i] = sqrt(v);
             } else L[i * bs + j] = v / L[j * bs + j];
         }
-    if (!ok) {
-        memset(A, 0, (size_t)bs * bs * sizeof *A);
-        for (int i = 0; i < bs; i++) A[i * bs + i] = d[i] != 0.0 && isfinite(d[i]) ? 1.0 / fabs(d[i]) : 1.0;
-        return 0;
-    }
     /* Li = L^{-1} (lower triangular), A^{-1} = Li^T Li */
     for (int j = 0; j < bs; j++)
         for (int i = 0; i < bs; i++) {
@@ -44,6 +41,16 @@ int sb_block_inverse_spd(int bs, double *A)
             A[i * bs + j] = v;
         }
     return 1;
+}
+
+int sb_block_inverse_spd(int bs, double *A)
+{
+    double d[12];
+    for (int i = 0; i < bs; i++) d[i] = A[i * bs + i];
+    if (sb_spd_block_inverse(bs, A)) return 1;
+    memset(A, 0, (size_t)bs * bs * sizeof *A);
+    for (int i = 0; i < bs; i++) A[i * bs + i] = d[i] != 0.0 && isfinite(d[i]) ? 1.0 / fabs(d[i]) : 1.0;
+    return 0;
 }
 
 typedef struct jacobi_state {

@@ -17,22 +17,11 @@
 
 int sb_site_link(const sb_site *S, const char *rel, const char *target, char *buf, size_t len)
 {
-    char a[PATH_MAX + 2], b[PATH_MAX + 2], dir[1400];
+    char dir[1400];
     snprintf(dir, sizeof dir, "%s/%s", S->dir, rel);
     char *sl = strrchr(dir, '/');
     if (sl) *sl = 0;
-    if (!realpath(dir, a) || !realpath(target, b)) return -1;
-    size_t la = strlen(a);
-    if (la == 0 || a[la - 1] != '/') a[la] = '/', a[la + 1] = 0;
-    size_t cut = 0;
-    for (size_t i = 0; a[i] && b[i] && a[i] == b[i]; i++)
-        if (a[i] == '/') cut = i + 1;
-    size_t n = 0;
-    buf[0] = 0;
-    for (const char *p = a + cut; *p; p++)
-        if (*p == '/' && n + 4 < len) memcpy(buf + n, "../", 4), n += 3;
-    snprintf(buf + n, len - n, "%s", b + cut);
-    return 0;
+    return sb_path_relative(dir, target, buf, len);
 }
 
 static void kv(FILE *f, const char *k, const char *v)
@@ -90,7 +79,7 @@ static void extra_read(const char *path, extra *x)
         if (g >= 0) H5Gclose(g);
         for (int k = 0; k < x->nev; k++) {
             x->names[k][15] = 0;
-            if (!x->names[k][0]) snprintf(x->names[k], 16, "event %d", k);
+            if (!x->names[k][0]) snprintf(x->names[k], 16, "event %d", k % 1000);   /* k < SB_EV_COUNT */
         }
     }
     free(c), free(s);

@@ -488,7 +488,7 @@ int sb_site_study(sb_site *S, const char *study_file, const char *records, sb_si
     snprintf(e->href, sizeof e->href, "%s", rel);
     snprintf(e->title, sizeof e->title, "study %s: %d scenes, %d records, %d run pages", st->name, st->n_scenes, rec, pages);
     snprintf(e->date, sizeof e->date, "%s", last[0] ? last : "—");
-    snprintf(e->provenance, sizeof e->provenance, "%s; builds %s", st->path, builds[0] ? builds : "—");
+    snprintf(e->provenance, sizeof e->provenance, "%.500s; builds %.500s", st->path, builds[0] ? builds : "—");
     sb_study_data_free(&d);
     sb_study_free(st);
     free(st);

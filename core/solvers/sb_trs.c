@@ -1,5 +1,6 @@
 /* sb_trs.c — the two trust-region subproblem solvers and the counted wrapper. */
 #include "sb_trs.h"
+#include "sb_precond.h"
 #include "sb_context.h"
 #include "sb_schwarz.h"
 
@@ -214,37 +215,6 @@ typedef struct stcg_state {
     sb_schwarz schwarz; /* precond 4: additive Schwarz on element patches */
 } stcg_state;
 
-/* Inverse of the symmetric bs x bs block A (row-major) in place through
- * Cholesky; returns 0 when A is not positive definite (A is then clobbered). */
-static int spd_inverse(int bs, double *A)
-{
-    double L[144], Li[144];
-    for (int i = 0; i < bs; i++)
-        for (int j = 0; j <= i; j++) {
-            double v = A[i * bs + j];
-            for (int k = 0; k < j; k++) v -= L[i * bs + k] * L[j * bs + k];
-            if (i == j) {
-                if (!(v > 0.0)) return 0;
-                L[i * bs + i] = sqrt(v);
-            } else L[i * bs + j] = v / L[j * bs + j];
-        }
-    /* Li = L^{-1} (lower triangular), A^{-1} = Li^T Li */
-    for (int j = 0; j < bs; j++)
-        for (int i = 0; i < bs; i++) {
-            if (i < j) { Li[i * bs + j] = 0.0; continue; }
-            double v = i == j ? 1.0 : 0.0;
-            for (int k = j; k < i; k++) v -= L[i * bs + k] * Li[k * bs + j];
-            Li[i * bs + j] = v / L[i * bs + i];
-        }
-    for (int i = 0; i < bs; i++)
-        for (int j = 0; j < bs; j++) {
-            double v = 0.0;
-            for (int k = i > j ? i : j; k < bs; k++) v += Li[k * bs + i] * Li[k * bs + j];
-            A[i * bs + j] = v;
-        }
-    return 1;
-}
-
 /* y_b = Binv_b t for the node block starting at b0 */
 static inline void block_solve(int bs, const double *A, const double *t, double *y)
 {
@@ -345,7 +315,7 @@ static int stcg_setup_precond(stcg_state *c, sb_problem *p, int level)
     sb_problem_hess_block_diag(p, level, c->binv);
     for (int b0 = 0; b0 < n; b0 += bs) {
         double *A = c->binv + (size_t)b0 * bs;
-        if (spd_inverse(bs, A)) continue;
+        if (sb_spd_block_inverse(bs, A)) continue;
         /* an indefinite node block: Jacobi on that node */
         memset(A, 0, (size_t)bs * bs * sizeof(double));
         for (int i = 0; i < bs; i++) A[i * bs + i] = c->dinv[b0 + i];

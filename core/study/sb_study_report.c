@@ -346,28 +346,6 @@ static void header(sb_rep *R)
     }
 }
 
-/* The path of `target` (relative to the current directory, normally the
- * project root) as seen from directory `dir`: a relative link that works in
- * the report wherever it is written.  0, or -1 when either does not exist. */
-static int rel_link(const char *dir, const char *target, char *buf, size_t len)
-{
-    char a[4100], b[4100];
-    if (!realpath(dir, a) || !realpath(target, b)) return -1;
-    size_t la = strlen(a);
-    if (la == 0 || a[la - 1] != '/') a[la] = '/', a[la + 1] = 0;   /* the directory as "DIR/" */
-    /* the common leading directories end at the last '/' both share */
-    size_t cut = 0;
-    for (size_t i = 0; a[i] && b[i] && a[i] == b[i]; i++)
-        if (a[i] == '/') cut = i + 1;
-    /* one "../" per directory of dir below them, then the rest of target */
-    size_t n = 0;
-    buf[0] = 0;
-    for (const char *p = a + cut; *p; p++)
-        if (*p == '/' && n + 3 < len) memcpy(buf + n, "../", 4), n += 3;
-    snprintf(buf + n, len - n, "%s", b + cut);
-    return 0;
-}
-
 /* the other reports of the suite that answer related questions (issue 23:
  * the condition-number and penalty studies and the dt study), linked when
  * they exist */
@@ -390,7 +368,7 @@ static void related(sb_rep *R)
     for (size_t k = 0; k < sizeof rep / sizeof rep[0]; k++) {
         char real[4096];
         if (!realpath(rep[k][0], real) || (have_self && strcmp(real, self) == 0)) continue;
-        if (rel_link(R->dir, rep[k][0], link, sizeof link)) continue;
+        if (sb_path_relative(R->dir, rep[k][0], link, sizeof link)) continue;
         if (!n++) fprintf(R->md, "## Related studies and reports\n\n");
         fprintf(R->md, "* [%s](%s): %s\n", rep[k][0], link, rep[k][1]);
     }
