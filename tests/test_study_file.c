@@ -69,6 +69,8 @@ static const bad bads[] = {
       "s.json:7:11: at /: invalid JSON: " },
     { HEAD UNIQUE "  \"methods\": \"all\",\n  \"solvers\": [\"tr\"],\n  \"res\": [4],\n  \"rules\": [{\"method\": \"rmtr\", \"solver\": \"tr\", \"skip\": \"\"}]\n}",
       "s.json:7:56: at /rules/0/skip: say why the runs are skipped" },
+    { HEAD UNIQUE MS "  \"res\": [4],\n  \"rules\": [{\"solver\": \"tr\", \"levels\": 3, \"res\": [4]}]\n}",
+      "s.json:7:40: at /rules/0/levels: no solver of this study runs on 3 levels" },
 };
 
 SB_TEST(study_file_errors_name_file_line_and_column)
@@ -123,6 +125,42 @@ SB_TEST(a_good_study_plans_every_registered_method)
     free(st);
 }
 
+/* a rule with "levels" applies to the solver entries with that level count
+ * only: rmtr on 2 levels at res 8, on 3 levels at res 16 (the scaling
+ * study's levels growing with size), tr at both */
+SB_TEST(a_rule_matches_solver_entries_by_levels)
+{
+    char err[2048];
+    sb_study *st = calloc(1, sizeof *st);
+    const char *text = HEAD UNIQUE "  \"methods\": [\"rmtr\"],\n"
+                       "  \"solvers\": [\"tr\", {\"solver\": \"rmtr\", \"levels\": 2}, {\"solver\": \"rmtr\", \"levels\": 3}],\n"
+                       "  \"res\": [8, 16],\n  \"rules\": [{\"solver\": \"rmtr\", \"levels\": 2, \"res\": [8]},\n"
+                       "            {\"solver\": \"rmtr\", \"levels\": 3, \"res\": [16]}]\n}";
+    int rc = sb_study_parse_string(text, "s.json", tmpdir, st, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    if (rc) { free(st); return; }
+    sb_plan p;
+    rc = sb_study_plan(st, &p, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    if (rc == 0) {
+        int tr = 0, l2 = 0, l3 = 0;
+        for (int k = 0; k < p.n; k++) {
+            const sb_plan_run *r = &p.runs[k];
+            if (r->state != SB_PLAN_RUN) continue;
+            const sb_study_solver *so = &st->solvers[r->solver];
+            if (so->levels == 1) tr++;
+            else if (so->levels == 2) { l2++; CHECK_EQ_INT(r->res, 8); }
+            else if (so->levels == 3) { l3++; CHECK_EQ_INT(r->res, 16); }
+        }
+        CHECK_EQ_INT(tr, 2);
+        CHECK_EQ_INT(l2, 1);
+        CHECK_EQ_INT(l3, 1);
+        sb_plan_free(&p);
+    }
+    sb_study_free(st);
+    free(st);
+}
+
 SB_TEST(a_bad_study_runs_nothing)
 {
     char path[400], cmd[1200], dir[400];
@@ -147,7 +185,7 @@ SB_TEST(every_committed_study_plans)
 {
     const char *files[] = { "bench/studies/default.json", "bench/studies/accuracy.json",
                             "bench/studies/dt_stability.json", "bench/studies/dt_stability_large.json",
-                            "bench/nightly/nightly.json" };
+                            "bench/studies/scaling_small.json", "bench/nightly/nightly.json" };
     for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
         char err[2048];
         sb_study *st = calloc(1, sizeof *st);
@@ -176,7 +214,8 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = {
         SB_CASE(study_file_errors_name_file_line_and_column),
         SB_CASE(a_good_study_plans_every_registered_method),
-        SB_CASE(a_bad_study_runs_nothing), SB_CASE(every_committed_study_plans), SB_END,
+        SB_CASE(a_rule_matches_solver_entries_by_levels), SB_CASE(a_bad_study_runs_nothing),
+        SB_CASE(every_committed_study_plans), SB_END,
     };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];

@@ -73,6 +73,7 @@ typedef struct sb_study_solver {
  * own resolutions / dofs targets, or "skip" with the reason. */
 typedef struct sb_study_rule {
     int scene, method, solver;
+    long levels;                      /* > 0: only solver entries with this level count */
     sb_study_sets sets;
     int n_res;                        /* > 0: own resolutions */
     long res[SB_STUDY_MAX_RES];

@@ -28,6 +28,7 @@ int sb_study_rule_matches(const sb_study *st, int k, int i, int m, int s)
     if (r->scene >= 0 && i >= 0 && r->scene != i) return 0;
     if (r->method >= 0 && m >= 0 && r->method != m) return 0;
     if (r->solver >= 0 && s >= 0 && st->solvers[r->solver].type != st->solvers[s].type) return 0;
+    if (r->levels > 0 && s >= 0 && st->solvers[s].levels != r->levels) return 0;
     return 1;
 }
 
@@ -50,7 +51,7 @@ static int solver_index(const sb_study *st, const char *name)
 
 static int parse_rule(sbj_ctx *c, const json_t *o, sb_study *st)
 {
-    static const char *const keys[] = { "scene", "method", "solver", "set", "res", "dofs", "skip", NULL };
+    static const char *const keys[] = { "scene", "method", "solver", "levels", "set", "res", "dofs", "skip", NULL };
     static const char *const pre[] = { "run.", "solver.", "method.", NULL };
     sb_study_rule *r = &st->rules[st->n_rules];
     memset(r, 0, sizeof *r);
@@ -65,6 +66,13 @@ static int parse_rule(sbj_ctx *c, const json_t *o, sb_study *st)
     if (has && (r->method = method_index(st, name)) < 0) return sbj_fail(c, "method", 0, "method \"%s\" is not in this study", name);
     if ((rc = sbj_get_string(c, o, "solver", 0, name, sizeof name, &has))) return rc;
     if (has && (r->solver = solver_index(st, name)) < 0) return sbj_fail(c, "solver", 0, "solver \"%s\" is not in this study", name);
+    if ((rc = sbj_get_int(c, o, "levels", 0, 1, SB_MAX_LEVELS, &r->levels))) return rc;
+    if (r->levels > 0) {
+        int any = 0;
+        for (int s = 0; s < st->n_solvers; s++)
+            any |= st->solvers[s].levels == r->levels && (r->solver < 0 || st->solvers[s].type == st->solvers[r->solver].type);
+        if (!any) return sbj_fail(c, "levels", 0, "no solver of this study runs on %ld levels", r->levels);
+    }
     if ((rc = sbs_parse_sets(c, o, "set", pre, &r->sets))) return rc;
     if ((rc = sbs_parse_longs(c, o, "res", 1, 4096, SB_STUDY_MAX_RES, r->res, &r->n_res))) return rc;
     if ((rc = sbs_parse_longs(c, o, "dofs", 1, 100000000L, SB_STUDY_MAX_RES, r->dofs, &r->n_dofs))) return rc;

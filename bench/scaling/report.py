@@ -1,0 +1,529 @@
+#!/usr/bin/env python3
+"""bench/scaling/report.py — results/scaling/report.md (issue 42): how each
+method's and solver's cost and memory grow with dofs, from records only.
+
+    python3 bench/scaling/report.py [DIR]          # DIR default results/scaling
+
+Reads every record or digest DIR/SCENE/*.h5 (h5dump, hdf5-tools; .partial
+checkpoints and refused runs are left out) into DIR/records.csv, one row per
+record with the figures the report uses; when DIR holds no records (a clean
+clone where only the extract is committed) it reads DIR/records.csv instead.
+Then writes DIR/report.md and one PNG per scene (gnuplot, log-log panels).
+Never re-runs anything.
+
+Figures (docs/recorded_figures.md, format 3):
+  * component seconds: the exclusive seconds /stats/events_self_seconds summed
+    over levels; assembly = energy + gradient + hessian; the others are the
+    events of the same name (cg_iter = the Krylov solves with their
+    preconditioner set-up, collide = contact, record = writing records,
+    samples = probes, sample grid and the step's physical-state judgement,
+    setup = from process start to the first step);
+  * peak memory: /stats peak_rss (VmHWM of the run's process at its end);
+  * CHOLMOD's achieved rate: chol_flops_sum over the inclusive factorize
+    seconds (/stats/events_seconds), summed over levels, against the DGEMM
+    rate of build/bench/bench_dgemm in DIR/dgemm.txt;
+  * fitted exponents: y = c n^p by least squares in log-log over the largest
+    (up to four) sizes of a configuration, with the 95 % interval
+    p +- t_{0.975, m-2} * s / sqrt(Sxx), s^2 = RSS / (m - 2), Sxx = sum (ln n_i -
+    mean)^2 (the slope's Student-t interval, e.g. Montgomery & Runger,
+    Applied Statistics, 11-3; the same formula as core/report/sb_fit.c).
+"""
+import csv, glob, math, os, re, subprocess, sys
+
+DIR = sys.argv[1] if len(sys.argv) > 1 else "results/scaling"
+TARGETS = (1000, 4000, 16000, 64000, 256000, 1000000)
+RUN_TARGETS = (1000, 4000, 16000)          # what this session ran (README of the report)
+EVENTS = ("energy", "gradient", "hessian", "analyze", "factorize", "solve", "cg_iter", "qp", "transfer", "adapt",
+          "collide", "record", "galerkin", "checkpoint", "setup", "samples", "error", "progress", "solver")
+COMPONENTS = ("assembly", "analyze", "factorize", "solve", "cg_iter", "collide", "record", "samples", "setup")
+# what each component's fitted exponent is per: the solver's parts per
+# outer iteration (Newton iteration, TR iteration, V-cycle), the per-step
+# harness parts per step, set-up per run
+NORM = {"assembly": "iteration", "analyze": "run", "factorize": "iteration", "solve": "iteration",
+        "cg_iter": "iteration", "collide": "iteration", "record": "step", "samples": "step", "setup": "run"}
+ACCURACY_TARGET = {"plate_simply_supported": 1e-3}
+# t_{0.975, df}, df = 1..10
+T975 = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)
+
+ROOT_ATTRS = ("scene_name", "method", "solver", "levels", "res", "n_dofs", "status", "reason", "steps_planned",
+              "steps_done", "build_id", "blas_core", "openblas_num_threads", "started", "cpu_model")
+STATS_ATTRS = ("seconds_total", "seconds_unattributed", "peak_rss", "peak_rss_setup", "peak_rss_analyzed",
+               "memory_estimate", "work_assembly", "not_posdef")
+DATASETS = ("/stats/events_self_seconds", "/stats/events_seconds", "/stats/chol_flops_sum", "/stats/n_dofs",
+            "/history/steps/iterations", "/history/iterations/linear_iters", "/history/iterations/level",
+            "/history/iterations/iter")
+
+NUM = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-?(inf|nan)$", re.I)
+
+
+def h5dump(path, args):
+    r = subprocess.run(["h5dump", "-y", "-w", "0", "-m", "%.17g"] + args + [path], capture_output=True, text=True)
+    return r.stdout
+
+
+def parse_ddl(txt):
+    """{name: [values]} of every ATTRIBUTE / DATASET block in h5dump's output"""
+    out, name, data, vals = {}, None, False, []
+    for line in txt.splitlines():
+        s = line.strip()
+        m = re.match(r'^(ATTRIBUTE|DATASET) "([^"]+)" \{$', s)
+        if m:
+            name, data, vals = m.group(2), False, []
+            continue
+        if s == "DATA {":
+            data = True
+            continue
+        if data:
+            if s == "}":
+                out[name] = vals
+                data = False
+                continue
+            for tok in re.findall(r'"[^"]*"|[^,\s]+', s):
+                if tok.startswith('"'):
+                    vals.append(tok[1:-1])
+                elif NUM.match(tok):
+                    vals.append(float(tok))
+    return out
+
+
+def read_record(path):
+    args = []
+    for a in ROOT_ATTRS:
+        args += ["-a", "/" + a]
+    for a in STATS_ATTRS:
+        args += ["-a", "/stats/" + a]
+    for a in ("probe", "rms"):
+        args += ["-a", "/error/" + a]
+    for d in DATASETS:
+        args += ["-d", d]
+    v = parse_ddl(h5dump(path, args))
+    if "n_dofs" not in v or "/stats/events_self_seconds" not in v:
+        return None
+    row = {k: (v[k][0] if k in v and v[k] else "") for k in ROOT_ATTRS}
+    row["scene"] = row.pop("scene_name")
+    for k in STATS_ATTRS:
+        row[k] = v.get(k, [float("nan")])[0]
+    row["error_probe"] = v.get("probe", [float("nan")])[0]
+    row["error_rms"] = v.get("rms", [float("nan")])[0]
+    ne = len(EVENTS)
+    for key, pre in (("/stats/events_self_seconds", "self_"), ("/stats/events_seconds", "incl_")):
+        a = v.get(key, [])
+        for j, e in enumerate(EVENTS):
+            row[pre + e] = sum(a[i] for i in range(j, len(a), ne)) if len(a) % ne == 0 else float("nan")
+    fl = v.get("/stats/chol_flops_sum", [])
+    row["chol_flops_sum"] = sum(fl)
+    row["chol_flops_finest"] = fl[-1] if fl else 0.0
+    row["iterations"] = sum(v.get("/history/steps/iterations", []))
+    lv, li = v.get("/history/iterations/level", []), v.get("/history/iterations/linear_iters", [])
+    row["linear_iters"] = sum(li)
+    top = max(lv) if lv else 0
+    # outer iterations whose top was the finest level (rmtr's nested start
+    # records V-cycles with a coarser top under their level; each step's
+    # iteration-0 record is not an iteration)
+    it = v.get("/history/iterations/iter", [])
+    row["iters_finest"] = sum(1 for k, l in enumerate(lv) if l == top and (k >= len(it) or it[k] > 0))
+    row["file"] = os.path.relpath(path, DIR)
+    return row
+
+
+def fnum(x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return float("nan")
+
+
+def load_rows():
+    """the records and digests present, and the rows of DIR/records.csv whose
+    record is not present (a clean clone holds digests of the largest size
+    only, the extract holds every run); the union is written back"""
+    paths = sorted(p for p in glob.glob(os.path.join(DIR, "*", "*.h5")))
+    fresh = [r for r in (read_record(p) for p in paths) if r]
+    csvp = os.path.join(DIR, "records.csv")
+    old = []
+    try:
+        with open(csvp) as fh:
+            old = list(csv.DictReader(fh))
+    except OSError:
+        pass
+    have = {r["file"] for r in fresh}
+    kept = [r for r in old if r["file"] not in have]
+    rows = sorted([{k: ("%.6g" % v if isinstance(v, float) else str(v)) for k, v in r.items()} for r in fresh] + kept,
+                  key=lambda r: r["file"])
+    if rows:
+        keys = list(rows[0].keys())
+        with open(csvp + ".tmp", "w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=keys)
+            w.writeheader()
+            for r in rows:
+                w.writerow(r)
+        os.replace(csvp + ".tmp", csvp)
+    src = ("%d runs: %d records or digests in `%s`, %d from the extract `%s` whose records are not in this checkout"
+           % (len(rows), len(fresh), DIR, len(kept), csvp))
+    for r in rows:
+        for k in list(r.keys()):
+            if k not in ("scene", "method", "solver", "reason", "build_id", "blas_core", "openblas_num_threads",
+                         "started", "cpu_model", "file"):
+                r[k] = fnum(r[k])
+        r["assembly"] = r["self_energy"] + r["self_gradient"] + r["self_hessian"]
+        for c in COMPONENTS[1:]:
+            r[c] = r["self_" + c]
+        r["config"] = "%s/%s" % (r["method"], r["solver"])
+        r["per_iter"] = r["seconds_total"] / r["iterations"] if r["iterations"] > 0 else float("nan")
+        # normalized for the fits: per iteration, per step, per run (NORM)
+        for c in COMPONENTS:
+            d = {"iteration": r["iterations"], "step": r["steps_done"], "run": 1}[NORM[c]]
+            r["n_" + c] = r[c] / d if d > 0 else float("nan")
+        r["target"] = min(TARGETS, key=lambda t: abs(math.log(r["n_dofs"] / t)))
+    return rows, src
+
+
+def fit(ns, ys):
+    """exponent p, half-width of its 95 % interval (nan with 2 points), points used"""
+    pts = [(math.log(n), math.log(y)) for n, y in zip(ns, ys) if n > 0 and y > 0 and math.isfinite(y)]
+    pts = sorted(pts)[-4:]
+    m = len(pts)
+    if m < 2:
+        return float("nan"), float("nan"), m
+    mu = sum(p[0] for p in pts) / m
+    mv = sum(p[1] for p in pts) / m
+    sxx = sum((p[0] - mu) ** 2 for p in pts)
+    if sxx <= 0:
+        return float("nan"), float("nan"), m
+    p = sum((a - mu) * (b - mv) for a, b in pts) / sxx
+    if m < 3:
+        return p, float("nan"), m
+    rss = sum((b - mv - p * (a - mu)) ** 2 for a, b in pts)
+    se = math.sqrt(rss / (m - 2) / sxx)
+    return p, T975[m - 3] * se, m
+
+
+def fmt_fit(p, hw, m):
+    if not math.isfinite(p):
+        return "—"
+    if not math.isfinite(hw):
+        return "%.2f (%d pts)" % (p, m)
+    return "%.2f ± %.2f" % (p, hw)
+
+
+def series(rows, scene, config, key):
+    pts = sorted((r["n_dofs"], r[key]) for r in rows if r["scene"] == scene and r["config"] == config)
+    return [p[0] for p in pts], [p[1] for p in pts]
+
+
+def crossing(ns, a, b):
+    """dofs at which b first overtakes a (log-log interpolation), a sentence"""
+    pts = [(n, x, y) for n, x, y in zip(ns, a, b) if x > 0 and y > 0]
+    if len(pts) < 1:
+        return "—"
+    if pts[0][2] >= pts[0][1]:
+        return "already at the smallest, %d" % pts[0][0]
+    for (n0, x0, y0), (n1, x1, y1) in zip(pts, pts[1:]):
+        d0, d1 = math.log(y0 / x0), math.log(y1 / x1)
+        if d0 < 0 <= d1:
+            t = d0 / (d0 - d1)
+            return "%.0f" % math.exp(math.log(n0) + t * (math.log(n1) - math.log(n0)))
+    return "not up to %d (%.2g of it there)" % (pts[-1][0], pts[-1][2] / pts[-1][1])
+
+
+def dgemm():
+    try:
+        txt = open(os.path.join(DIR, "dgemm.txt")).read()
+    except OSError:
+        return None, ""
+    m = re.search(r"dgemm_1core_gflops ([\d.]+)", txt)
+    return (float(m.group(1)) if m else None), txt
+
+
+COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22",
+          "#17becf", "#000000", "#aec7e8")
+
+
+def plot(rows, scene, configs, png):
+    panels = list(COMPONENTS) + ["peak_rss"]
+    gp = ["set terminal pngcairo size 1000,740 font ',7' noenhanced", "set output '%s.tmp'" % png,
+          "set multiplot layout 3,4 title '%s: exclusive seconds per component and peak memory against dofs "
+          "(log-log, one curve per method/solver)'" % scene, "set logscale xy", "set xrange [5e2:3e4]",
+          "set format x '%.0e'", "set format y '%g'", "set grid", "set key off"]
+    data = {}
+    for c in configs:
+        for comp in panels:
+            ns, ys = series(rows, scene, c, comp)
+            data[(c, comp)] = [(n, y / (1e6 if comp == "peak_rss" else 1)) for n, y in zip(ns, ys) if y > 0]
+    for comp in panels:
+        plots = []
+        for i, c in enumerate(configs):
+            pts = data[(c, comp)]
+            if pts:
+                plots.append(("'-' using 1:2 with linespoints lw 1.5 pt %d lc rgb '%s' title '%s'" % (
+                    i % 13 + 1, COLORS[i % len(COLORS)], c),
+                              pts))
+        gp.append("set title '%s'" % (comp + (" (MB)" if comp == "peak_rss" else " (s)")))
+        if not plots:
+            gp += ["unset logscale y", "set label 1 'none recorded' at graph 0.5, 0.5 center",
+                   "plot 0 notitle with lines lc rgb 'white'", "unset label 1", "set logscale xy"]
+            continue
+        gp.append("plot " + ", ".join(p[0] for p in plots))
+        for _, pts in plots:
+            gp += ["%g %g" % xy for xy in pts] + ["e"]
+    # the key as a panel of its own
+    gp += ["set key center center", "unset border", "unset tics", "unset grid", "unset title", "unset logscale",
+           "set yrange [0:1]", "plot " + ", ".join("2 with linespoints lw 1.5 pt %d lc rgb '%s' title '%s'" %
+                                                   (i % 13 + 1, COLORS[i % len(COLORS)], c)
+                                                   for i, c in enumerate(configs)),
+           "unset multiplot"]
+    try:
+        subprocess.run(["gnuplot"], input="\n".join(gp) + "\n", text=True, check=True, capture_output=True)
+        os.replace(png + ".tmp", png)
+        return True
+    except (OSError, subprocess.CalledProcessError) as e:
+        sys.stderr.write("report.py: gnuplot failed for %s: %s\n" % (png, getattr(e, "stderr", e)))
+        return False
+
+
+def picture(rows, scene):
+    """thumb-SCENE.png of the largest converged run (shellbench render, from
+    its record); kept as it is when that record is a digest without its state
+    or absent (a clean clone); the caption names the run"""
+    ok = [r for r in rows if r["scene"] == scene and r["status"] == 0]
+    if not ok:
+        return "No run of %s converged: no picture." % scene
+    r = max(ok, key=lambda r: (r["n_dofs"], -r["seconds_total"]))
+    png = os.path.join(DIR, "thumb-%s.png" % scene)
+    rec = os.path.join(DIR, r["file"])
+    shellbench = os.environ.get("SB_BIN", "build/shellbench")
+    if os.path.exists(rec):
+        try:
+            subprocess.run([shellbench, "render", rec, "--out", png, "--size", "240x180", "--spp", "4", "--quiet",
+                            "--color", "curvature"], capture_output=True)
+        except OSError:
+            pass                          # no shellbench built: the committed picture stays
+    if not os.path.exists(png):
+        return "No picture (the record of %s is not in this checkout)." % r["file"]
+    return "![%s](thumb-%s.png)  \nThe largest converged run: %s, %d dofs, %.1f s (`shellbench render`, " \
+           "curvature colours)." % (scene, scene, r["config"], r["n_dofs"], r["seconds_total"])
+
+
+def mb(x):
+    return "%.0f MB" % (x / 1e6) if math.isfinite(x) else "—"
+
+
+def main():
+    rows, src = load_rows()
+    scenes = []
+    for r in rows:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    g1, dg_txt = dgemm()
+    out = ["# Scaling: cost and memory against dofs (issue 42)", "",
+           "Made by `python3 bench/scaling/report.py` from %s; nothing re-run.  Studies: "
+           "`bench/studies/scaling.json` (1e3–2.56e5 dofs), `scaling_large.json` (to 1e6), "
+           "`scaling_small.json` (the part run here)." % src, ""]
+    # --- the answer first
+    out += ["## Which method/solver, at each size", "",
+            "Per scene and dof target: the configuration that converged (on the plate: reached the probe error "
+            "target 1e-3) in the fewest seconds, its peak memory, and the runner-up.  Wall seconds of one run on a "
+            "shared 2-core machine (load 5–7 from other work, `nice`, one BLAS thread): compare as ratios.", "",
+            "| scene | dofs target | fastest (dofs) | seconds | peak memory | runner-up (seconds, memory) | converged / run |",
+            "|---|--:|---|--:|--:|---|--:|"]
+    for s in scenes:
+        for t in TARGETS:
+            rs = [r for r in rows if r["scene"] == s and r["target"] == t]
+            if not rs:
+                continue
+            tgt = ACCURACY_TARGET.get(s)
+            ok = [r for r in rs if r["status"] == 0 and (tgt is None or (math.isfinite(r["error_probe"])
+                                                                          and r["error_probe"] <= tgt))]
+            ok.sort(key=lambda r: r["seconds_total"])
+            conv = sum(1 for r in rs if r["status"] == 0)
+            if ok:
+                a = ok[0]
+                ru = ("%s (%.2f s, %s)" % (ok[1]["config"], ok[1]["seconds_total"], mb(ok[1]["peak_rss"]))
+                      if len(ok) > 1 else "—")
+                out.append("| %s | %d | **%s** (%d) | %.2f | %s | %s | %d / %d |" % (
+                    s, t, a["config"], a["n_dofs"], a["seconds_total"], mb(a["peak_rss"]), ru, conv, len(rs)))
+            else:
+                why = "none reached %g" % tgt if tgt else "none converged"
+                if tgt:
+                    best = min((r for r in rs if math.isfinite(r["error_probe"])), key=lambda r: r["error_probe"],
+                               default=None)
+                    if best:
+                        why += " (best error %.2g: %s)" % (best["error_probe"], best["config"])
+                out.append("| %s | %d | %s | — | — | — | %d / %d |" % (s, t, why, conv, len(rs)))
+    for s in scenes:
+        rs = [r for r in rows if r["scene"] == s and r["status"] != 0]
+        if not rs:
+            continue
+        why = {}
+        for r in rs:
+            why[r["reason"]] = why.get(r["reason"], 0) + 1
+        coarse = [r for r in rs if r["solver"] == "rmtr" and r.get("iters_finest", 1) == 0]
+        out.append("")
+        out.append("*%s*, not converged: %s%s." % (s, ", ".join("%d %s" % (n, k) for k, n in sorted(why.items())),
+                   ("; %d rmtr runs spent the whole cap in the nested start's coarser-top V-cycles (no finest-level "
+                    "V-cycle: their per-iteration cost is not the finest level's; the study files now give rmtr 4× "
+                    "the cap)" % len(coarse)) if coarse else ""))
+    out += ["", "`max_iter`: the cap of 100 iterations per step; `single_step_residual`: the linearized solve's "
+            "one Newton step per time step left too large a residual (dt = 1 s on the trampoline and drape, "
+            "0.01 s on the sphere; its dt limit is far below, results/dt_stability/report.md)."]
+    out += ["", "**Sizes run**: dof targets %s (%d records).  **Not run in this session**: 6.4e4 and 2.56e5 "
+            "(`scaling.json`) and 1e6 (`scaling_large.json`).  To run them, in pieces and resumably "
+            "(a finished record is never redone; a killed run continues from its checkpoint):" %
+            ("1e3, 4e3, 1.6e4", len(rows)), "",
+            "    build/shellbench sweep --study bench/studies/scaling.json --plan      # the runs, nothing run",
+            "    OPENBLAS_NUM_THREADS=1 nice build/shellbench sweep --study bench/studies/scaling.json --jobs 1 --max-runs 10",
+            "    # ... the same command again until it exits 0 (4 = stopped by --max-runs, more to do)",
+            "    OPENBLAS_NUM_THREADS=1 nice build/shellbench sweep --study bench/studies/scaling_large.json --jobs 1 --max-runs 5",
+            "    python3 bench/scaling/report.py results/scaling   # results/scaling_large for the large study", "",
+            "Bounds (stated in the study files): at most 100 iterations per step (`run.max_iter`; a run that hits "
+            "it is *not converged* and still counts per iteration and per step); cloth over a sphere is its first "
+            "12 of 30 steps (`bench/scaling/scenes/cloth_sphere_s12.json`, contact from about step 7); the "
+            "trampoline and drape keep their 5 steps, the plate its 1 load step.  rmtr's levels grow with size, "
+            "L = 1 + ceil(log4(n/500)) (coarsest level ≤ 500 dofs, about 250): 2 levels at 1e3, 3 at 4e3, 4 at "
+            "1.6e4 (5 and 6 at the sizes not run); its curves join these.  Cost per Newton iteration / V-cycle is "
+            "the run's seconds over its iterations (`/history/steps/iterations`), per step over its steps; the "
+            "records also hold both per iteration and per step by part (`/history`).", ""]
+    # --- DGEMM and CHOLMOD
+    out += ["## Factorization rate against the machine's dense rate", ""]
+    if g1:
+        first = dg_txt.splitlines()
+        out += ["DGEMM (`build/bench/bench_dgemm`, OpenBLAS, n × n, best of 5), measured on this machine:", "",
+                "```"] + [l for l in first if l.strip()] + ["```", ""]
+    else:
+        out += ["DGEMM: not measured (no %s/dgemm.txt; `build/bench/bench_dgemm > %s/dgemm.txt`)." % (DIR, DIR), ""]
+    out += ["CHOLMOD's achieved rate = `chol_flops_sum` / inclusive `factorize` seconds (all levels), the largest "
+            "runs of each method (lsnewton; its factorizations dominate):", "",
+            "| scene | method/solver | dofs | factorizations' flops | factorize s | indefinite factorizations | GFLOP/s "
+            "| share of DGEMM (1 core) |",
+            "|---|---|--:|--:|--:|--:|--:|--:|"]
+    clean = []
+    for s in scenes:
+        for r in sorted((r for r in rows if r["scene"] == s and r["solver"] == "lsnewton"),
+                        key=lambda r: (r["method"], r["n_dofs"])):
+            if r["incl_factorize"] <= 0 or r["chol_flops_sum"] <= 0 or r["n_dofs"] < max(
+                    q["n_dofs"] for q in rows if q["scene"] == s and q["config"] == r["config"]):
+                continue
+            g = r["chol_flops_sum"] / r["incl_factorize"] / 1e9
+            npd = r.get("not_posdef", 0)
+            npd = npd if math.isfinite(npd) else 0
+            if npd == 0:
+                clean.append(g)
+            le = "≤ " if npd > 0 else ""
+            out.append("| %s | %s | %d | %.3g | %.2f | %d | %s%.2f | %s |" % (
+                s, r["config"], r["n_dofs"], r["chol_flops_sum"], r["incl_factorize"], npd, le, g,
+                (le + "%.0f %%" % (100 * g / g1)) if g1 else "—"))
+    out += ["", "A factorization that meets an indefinite matrix (lsnewton's shifted retries on the nonconvex "
+            "drape, contact) stops early but `chol_flops_sum` counts the analysis's full flops for it, so rates "
+            "of runs with indefinite factorizations are upper bounds (≤).  The others: %s GFLOP/s, %s of the "
+            "one-core DGEMM rate.  At ≤ 1.7e4 dofs a 2-D mesh's supernodes are small (the top separator has "
+            "~√n nodes), so CHOLMOD spends much of its time in small dense blocks and sparse bookkeeping; the "
+            "issue's goal (half the dense rate at ≥ 1e5 dofs) is judged at the sizes not run here.  Wall seconds "
+            "under load 5–7 understate the rates." % (
+                ("%.1f–%.1f" % (min(clean), max(clean))) if clean else "—",
+                ("%.0f–%.0f %%" % (100 * min(clean) / g1, 100 * max(clean) / g1)) if clean and g1 else "—"), ""]
+    # --- exponents
+    out += ["## Fitted exponents", "",
+            "y = c n^p by least squares in log-log over the largest (up to four) sizes of each configuration, y "
+            "the run's total seconds, its seconds per outer iteration, each component's exclusive seconds per "
+            "outer iteration (/iter), per step (/step) or per run (/run), and the peak memory; "
+            "± is the 95 % Student-t half-width, t_{0.975,m−2} s/√Sxx (m points; with m = 3, t = 12.7, so the "
+            "intervals are wide: three sizes a factor 4 apart are what ran).  Components below 1 ms at every size "
+            "are left out (—) as timer noise.", ""]
+    for s in scenes:
+        configs = sorted({r["config"] for r in rows if r["scene"] == s})
+        out += ["### %s" % s, "", picture(rows, s), "", "![%s](scaling-%s.png)" % (s, s), "",
+                "| method/solver | sizes (dofs) | total | per iteration | " + " | ".join(
+                    "%s /%s" % (c, NORM[c][:4] if NORM[c] != "iteration" else "iter") for c in COMPONENTS) + " | peak memory |",
+                "|---|---|" + "--:|" * (len(COMPONENTS) + 3)]
+        for c in configs:
+            ns, _ = series(rows, s, c, "seconds_total")
+            cells = []
+            for comp in ("seconds_total", "per_iter") + tuple("n_" + c for c in COMPONENTS) + ("peak_rss",):
+                n2, ys = series(rows, s, c, comp)
+                if comp.startswith("n_") and max(series(rows, s, c, comp[2:])[1] + [0]) < 1e-3:
+                    cells.append("—")
+                else:
+                    cells.append(fmt_fit(*fit(n2, ys)))
+            out.append("| %s | %s | %s |" % (c, ", ".join("%d" % n for n in ns), " | ".join(cells)))
+        # per iteration / per step and crossings
+        out += ["", "Per iteration (Newton iteration, TR iteration or V-cycle) and per step, and where components "
+                "cross (dofs at which the second overtakes the first, log-log interpolation between sizes):", "",
+                "| method/solver | dofs | status | iterations (finest top) | s / iteration | s / step | factorize overtakes assembly "
+                "| collide overtakes assembly | samples+record+setup share |", "|---|--:|---|--:|--:|--:|---|---|--:|"]
+        for c in configs:
+            rs = sorted((r for r in rows if r["scene"] == s and r["config"] == c), key=lambda r: r["n_dofs"])
+            ns = [r["n_dofs"] for r in rs]
+            fx = crossing(ns, [r["assembly"] for r in rs], [r["factorize"] for r in rs])
+            cx = crossing(ns, [r["assembly"] for r in rs], [r["collide"] for r in rs]) if any(
+                r["collide"] > 0 for r in rs) else "no contact"
+            if not any(r["factorize"] > 0 for r in rs):
+                fx = "no factorization"
+            for k, r in enumerate(rs):
+                it = r["iterations"]
+                harness = (r["samples"] + r["record"] + r["setup"]) / r["seconds_total"] if r["seconds_total"] else 0
+                out.append("| %s | %d | %s | %d (%d) | %s | %.3g | %s | %s | %.1f %% |" % (
+                    c if k == 0 else "", r["n_dofs"], "converged" if r["status"] == 0 else r["reason"], it,
+                    r.get("iters_finest", it),
+                    "%.3g" % (r["seconds_total"] / it) if it else "—",
+                    r["seconds_total"] / max(r["steps_done"], 1), fx if k == 0 else "", cx if k == 0 else "",
+                    100 * harness))
+        out.append("")
+        plot(rows, s, configs, os.path.join(DIR, "scaling-%s.png" % s))
+    # --- the issue's O(n^1.1) goal for the harness parts
+    out += ["## Harness parts against the O(n^1.1) goal", "",
+            "The issue asks that nothing but factorization and the solve grow faster than n^1.1.  Fitted "
+            "exponents of the harness parts (samples and record per step, setup per run) and of assembly (per "
+            "iteration) and the symbolic analysis (per run), per configuration, over the sizes run; "
+            "*above* = the whole 95 % interval above 1.1, *below* = the whole interval at or below 1.1, "
+            "else undecided at these sizes.", "",
+            "| scene | part | above 1.1 | below | undecided | largest exponent (configuration) |",
+            "|---|---|--:|--:|--:|---|"]
+    for s in scenes:
+        configs = sorted({r["config"] for r in rows if r["scene"] == s})
+        for comp in ("samples", "record", "setup", "assembly", "analyze"):
+            up = lo = und = 0
+            best = None
+            for c in configs:
+                ns, ys = series(rows, s, c, "n_" + comp)
+                if max(series(rows, s, c, comp)[1] + [0]) < 1e-3:
+                    continue
+                p_, hw, m = fit(ns, ys)
+                if not math.isfinite(p_):
+                    continue
+                if math.isfinite(hw) and p_ - hw > 1.1:
+                    up += 1
+                elif math.isfinite(hw) and p_ + hw <= 1.1:
+                    lo += 1
+                else:
+                    und += 1
+                if best is None or p_ > best[0]:
+                    best = (p_, c, hw, m)
+            if best:
+                out.append("| %s | %s | %d | %d | %d | %s (%s) |" % (s, comp, up, lo, und, fmt_fit(best[0], best[2], best[3]),
+                                                                    best[1]))
+    out += ["", "With two or three sizes a factor 4 apart most exponents are undecided; fixed per-run costs "
+            "(process start, HDF5, sample grids of 21 × 21 points) make small-size exponents of the harness parts "
+            "low, not high.  The 6.4e4–1e6 sizes decide the goal.", ""]
+    # --- memory estimate
+    out += ["## Memory: estimate against measured peak", "",
+            "`memory_estimate` (what `run.max_memory` is checked against) over `peak_rss`, per run; the issue's "
+            "goal (within 30 %) is for ≥ 1e5 dofs, not run here; at these sizes the fixed 16 MB of the process "
+            "model and the libraries' own footprint dominate.", "",
+            "| scene | ratio estimate/peak: min | median | max | runs |", "|---|--:|--:|--:|--:|"]
+    for s in scenes:
+        q = sorted(r["memory_estimate"] / r["peak_rss"] for r in rows if r["scene"] == s and r["peak_rss"] > 0
+                   and r["memory_estimate"] > 0)
+        if q:
+            out.append("| %s | %.2f | %.2f | %.2f | %d |" % (s, q[0], q[len(q) // 2], q[-1], len(q)))
+    builds = sorted({r["build_id"] for r in rows})
+    cores = sorted({r["blas_core"] for r in rows})
+    thr = sorted({r["openblas_num_threads"] for r in rows})
+    out += ["", "## Records", "",
+            "Builds %s; BLAS kernels %s; OPENBLAS_NUM_THREADS %s; every run one process, `--jobs 1`, `nice`.  "
+            "Per-record figures: `%s/records.csv`." % (", ".join(builds), ", ".join(cores), ", ".join(thr), DIR), ""]
+    with open(os.path.join(DIR, "report.md"), "w") as fh:
+        fh.write("\n".join(out) + "\n")
+
+
+if __name__ == "__main__":
+    main()
