@@ -89,5 +89,7 @@ void sb_escape_print(FILE *f, const char *fmt, ...) __attribute__((format(printf
  * directory `dir`, into buf: a relative link.  0, or -1 when either path
  * does not exist. */
 int sb_path_relative(const char *dir, const char *target, char *buf, size_t len);
+/* mkdir -p DIR: 0, or -1 with errno (core/base/sb_path.c) */
+int sb_mkdir_p(const char *dir);
 
 #endif

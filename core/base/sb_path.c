@@ -1,9 +1,30 @@
-/* sb_path.c — relative links between files of a report or site. */
+/* sb_path.c — paths of outputs: directories made with their parents,
+ * relative links between files of a report or site. */
 #include "sb_common.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+
+/* mkdir -p: DIR and its missing parents (0777 before the umask); 0, or -1
+ * with errno when one cannot be made or the path is too long */
+int sb_mkdir_p(const char *dir)
+{
+    char tmp[4200];
+    if (snprintf(tmp, sizeof tmp, "%s/", dir) >= (int)sizeof tmp) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    for (char *p = tmp + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
+            *p = '/';
+        }
+    return 0;
+}
 
 /* The path of `target` (relative to the current directory, normally the
  * project root) as seen from directory `dir`: a relative link that works in

@@ -68,26 +68,13 @@ static int int_opt(const char *opt, const char *v, int lo, int hi, int *out)
     return 0;
 }
 
-static int mkdir_p(const char *dir)
-{
-    char tmp[1024];
-    snprintf(tmp, sizeof tmp, "%s/", dir);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    return 0;
-}
-
 static int dir_of(const char *file, char *buf, size_t len)
 {
     snprintf(buf, len, "%s", file);
     char *s = strrchr(buf, '/');
     if (!s) return 0;
     *s = 0;
-    return buf[0] ? mkdir_p(buf) : 0;
+    return buf[0] ? sb_mkdir_p(buf) : 0;
 }
 
 /* The files the command writes, checked before any run: DIR a directory
@@ -225,7 +212,7 @@ int sb_cli_regress(int argc, char **argv)
         return rc;
     }
     char dir[1024], report[1100];
-    if (mkdir_p(outdir)) {
+    if (sb_mkdir_p(outdir)) {
         sb_escape_print(stderr, "shellbench regress: cannot create %s: %s", outdir, strerror(errno));
         rc = 3;
     } else {

@@ -286,19 +286,6 @@ static int is_dir_or_absent(const char *path, char *why, size_t len)
     return -1;
 }
 
-static int mkdir_p(const char *dir)
-{
-    char tmp[1100];
-    snprintf(tmp, sizeof tmp, "%s/", dir);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    return 0;
-}
-
 int sb_cli_site(int argc, char **argv)
 {
     const char *out = "results/site", *history = NULL, *baseline = NULL, *records = NULL;
@@ -361,7 +348,7 @@ int sb_cli_site(int argc, char **argv)
         code = SB_EXIT_INPUT;
         goto done;
     }
-    if (mkdir_p(out) || is_dir_or_absent(out, why, sizeof why)) {
+    if (sb_mkdir_p(out) || is_dir_or_absent(out, why, sizeof why)) {
         fprintf(stderr, "shellbench site: cannot make the directory %s: %s\n", out, strerror(errno));
         code = SB_EXIT_INPUT;
         goto done;

@@ -375,19 +375,6 @@ static void related(sb_rep *R)
     if (n) fprintf(R->md, "\n");
 }
 
-static int mkdir_p(const char *dir)
-{
-    char tmp[1100];
-    snprintf(tmp, sizeof tmp, "%s/", dir);
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    return 0;
-}
-
 int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *err)
 {
     sb_study_data d;
@@ -408,7 +395,7 @@ int sb_study_report(const sb_study *st, const sb_study_report_options *o, FILE *
         sb_study_data_free(&d);
         return SB_EXIT_INPUT;
     }
-    if (mkdir_p(R.dir) || !(R.md = sb_study_open_tmp(tmp))) {
+    if (sb_mkdir_p(R.dir) || !(R.md = sb_study_open_tmp(tmp))) {
         sb_escape_print(err, "shellbench report: cannot write %s: %s", path, strerror(errno));
         sb_study_data_free(&d);
         return SB_EXIT_INPUT;
