@@ -3,13 +3,17 @@
  * run in every report (the CSV report of a dynamic run byte for byte), is
  * sealed and smaller, says what it dropped when render asks for it, and a
  * study thumbnail of a digest without its state keeps the picture drawn from
- * it before; checkpoints, non-records and bad options are refused. */
+ * it before; its larger datasets are stored compressed and bit for bit
+ * equal, and a digest from before compression is rewritten once;
+ * checkpoints, non-records and bad options are refused. */
 #include "sb_test.h"
 #include "cli_sh.h"
 #include "sb_record.h"
+#include "sb_record_io.h"
 #include "sb_render.h"
 #include "sb_study_fig.h"
 
+#include <hdf5.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -135,12 +139,65 @@ SB_TEST(an_unwritable_directory_is_named_before_any_work)
     CHECK(sb_sh(NULL, 0, NULL, 0, "chmod 755 %s", dir) == 0);
 }
 
+/* dataset NAME of FILE: its values (n doubles into buf) and its filter count */
+static int read_dset(const char *file, const char *name, double *buf, size_t cap, size_t *n, int *nfilters)
+{
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t d = f < 0 ? -1 : H5Dopen2(f, name, H5P_DEFAULT);
+    hid_t sp = d < 0 ? -1 : H5Dget_space(d), pl = d < 0 ? -1 : H5Dget_create_plist(d);
+    hssize_t np = sp < 0 ? -1 : H5Sget_simple_extent_npoints(sp);
+    int rc = np < 0 || (size_t)np > cap || pl < 0 ||
+             H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0;
+    *n = np < 0 ? 0 : (size_t)np;
+    *nfilters = pl < 0 ? -1 : H5Pget_nfilters(pl);
+    if (pl >= 0) H5Pclose(pl);
+    if (sp >= 0) H5Sclose(sp);
+    if (d >= 0) H5Dclose(d);
+    if (f >= 0) H5Fclose(f);
+    return rc ? -1 : 0;
+}
+
+SB_TEST(a_digest_stores_large_datasets_compressed_and_equal)
+{
+    static double full[65536], dig[65536];
+    static char out[4096], err[1024], path[1200];
+    size_t nf = 0, nd = 0;
+    int ff = -1, fd = -1;
+    CHECK_EQ_INT(make_record("z.h5", ""), 0);
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cd %s && cp z.h5 z_full.h5 && %s digest z.h5", tmpdir, sb_test_bin()), 0);
+    snprintf(path, sizeof path, "%s/z_full.h5", tmpdir);
+    CHECK_EQ_INT(read_dset(path, "/final/sample_pos", full, 65536, &nf, &ff), 0);
+    snprintf(path, sizeof path, "%s/z.h5", tmpdir);
+    CHECK_EQ_INT(read_dset(path, "/final/sample_pos", dig, 65536, &nd, &fd), 0);
+    CHECK(nf >= 64);                                  /* large enough to be compressed */
+    CHECK_EQ_INT((long)nd, (long)nf);
+    CHECK_EQ_INT(ff, 0);                              /* the run's record: contiguous */
+    CHECK_EQ_INT(fd, 2);                              /* the digest: shuffle + deflate */
+    CHECK(memcmp(full, dig, nf * sizeof *full) == 0);  /* bit for bit */
+    /* a digest from before compression (no "digest_storage") is rewritten
+     * once, keeps its note of what it dropped, and is then left alone */
+    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    CHECK(f >= 0 && H5Adelete(f, "digest_storage") >= 0);
+    if (f >= 0) H5Fclose(f);
+    CHECK_EQ_INT(sb_record_seal(path, err, sizeof err), 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, NULL, 0, "cd %s && %s digest z.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strstr(out, "already a digest") == NULL);
+    f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    CHECK(f >= 0 && H5Aexists(f, "digest_storage") > 0 && H5Aexists(f, "digest") > 0);
+    if (f >= 0) H5Fclose(f);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, NULL, 0, "cd %s && %s digest z.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strstr(out, "already a digest") != NULL);
+    CHECK_EQ_INT(read_dset(path, "/final/sample_pos", dig, 65536, &nd, &fd), 0);
+    CHECK(nd == nf && memcmp(full, dig, nf * sizeof *full) == 0);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_test_digest_%d", (int)getpid());
     mkdir(tmpdir, 0755);
     static const sb_test_case cases[] = {
-        SB_CASE(a_digest_reports_as_the_same_run), SB_CASE(a_study_picture_of_a_digest_without_state_stands),
+        SB_CASE(a_digest_reports_as_the_same_run), SB_CASE(a_digest_stores_large_datasets_compressed_and_equal),
+        SB_CASE(a_study_picture_of_a_digest_without_state_stands),
         SB_CASE(checkpoints_non_records_and_bad_options_are_refused),
         SB_CASE(an_unwritable_directory_is_named_before_any_work), SB_END,
     };
