@@ -19,7 +19,8 @@
 #   same resolution; RES_ROW=NxM overrides it, e.g. RES_umbrella=5x56) from a
 #   copy of the scene with that many steps, in pieces of SB_PIECE steps
 #   (default 25) per call with a checkpoint under $TMPDIR/sb_table2/large/;
-#   call again to continue (--resume); when a row finishes, its summary,
+#   call again to continue (--resume); SB_SET="key=value" adds one --set
+#   (e.g. method.imperfection=2e-5); when a row finishes, its summary,
 #   digest and picture go to results/bhem/table2/large/ and
 #   results/bhem/images/table2_large_ROW.png.
 # Rows: ball umbrella can cans_h05 cans_h1 cans_h2 armadillo (default all).
@@ -70,7 +71,7 @@ large() {
   [ $stop -ge "$steps" ] && stop=$steps
   [ -z "$resume" ] && cat /proc/loadavg > "$dir/$tag.load"
   nice -n 10 "$BIN" run --scene "$sc" --method bhem --solver lsnewton --res "$res" --out "$rec" $resume \
-    --stop-after-steps "$stop" --summary json --quiet > "$ldir/$tag.json" 2> "$ldir/$tag.log"
+    ${SB_SET:+--set "$SB_SET"} --stop-after-steps "$stop" --summary json --quiet > "$ldir/$tag.json" 2> "$ldir/$tag.log"
   local code=$?
   if [ $code = 4 ]; then echo "$stop" > "$ldir/$tag.step"; echo "$tag: at step $stop of $steps, call again"; return 0; fi
   cp "$ldir/$tag.json" "$dir/$tag.json"

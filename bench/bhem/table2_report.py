@@ -37,7 +37,7 @@ DIFF = {
     "ball": "cloth 1 m, ball r 0.25 m, 1 mm gap (not stated); bhem impulse CCD of 3x3 midsurface points per patch "
             "against the sphere",
     "armadillo": "STAND-IN collider (the armadillo mesh is not available): generated tapered, twisted box with a "
-                 "pyramid top, 2,906 vertices (paper 2.8k sample points); cloth 1 m, 1 mm above the apex",
+                 "pyramid top, 2,906 vertices (paper 2.8k sample points); cloth 1 m, 0.05 mm above the apex",
     "umbrella": "flat annulus r 0.05–0.5 m, 28 ribs hinged at a fixed crown ring turning 60° over 300 steps (not "
                 "stated); positions and d/ds prescribed at 6 nodes per rib",
     "can": "R 50 mm, height 120 mm, a 4° slit (the barrier's self-contact refuses the closed seam); the plank's push "

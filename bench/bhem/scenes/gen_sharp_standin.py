@@ -25,7 +25,7 @@ HEIGHT = 0.4          # height of the box part (m)
 TAPER = 0.6           # top width / base width
 TWIST = math.radians(30.0)
 ROOF = 0.12           # pyramid height above the top face (m)
-BASE = -0.521         # z of the base: the apex 1 mm below the cloth at z = 0
+BASE = -0.52005       # z of the base: the apex 0.05 mm below the cloth at z = 0 (contact from step 3)
 
 
 def deform(p):
