@@ -53,6 +53,9 @@ row_args() {
   esac
 }
 
+# the picture's camera per row (the can stands along e_y beside its ground plane)
+view() { case $1 in can) echo "--camera 0.22,0.2,0.3,0,0.05,0 --no-ground" ;; esac; }
+
 # large ROW SCENE RES STEPS: one piece of the whole scenario
 large() {
   local row=$1 scene=$2 res=$3 steps=$4
@@ -75,7 +78,8 @@ large() {
   local code=$?
   if [ $code = 4 ]; then echo "$stop" > "$ldir/$tag.step"; echo "$tag: at step $stop of $steps, call again"; return 0; fi
   cp "$ldir/$tag.json" "$dir/$tag.json"
-  "$BIN" render "$rec" --size 240x180 --spp 8 --out "$IMG/table2_large_$tag.png" --quiet || echo "$tag: not drawn" >&2
+  "$BIN" render "$rec" --size 240x180 --spp 8 $(view "$row") --out "$IMG/table2_large_$tag.png" --quiet ||
+    echo "$tag: not drawn" >&2
   "$BIN" digest "$rec" > /dev/null && cp "$rec" "$dir/$tag.digest.h5"
   echo "$tag: done (exit $code)"
 }
@@ -94,6 +98,7 @@ for row in $ROWS; do
     --summary json > "$f.tmp" 2> "$OUT/$row.log"
   echo "   exit $?" >&2
   mv "$f.tmp" "$f"
-  "$BIN" render "$rec" --size 240x180 --spp 8 --out "$IMG/table2_$row.png" --quiet || echo "$row: not drawn" >&2
+  "$BIN" render "$rec" --size 240x180 --spp 8 $(view "$row") --out "$IMG/table2_$row.png" --quiet ||
+    echo "$row: not drawn" >&2
   "$BIN" digest "$rec" > /dev/null && cp "$rec" "$OUT/$row.digest.h5"
 done
