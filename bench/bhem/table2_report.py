@@ -181,6 +181,8 @@ def large_runs(ldir, images_reldir, images_dir):
     P("|---|---|---|---|---|---|---|---|")
     for t, d in rows:
         ti, to = per_step(d)
+        if not d.get("contact"):
+            to = None
         png = "table2_large_%s.png" % t
         pic = ("![%s](%s/%s)" % (t, images_reldir, png)
                if images_dir is None or os.path.exists(os.path.join(images_dir, png)) else "—")
