@@ -194,6 +194,12 @@ def rmtr_pictures(images, reldir):
 
 out.extend(rmtr_pictures(os.path.join(os.path.dirname(RUNS.rstrip("/")), "images"), "bhem/images"))
 
+# Table 2 rows Ball, Umbrella, Can, Cans, Armadillo (issue 39): bench/bhem/table2_report.py
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from table2_report import table2_section  # noqa: E402
+_res = os.path.dirname(RUNS.rstrip("/"))
+out.extend(table2_section(os.path.join(_res, "table2"), "bhem/images", os.path.join(_res, "images")))
+
 BIN = os.environ.get("SB_BIN", "build/shellbench")
 PICS = [("clamped plate, 16×16", "plate_clamped_r16"), ("Scordelis–Lo roof, full load, 16×16", "scordelis_full_r16"),
         ("heavy cantilever Γ = 5, 32×1", "cantilever_G5_r32"), ("full roll-up, 16×1", "rollup_full_r16"),

@@ -100,6 +100,7 @@ int sb_sweep_validate(const sb_sweep_axes *ax, sb_sweep_plan *plan, char *err, s
                         const sb_solver_type *st = sb_solver_find(ax->solvers[d]);
                         const sb_scene *sc = &scenes[a];
                         int levels = ax->levels[f], rc = check_pair(mt, st, levels, ax, &ctx, msg, sizeof msg);
+                        if (!rc) rc = sb_run_scene_method_check(sc, mt, msg, sizeof msg);
                         int res = ax->res[e], res_t_unused;
                         if (res <= 0) sb_scene_bundled_res(sc, mt->name, &res, &res_t_unused);
                         if (rc == SB_ERR_UNSUPPORTED) {

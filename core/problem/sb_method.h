@@ -30,7 +30,9 @@ enum {
     SB_METHOD_POTENTIAL = 1u << 1,    /* energy is a true potential (all solvers apply) */
     SB_METHOD_TEST_FIXTURE = 1u << 2, /* test fixture, not a real discretization */
     SB_METHOD_RES_ST = 1u << 3,       /* honours sb_method_config.res_t (--res NxM) */
-    SB_METHOD_IMPULSE_SELF = 1u << 4  /* impulse_response also resolves self-collision (contact.self) */
+    SB_METHOD_IMPULSE_SELF = 1u << 4, /* impulse_response also resolves self-collision (contact.self) */
+    SB_METHOD_NODAL_DERIVATIVES = 1u << 5 /* nodes carry first derivatives as generalized coordinates
+                                              (Hermite): honours a moving bc's "derivative" key */
 };
 
 typedef struct sb_method_config {

@@ -98,6 +98,7 @@ static int resolve_request(run_state *R, const sb_run_request *req, int *levels)
     *levels = req->levels > 0 ? req->levels : 1;
     int rc = sb_run_combination_check(R->mt, R->stype, *levels, msg, sizeof msg);
     if (!rc) rc = sb_run_scene_methods_check(&R->scene, msg, sizeof msg);
+    if (!rc) rc = sb_run_scene_method_check(&R->scene, R->mt, msg, sizeof msg);
     if (!rc) {
         /* the scene's settings for this method first, the command line's --set after (it wins) */
         const sb_scene_method *sm = sb_scene_method_find(&R->scene, R->mt->name);

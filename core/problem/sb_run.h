@@ -54,6 +54,9 @@ int sb_run_combination_check(const sb_method_type *mt, const struct sb_solver_ty
 /* The scene's "methods" section against the registry: known methods, their
  * own parameters, valid values; SB_OK or SB_ERR_INPUT naming the scene file. */
 int sb_run_scene_methods_check(const sb_scene *sc, char *err, size_t errlen);
+/* what the scene asks of this method that only some methods honour (a moving
+ * bc's "derivative"): SB_OK or SB_ERR_UNSUPPORTED with the sentence */
+int sb_run_scene_method_check(const sb_scene *sc, const sb_method_type *mt, char *err, size_t errlen);
 int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const struct sb_solver_type *st, int n_sets,
                     const char *const *sets, char *err, size_t errlen);
 

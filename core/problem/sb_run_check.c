@@ -40,6 +40,27 @@ int sb_run_combination_check(const sb_method_type *mt, const sb_solver_type *st,
     return SB_OK;
 }
 
+/* What a scene asks of a method that only some methods can honour, refused
+ * before any work with a sentence naming the scene key: a moving boundary's
+ * "derivative" prescribes nodal first derivatives, which are generalized
+ * coordinates of Hermite elements only (BHEM paper §4.2); a triangle or
+ * subdivision method has no such coordinate to hold. */
+int sb_run_scene_method_check(const sb_scene *sc, const sb_method_type *mt, char *err, size_t errlen)
+{
+    static const char *const names[] = { "", "s", "t", "st" };
+    for (int b = 0; b < sc->n_bcs; b++) {
+        const sb_bc *bc = &sc->bcs[b];
+        if (bc->kind == SB_BC_MOVING && bc->derivative && !(mt->flags & SB_METHOD_NODAL_DERIVATIVES)) {
+            snprintf(err, errlen, "%s: boundary %d asks for \"derivative\": \"%s\" (prescribed nodal first "
+                     "derivatives), but method %s has no derivatives among its generalized coordinates; only a "
+                     "Hermite method (bhem) can honour this key", sc->path[0] ? sc->path : sc->name, b,
+                     names[bc->derivative & 3u], mt->name);
+            return SB_ERR_UNSUPPORTED;
+        }
+    }
+    return SB_OK;
+}
+
 int sb_run_paramset(sb_paramset *ps, const sb_method_type *mt, const sb_solver_type *st, int n_sets,
                     const char *const *sets, char *err, size_t errlen)
 {

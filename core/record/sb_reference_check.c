@@ -58,7 +58,7 @@ static const char *physics_differs(const sb_scene *a, const sb_scene *b)
     for (int i = 0; i < a->n_bcs; i++)
         if (DIFF(bcs[i].kind) || DIFF(bcs[i].n_parts) || DIFF(bcs[i].components) || DIFF(bcs[i].axis) ||
             DIFF(bcs[i].translation) || DIFF(bcs[i].rot_axis) || DIFF(bcs[i].rot_center) || DIFF(bcs[i].rot_angle) ||
-            DIFF(bcs[i].ramp_steps) || DIFF(bcs[i].clamp_tangent) || DIFF(bcs[i].schedule.n) ||
+            DIFF(bcs[i].ramp_steps) || DIFF(bcs[i].clamp_tangent) || DIFF(bcs[i].derivative) || DIFF(bcs[i].schedule.n) ||
             DIFF(bcs[i].schedule.t) || DIFF(bcs[i].schedule.f) ||
             parts_differ(a->bcs[i].n_parts, a->bcs[i].parts, b->bcs[i].parts))
             return "boundary";

@@ -160,6 +160,12 @@ typedef struct sb_bc {
     int ramp_steps;          /* moving: 0 = all steps */
     sb_schedule schedule;    /* moving: n > 0 replaces the ramp (sb_schedule_factor) */
     int clamp_tangent;       /* moving: also prescribe the (rotated) tangents */
+    unsigned derivative;     /* moving, scene key "derivative" ("s", "t", "st"): bit 0 = the nodal first
+                                derivative along s, bit 1 = along t is prescribed, rotated with the
+                                motion (x_,s = R X_,s).  Nodal derivatives are generalized coordinates
+                                of Hermite elements only (BHEM paper §4.2, "Neumann constraints"):
+                                methods without SB_METHOD_NODAL_DERIVATIVES refuse the scene before
+                                any work (sb_run_scene_method_check) */
 } sb_bc;
 
 /* ---- time ------------------------------------------------------------- */

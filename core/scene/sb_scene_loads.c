@@ -106,6 +106,24 @@ static int parse_rotation(sbj_ctx *c, const json_t *o, sb_bc *bc)
     return r;
 }
 
+/* "derivative": "s" | "t" | "st" — which nodal first derivatives a moving
+ * condition prescribes (the BHEM paper's Neumann constraints at nodes, §4.2:
+ * the umbrella of Fig. 5 moves its ribs by "jointly controlling nodal
+ * positions and their first-order derivatives").  clamp_tangent already
+ * prescribes both, so the two keys exclude each other. */
+static int parse_derivative(sbj_ctx *c, const json_t *o, sb_bc *bc)
+{
+    static const char *const dirs[] = { "s", "t", "st", NULL };
+    int which = -1, r;
+    if (!json_object_get(o, "derivative")) return SB_OK;
+    if ((r = sbj_get_choice(c, o, "derivative", 1, dirs, &which))) return r;
+    if (bc->clamp_tangent)
+        return sbj_fail(c, "derivative", 0, "\"derivative\" and \"clamp_tangent\" exclude each other "
+                        "(clamp_tangent already prescribes both first derivatives)");
+    bc->derivative = (unsigned)which + 1u;   /* "s" 1, "t" 2, "st" 3 */
+    return SB_OK;
+}
+
 static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_time_spec *tm, sb_bc *bc)
 {
     static const char *const kinds[] = { "fixed", "clamped", "symmetry", "moving", "free", NULL };
@@ -113,7 +131,7 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_ti
     static const char *const k_clamp[] = { "type", "on", "at", NULL };
     static const char *const k_sym[] = { "type", "on", "normal", NULL };
     static const char *const k_mov[] = { "type", "on", "at", "components", "translation", "rotation",
-                                         "ramp_steps", "schedule", "clamp_tangent", NULL };
+                                         "ramp_steps", "schedule", "clamp_tangent", "derivative", NULL };
     static const char *const k_free[] = { "type", "on", NULL };
     static const char *const *const keys[] = { k_fixed, k_clamp, k_sym, k_mov, k_free };
     static const char *const axes[] = { "x", "y", "z", NULL };
@@ -146,7 +164,8 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_ti
         if ((r = sbj_parse_schedule(c, o, tm, &bc->schedule, &has_s))) return r;
         if (has_s && json_object_get(o, "ramp_steps"))
             return sbj_fail(c, "schedule", 1, "\"schedule\" and \"ramp_steps\" exclude each other (the schedule sets the timing)");
-        return sbj_get_bool(c, o, "clamp_tangent", &bc->clamp_tangent);
+        if ((r = sbj_get_bool(c, o, "clamp_tangent", &bc->clamp_tangent))) return r;
+        return parse_derivative(c, o, bc);
     }
     case SB_BC_CLAMPED:
     case SB_BC_FREE:

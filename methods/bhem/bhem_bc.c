@@ -25,6 +25,9 @@
  * fixed/symmetry/moving: x; clamped: x plus the normal components of the two
  * first derivatives; moving with clamp_tangent: x plus the rotated first
  * derivatives (the twisting cloth of BHEM Fig. 18, mixed derivative free).
+ * A moving bc's "derivative" ("s", "t", "st") prescribes the named first
+ * derivatives, rotated, at every node of its parts (the umbrella's ribs,
+ * BHEM Fig. 5: position and derivative along the rib).
  * Periodic nodes are shared, so their constraints apply once.  When two bcs
  * constrain the same dof, the later bc in the scene wins. */
 #include "bhem.h"
@@ -96,6 +99,10 @@ static void constrain_node(const bhem_level *L, const sb_bc *bc, int b, int node
             mark(owner, node, 1, mask, b);
             mark(owner, node, 2, mask, b);
         }
+        /* scene key "derivative": the named nodal first derivatives follow the
+         * motion, x_,s = R X_,s (BHEM §4.2 Neumann constraints; Fig. 5's ribs) */
+        if (bc->derivative & 1u) mark(owner, node, 1, mask, b);
+        if (bc->derivative & 2u) mark(owner, node, 2, mask, b);
         break;
     case SB_BC_FREE:
         break;
