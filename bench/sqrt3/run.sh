@@ -15,7 +15,7 @@
 # last step and the open state (11 s) of three runs are drawn into
 # results/sqrt3/images/ (small PNGs, committed; `picture` below).
 #
-#   bash bench/sqrt3/run.sh [SHELLBENCH] [pictures|paper]
+#   bash bench/sqrt3/run.sh [SHELLBENCH] [pictures|paper|convergence]
 #
 # `pictures`: only the missing pictures and the report (no runs, no series).
 # `paper`: the curtain at the paper's setting (issue 40; below): 6
@@ -25,7 +25,8 @@
 # full resolution, each in pieces of PAPER_PIECE steps (default 1000, about
 # 4 CPU-minutes of the full run on this machine) continued with --resume;
 # PAPER_MAX_PIECES (default: all) bounds the pieces run by one call, so a
-# user runs it in parts.  Then the series and the report.
+# user runs it in parts.  Then the series and the report.  `convergence`:
+# the study bench/studies/accuracy_sqrt3.json (below).
 #
 # run.single_step_rtol=1e300: the paper takes every linearized step; the
 # suite's default judgement (docs/trust.md) would stop a run at the first
@@ -83,6 +84,16 @@ runp() {
   done
   rm -f "$f.tmp"
 }
+# Convergence under refinement (issue 40): bench/studies/accuracy_sqrt3.json
+# (its own study: sweep, report --study, digests committed); its records' errors
+# extracted to a small CSV for the sqrt3 report's order fit.
+if [ "${2:-}" = convergence ]; then
+  "$BIN" sweep --study bench/studies/accuracy_sqrt3.json --jobs 1 &&
+    "$BIN" report --study bench/studies/accuracy_sqrt3.json &&
+    "$BIN" report --format csv results/accuracy_sqrt3/*/*.h5 > "$OUT/convergence.csv"
+  python3 bench/sqrt3/report.py "$OUT" > results/sqrt3_report.md
+  exit 0
+fi
 if [ "${2:-}" = paper ]; then
   runp curtain-paper-adaptive --set method.adaptive=1
   runp curtain-paper-full --set method.adaptive=0
