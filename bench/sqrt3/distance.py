@@ -66,6 +66,8 @@ def samples(path):
 
 def main():
     rf = os.path.join(DIR, "records", FULL + ".h5")
+    if not os.path.exists(rf) and os.path.exists(rf + ".partial"):
+        rf += ".partial"   # a run stopped with a checkpoint (run.sh paper): the steps it has done
     t = series(rf, "/history/steps/t")
     df, sf, pf = series(rf, "/history/steps/dofs"), series(rf, "/history/steps/seconds"), samples(rf)
     tri = {"full": series(rf, "/history/steps/triangles")} if TRIANGLES else {}

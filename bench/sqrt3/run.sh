@@ -97,7 +97,19 @@ fi
 if [ "${2:-}" = paper ]; then
   runp curtain-paper-adaptive --set method.adaptive=1
   runp curtain-paper-full --set method.adaptive=0
-  if [ -s "$OUT/runs/curtain-paper-full.json" ] && [ -s "$OUT/runs/curtain-paper-adaptive.json" ]; then
+  # a full run not finished (PAPER_MAX_PIECES): its checkpoint's summary
+  # (committed, small) and the series over the steps it has done
+  rm -f "$OUT/runs/curtain-paper-full.partial.json"
+  if [ ! -s "$OUT/runs/curtain-paper-full.json" ] && [ -e "$OUT/records/curtain-paper-full.h5.partial" ]; then
+    python3 bench/sqrt3/partial_summary.py "$OUT/records/curtain-paper-full.h5.partial" \
+      > "$OUT/runs/curtain-paper-full.partial.json"
+  fi
+  if [ -s "$OUT/runs/curtain-paper-adaptive.json" ]; then
+    python3 bench/sqrt3/distance.py "$OUT" --full curtain-paper-adaptive --diag 1.802775638 --triangles \
+      > "$OUT/series_curtain_paper_adaptive.csv"   # the adaptive run alone: its whole run (columns *_full)
+  fi
+  if [ -s "$OUT/runs/curtain-paper-adaptive.json" ] && [ -e "$OUT/records/curtain-paper-full.h5" -o \
+       -e "$OUT/records/curtain-paper-full.h5.partial" ]; then
     python3 bench/sqrt3/distance.py "$OUT" --full curtain-paper-full --diag 1.802775638 --triangles \
       adaptive=curtain-paper-adaptive > "$OUT/series_curtain_paper.csv"
   fi
