@@ -74,6 +74,8 @@ def main():
     cols, data = [], []
     for tag, short in PAIRS:
         ra = os.path.join(DIR, "records", tag + ".h5")
+        if not os.path.exists(ra) and os.path.exists(ra + ".partial"):
+            ra += ".partial"   # stopped with a checkpoint: the steps it has done
         if not os.path.exists(ra):
             continue
         cols += ["dofs_" + short, "seconds_" + short, "rms_" + short, "max_" + short]
@@ -88,6 +90,9 @@ def main():
         row = ["%d" % step, "%.6g" % t[k], "%d" % df[k], "%.6g" % sf[k]]
         f = pf.get(step)
         for da, sa, pa in data:
+            if k >= len(da):   # a run with fewer steps (stopped): nothing to compare
+                row += ["", "", "nan", "nan"]
+                continue
             a = pa.get(step)
             rms = mx = float("nan")
             if a and f and len(a) == len(f):
@@ -95,7 +100,7 @@ def main():
                 rms = math.sqrt(sum(x * x for x in d) / len(d)) / DIAG
                 mx = max(d) / DIAG
             row += ["%d" % da[k], "%.6g" % sa[k], "%.6g" % rms, "%.6g" % mx]
-        row += ["%d" % v[k] for v in tri.values()]
+        row += ["%d" % v[k] if k < len(v) else "" for v in tri.values()]
         print(",".join(row))
 
 
