@@ -329,7 +329,8 @@ def curtain_paper():
         png = os.path.join(DIR, "fig8_paper.png")
         gp = ("set terminal png size 800,400\nset output '%s'\nset datafile separator ','\n"
               "set title 'curtain, 6 generations on 16 x 26: triangles against time (cf. sqrt3 paper Fig. 8)'\n"
-              "set xlabel 't (s)'\nset ylabel 'triangles'\nset key left top\nset yrange [0:24000]\n"
+              "set xlabel 't (s)'\nset ylabel 'triangles'\nset key left center\nset yrange [0:24000]\n"
+              "set xrange [0:20]\n"
               "plot '%s' every ::1 using 2:(column('tri_full')) with lines title 'adaptive (2, 20 /m)', "
               "22464 with lines title 'full resolution (22464)', "
               "5158 with lines dashtype 2 title 'paper: adaptive mean 5158', "
@@ -394,7 +395,10 @@ def breakdown():
            "(CHOLMOD) or the CG iterations (PCG, event `qp`), collision (none on the curtain), adaptation (event "
            "`adapt`: curvature, sqrt3 operations, model and problem rebuild), output = record + checkpoints, other = "
            "the rest (step bookkeeping, the step judgement, sample grid).  Ratio = full / adaptive.  Mesh ratio = "
-           "mean vertices full / adaptive (from the series; triangles where recorded).", "",
+           "mean vertices full / adaptive (from the series; triangles where recorded).  Each pair's two runs come from one "
+           "build: the CHOLMOD pairs on the 8 x 12 and 8 x 6 bases are the committed runs of an earlier build (load "
+           "about 10), the PCG pair and the paper-size pair were run for issue 40 under a load of 20-45 on 2 cores, "
+           "so compare ratios within a pair, not milliseconds across pairs.", "",
            "| pair | component | adaptive ms/step | full ms/step | ratio |", "|---|---|---|---|---|"]
     notes = []
     for name, ta, tf, csvname, _ in BREAKDOWN_PAIRS:
@@ -712,7 +716,7 @@ def main():
                     a["seconds"]["total"], math.dist(p["probes"]["center"]["position"],
                                                      a["probes"]["center"]["position"]))]
     out += curtain_g6()
-    out += ["", "The paper's 6 generations at its size: the next section but one.  The histories of the runs above "
+    out += ["", "The paper's 6 generations at its size: section *The curtain at the paper's setting* below.  The histories of the runs above "
             "record vertices (dofs / 3), not triangles (about twice the vertices on these sheets)."]
     out += cloth_sphere()
     fs, res, _ = sphere_numbers()
