@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """bench/sqrt3/partial_summary.py — a summary of a run stopped with a checkpoint
-(`--stop-after-steps`, RUN.h5.partial), in the fields of `--summary json` that
-bench/sqrt3/report.py reads: steps done, the exclusive seconds and counts of
-every event, the summed CHOLMOD flops, read from the checkpoint's /stats and
-/history with h5dump (hdf5-tools).  status "stopped": the run is not finished
-and its checkpoint continues with `--resume` (bench/sqrt3/run.sh paper).
+(`--stop-after-steps`, RUN.h5.partial), or of a finished record, in the
+fields of `--summary json` that bench/sqrt3/report.py reads: steps done, the
+exclusive seconds and counts of every event, the summed CHOLMOD flops, read
+from the file's /stats and /history with h5dump (hdf5-tools).  status
+"stopped" for a checkpoint (the run is not finished; it continues with
+`--resume`, bench/sqrt3/run.sh paper), else the record's status ("converged"
+for status 0) and reason.
 
     python3 bench/sqrt3/partial_summary.py results/sqrt3/records/TAG.h5.partial > results/sqrt3/runs/TAG.partial.json
 """
@@ -38,7 +40,11 @@ def main():
     flops = sum(data(h5(path, "-d", "/stats/chol_flops_sum")))
     steps = len(data(h5(path, "-d", "/history/steps/t")))
     dofs = data(h5(path, "-d", "/history/steps/dofs"))
-    out = {"file": path, "status": "stopped", "reason": "checkpoint", "steps": steps,
+    code = int(data(h5(path, "-a", "/status"))[0])
+    reason = data(h5(path, "-a", "/reason"))[0]
+    partial = path.endswith(".partial")
+    out = {"file": path, "status": "stopped" if partial else ("converged" if code == 0 else "not converged"),
+           "reason": "checkpoint" if partial else reason, "steps": steps,
            "dofs": int(dofs[-1]) if dofs else None,
            "seconds": dict(zip(names, secs[:len(names)]), total=total),
            "counts": {k: int(v) for k, v in zip(names, counts[:len(names)])},
