@@ -7,6 +7,7 @@
 #include "sb_test.h"
 #include "run_json.h"
 #include "../methods/adaptive_sqrt3/a3.h"
+#include "sb_context.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -285,6 +286,103 @@ SB_TEST(test_resume_full_resolution)
     }
 }
 
+/* Eq. 22's |c| is the mean-curvature normal's length, kappa_1 + kappa_2 =
+ * 2H (Meyer et al.): 2/R on a sphere of radius R, 1/R on a cylinder.  So a
+ * sphere's cap exceeds every Eq. 23 limit below 2/R (the cloth over a
+ * sphere of radius 0.15 m: 13.3 /m, results/sqrt3_report.md). */
+SB_TEST(test_curvature_sphere_and_cylinder)
+{
+    am m;
+    const char *sets[] = { "method.max_generation=4", NULL };
+    CHECK(am_create(&m, 24, sets) == SB_OK);
+    if (!m.S) return;
+    a3_state *S = m.S;
+    double *x = malloc(sizeof(double) * S->n_dofs), *c = malloc(sizeof(double) * S->nv);
+    const double R = 2.0;
+    /* the sheet projected vertically onto the sphere of radius R through its centre */
+    for (int v = 0; v < S->nv; v++) {
+        const double u = S->x_ref[3 * v] - 0.5, w = S->x_ref[3 * v + 1] - 0.75;
+        x[3 * v] = u, x[3 * v + 1] = w, x[3 * v + 2] = R - sqrt(R * R - u * u - w * w);
+    }
+    CHECK(a3_curvature(S, x, c) == SB_OK);
+    double mean = 0, dev = 0;
+    int n = 0;
+    for (int v = 0; v < S->nv; v++) {
+        if (S->mesh.vflag[v] & SB_MESH_V_BOUNDARY) { CHECK(c[v] == 0.0); continue; }
+        mean += c[v], n++;
+        dev = fmax(dev, fabs(c[v] - 2.0 / R));
+    }
+    mean /= n;
+    printf("    sphere R = %g: mean |c| %.5f (2/R = %g), largest deviation %.3g over %d interior vertices\n", R, mean,
+           2.0 / R, dev, n);
+    CHECK_REL(mean, 2.0 / R, 0.02);
+    CHECK_MSG(dev < 0.1 * 2.0 / R, "largest deviation %g from 2/R", dev);
+    /* the cylinder of radius 1/kappa: |c| = kappa */
+    rolled(S, 0.5, x);
+    CHECK(a3_curvature(S, x, c) == SB_OK);
+    mean = 0, n = 0, dev = 0;
+    for (int v = 0; v < S->nv; v++)
+        if (!(S->mesh.vflag[v] & SB_MESH_V_BOUNDARY)) mean += c[v], n++, dev = fmax(dev, fabs(c[v] - 0.5));
+    mean /= n;
+    printf("    cylinder R = 2: mean |c| %.5f (1/R = 0.5), largest deviation %.3g\n", mean, dev);
+    CHECK_REL(mean, 0.5, 0.02);
+    CHECK_MSG(dev < 0.05, "largest deviation %g from 1/R", dev);
+    /* flat: zero */
+    CHECK(a3_curvature(S, S->x_ref, c) == SB_OK);
+    for (int v = 0; v < S->nv; v++) CHECK_MSG(fabs(c[v]) < 1e-9, "flat sheet: |c| = %g at vertex %d", c[v], v);
+    free(x); free(c);
+    am_free(&m);
+}
+
+/* Limits that cannot work are refused before any work with a sentence
+ * naming the key (issue 40): decreasing Eq. 23 limits, a coarsening limit
+ * at or above the refinement limit, and more generations than the fully
+ * refined base mesh fits in memory (the estimate op, which runs first). */
+SB_TEST(test_limits_refused)
+{
+    am m;
+    static const struct { const char *set, *key; } bad[] = {
+        { "method.curv_max=1", "method.curv_max" },
+        { "method.coarsen_fraction=1", "method.coarsen_fraction" },
+    };
+    for (int k = 0; k < 2; k++) {
+        const char *sets[] = { bad[k].set, NULL };
+        CHECK_EQ_INT(am_create(&m, 4, sets), SB_ERR_INPUT);
+        CHECK(m.S == NULL);
+        am_free(&m);
+    }
+    /* the same through the estimate op (before create), and the sentence */
+    sb_scene sc;
+    char err[1024];
+    CHECK(sb_scene_parse_string(SCENE, "inline.json", &sc, err, sizeof err) == SB_OK);
+    static const struct { const char *set; int res, ok; const char *key; } cases[] = {
+        { "method.curv_max=1", 4, 0, "method.curv_max = 1 is below method.curv_base = 2" },
+        { "method.coarsen_fraction=1", 4, 0, "method.coarsen_fraction = 1" },
+        { "method.max_generation=20", 64, 0, "method.max_generation = 20" },
+        { "method.max_generation=6", 64, 1, NULL },
+        { "method.coarsen_fraction=0.99", 4, 1, NULL },
+        { "method.curv_max=2", 4, 1, NULL },
+    };
+    for (int k = 0; k < 6; k++) {
+        sb_context ctx;
+        CHECK(sb_context_init(&ctx) == SB_OK);
+        sb_paramset_add(&ctx.params, "method", sb_method_adaptive_sqrt3.params);
+        CHECK(sb_paramset_set(&ctx.params, cases[k].set, err, sizeof err) == SB_OK);
+        sb_method_config cfg = { cases[k].res, 1, &ctx.params, &ctx, 0 };
+        sb_method_size sz;
+        const int rc = sb_method_adaptive_sqrt3.estimate(&sc, &cfg, &sz);
+        if (cases[k].ok) CHECK_MSG(rc == SB_OK, "%s: refused: %s", cases[k].set, ctx.err);
+        else {
+            CHECK_EQ_INT(rc, SB_ERR_INPUT);
+            CHECK_MSG(strstr(ctx.err, cases[k].key) != NULL, "%s: the sentence does not name the key: %s",
+                      cases[k].set, ctx.err);
+            printf("    %s: %s\n", cases[k].set, ctx.err);
+        }
+        sb_context_free(&ctx);
+    }
+    sb_scene_free(&sc);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
@@ -292,6 +390,8 @@ int main(int argc, char **argv)
         SB_CASE(test_adaptive_reaches_full_pattern),
         SB_CASE(test_adaptive_run),
         SB_CASE(test_resume_full_resolution),
+        SB_CASE(test_curvature_sphere_and_cylinder),
+        SB_CASE(test_limits_refused),
         SB_END
     };
     return sb_test_main(argc, argv, cases);

@@ -185,7 +185,8 @@ SB_TEST(every_committed_study_plans)
 {
     const char *files[] = { "bench/studies/default.json", "bench/studies/accuracy.json",
                             "bench/studies/dt_stability.json", "bench/studies/dt_stability_large.json",
-                            "bench/studies/scaling_small.json", "bench/nightly/nightly.json" };
+                            "bench/studies/scaling_small.json", "bench/nightly/nightly.json",
+                            "bench/studies/accuracy_sqrt3.json" };
     for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
         char err[2048];
         sb_study *st = calloc(1, sizeof *st);
@@ -206,13 +207,51 @@ SB_TEST(every_committed_study_plans)
     }
 }
 
+/* a study sizes a run with the parameters the run applies: the scene's
+ * bundled method.* sets first ("methods": {"adaptive_sqrt3": {"set":
+ * {"method.adaptive": 0, "method.max_generation": 2}}}), so the dofs of
+ * sheet_swing are those of the full-resolution mesh, 3 ((n+1)^2 + 2 n^2) on
+ * an n x n base (a split vertex per base triangle), not the base mesh's
+ * 3 (n+1)^2 (issue 40: the study planned them on the base mesh) */
+SB_TEST(a_scenes_bundled_sets_size_its_runs)
+{
+    char err[2048];
+    sb_study *st = calloc(1, sizeof *st);
+    if (!st) return;
+    int rc = sb_study_load("bench/studies/accuracy_sqrt3.json", tmpdir, st, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    if (rc) { free(st); return; }
+    sb_plan p;
+    rc = sb_study_plan(st, &p, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    int full = 0, adaptive = 0;
+    for (int k = 0; rc == 0 && k < p.n; k++) {
+        const sb_plan_run *r = &p.runs[k];
+        if (r->state != SB_PLAN_RUN) continue;
+        const long n = r->res;
+        if (!strcmp(st->scenes[r->scene].name, "sheet_swing")) {
+            full++;
+            CHECK_MSG(r->dofs == 3 * ((n + 1) * (n + 1) + 2 * n * n), "sheet_swing at res %ld planned with %ld dofs", n,
+                      r->dofs);
+        } else {
+            adaptive++;   /* method.adaptive=1: the base mesh the run starts from */
+            CHECK_MSG(r->dofs == 3 * (n + 1) * (n + 1), "sheet_swing_adaptive at res %ld planned with %ld dofs", n,
+                      r->dofs);
+        }
+    }
+    CHECK(full == 4 && adaptive == 3);
+    if (rc == 0) sb_plan_free(&p);
+    sb_study_free(st);
+    free(st);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_study_file_XXXXXX");
     if (!mkdtemp(tmpdir)) return 3;
     if (chdir(sb_test_root()) != 0) return 3;
     static const sb_test_case cases[] = {
-        SB_CASE(study_file_errors_name_file_line_and_column),
+        SB_CASE(study_file_errors_name_file_line_and_column), SB_CASE(a_scenes_bundled_sets_size_its_runs),
         SB_CASE(a_good_study_plans_every_registered_method),
         SB_CASE(a_rule_matches_solver_entries_by_levels), SB_CASE(a_bad_study_runs_nothing),
         SB_CASE(every_committed_study_plans), SB_END,

@@ -19,6 +19,10 @@ DIAG = math.hypot(1.0, 1.5)          # the curtain is 1 m x 1.5 m (bench/scenes/
 FULL = "curtain-full-cholmod"
 PAIRS = [("curtain-adaptive-cholmod", "adaptive"), ("curtain-adaptive-loose-cholmod", "loose")]
 _rest = sys.argv[2:]
+# --triangles: also every step's triangle count (/history/steps/triangles;
+# the paper's Fig. 8 counts triangles), as tri_full and tri_SHORT columns
+TRIANGLES = "--triangles" in _rest
+_rest = [a for a in _rest if a != "--triangles"]
 if _rest:
     PAIRS = []
     while _rest:
@@ -62,16 +66,23 @@ def samples(path):
 
 def main():
     rf = os.path.join(DIR, "records", FULL + ".h5")
+    if not os.path.exists(rf) and os.path.exists(rf + ".partial"):
+        rf += ".partial"   # a run stopped with a checkpoint (run.sh paper): the steps it has done
     t = series(rf, "/history/steps/t")
     df, sf, pf = series(rf, "/history/steps/dofs"), series(rf, "/history/steps/seconds"), samples(rf)
+    tri = {"full": series(rf, "/history/steps/triangles")} if TRIANGLES else {}
     cols, data = [], []
     for tag, short in PAIRS:
         ra = os.path.join(DIR, "records", tag + ".h5")
+        if not os.path.exists(ra) and os.path.exists(ra + ".partial"):
+            ra += ".partial"   # stopped with a checkpoint: the steps it has done
         if not os.path.exists(ra):
             continue
         cols += ["dofs_" + short, "seconds_" + short, "rms_" + short, "max_" + short]
         data.append((series(ra, "/history/steps/dofs"), series(ra, "/history/steps/seconds"), samples(ra)))
-    print(",".join(["step", "t", "dofs_full", "seconds_full"] + cols))
+        if TRIANGLES:
+            tri[short] = series(ra, "/history/steps/triangles")
+    print(",".join(["step", "t", "dofs_full", "seconds_full"] + cols + ["tri_" + k for k in tri]))
     for k in range(len(t)):
         step = k + 1
         if step % 5 and step != len(t) and step != 1:
@@ -79,6 +90,9 @@ def main():
         row = ["%d" % step, "%.6g" % t[k], "%d" % df[k], "%.6g" % sf[k]]
         f = pf.get(step)
         for da, sa, pa in data:
+            if k >= len(da):   # a run with fewer steps (stopped): nothing to compare
+                row += ["", "", "nan", "nan"]
+                continue
             a = pa.get(step)
             rms = mx = float("nan")
             if a and f and len(a) == len(f):
@@ -86,6 +100,7 @@ def main():
                 rms = math.sqrt(sum(x * x for x in d) / len(d)) / DIAG
                 mx = max(d) / DIAG
             row += ["%d" % da[k], "%.6g" % sa[k], "%.6g" % rms, "%.6g" % mx]
+        row += ["%d" % v[k] if k < len(v) else "" for v in tri.values()]
         print(",".join(row))
 
 

@@ -30,9 +30,16 @@ void sb_dofs_cache_free(sb_dofs_cache *c)
     memset(c, 0, sizeof *c);
 }
 
-/* the method.* assignments that reach (scene i, method m) */
+/* the method.* assignments that reach (scene i, method m): the scene's
+ * bundled ones for the method first ("methods": {"M": {"set": ...}}), then
+ * the study's, as `run` applies them (sb_run.c: the scene's, then --set),
+ * so that sizing measures the discretization the run builds (issue 40: a
+ * scene bundling method.adaptive=0 was sized on adaptive_sqrt3's base mesh) */
 static int method_sets(const sb_study *st, int i, int m, sb_paramset *ps, char *why, size_t len)
 {
+    const sb_scene_method *sm = st->scenes[i].scene ? sb_scene_method_find(st->scenes[i].scene, st->methods[m].name) : NULL;
+    for (int j = 0; sm && j < sm->n_sets; j++)
+        if (strncmp(sm->sets[j], "method.", 7) == 0 && sb_paramset_set(ps, sm->sets[j], why, len)) return SB_ERR_INPUT;
     const sb_study_sets *lists[2 + SB_STUDY_MAX_RULES];
     int nl = 0;
     lists[nl++] = &st->sets;

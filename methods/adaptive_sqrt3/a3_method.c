@@ -9,6 +9,9 @@
 #include "sb_surface.h"
 #include "sb_contact_mesh.h"
 #include "sb_context.h"
+#include "sb_memory.h"
+
+#include <limits.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -83,6 +86,57 @@ static int refuse(a3_state *S, const sb_scene *sc)
     return SB_OK;
 }
 
+/* The refinement limits that cannot work (issue 40), refused before any
+ * work with one sentence naming the key: Eq. 23's limits must not decrease
+ * with the generation (the paper: "successively increasing limits"; a
+ * decreasing l_g would refine every triangle above l_base straight to
+ * g_max), and the coarsening limit, coarsen_fraction x l_g (§5.3: "a
+ * fraction of the refinement limit of the same generation"), must lie below
+ * the refinement limit l_g, else the operation a refinement just applied
+ * satisfies its own coarsening test and the mesh can flip between the two at
+ * every adaptation.  SB_OK, or SB_ERR_INPUT with the sentence in buf. */
+static int limits_check(const sb_paramset *ps, char *buf, size_t len)
+{
+    const double lb = pval(ps, "method.curv_base", 2), lm = pval(ps, "method.curv_max", 20);
+    const double cf = pval(ps, "method.coarsen_fraction", 0.5);
+    if (lm < lb) {
+        snprintf(buf, len, "method.curv_max = %g is below method.curv_base = %g: the refinement limits of Eq. 23 "
+                 "must not decrease with the generation (a triangle refined above l_base would be refined on to "
+                 "g_max); choose curv_max >= curv_base", lm, lb);
+        return SB_ERR_INPUT;
+    }
+    if (!(cf < 1.0)) {
+        snprintf(buf, len, "method.coarsen_fraction = %g puts the coarsening limit (coarsen_fraction x l_g) at or "
+                 "above the refinement limit l_g of the same generation, so a refinement could be undone by the "
+                 "next adaptation; choose a fraction below 1", cf);
+        return SB_ERR_INPUT;
+    }
+    return SB_OK;
+}
+
+/* The mesh refined to g_max from the base mesh's triangles and vertices (a
+ * split at every odd generation adds a vertex per triangle and triples
+ * them, the flips after it add none: a3_estimate). */
+static void refined_size(double *nt, double *nv, int gens)
+{
+    for (int g = 0; g < gens; g += 2) {
+        *nv += *nt;
+        *nt *= 3.0;
+    }
+}
+
+static void fill_size(sb_method_size *sz, double nt, double nv, int n_loads)
+{
+    memset(sz, 0, sizeof *sz);
+    sz->levels = 1;
+    sz->bs = 3;
+    sz->nodes[0] = nv;
+    sz->elements[0] = nt + 1.5 * nt;
+    sz->nodes_per_element = 4;
+    sz->stencil = 11;
+    sz->method_bytes = nt * 1500.0 + nv * (260.0 + 24.0 * n_loads);
+}
+
 /* sb_method_type.estimate (sb_memory.h): the mesh create() builds, from the
  * sizes alone (nothing is allocated).  The base mesh has (n+1)(m+1)
  * vertices (and one per cell for `crossed`), 2 triangles per cell (4
@@ -111,22 +165,45 @@ static int a3_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_me
     if (n > SB_SCENE_MAX_RESOLUTION || m > SB_SCENE_MAX_RESOLUTION)
         return sb_error(cfg->ctx, SB_ERR_INPUT, "adaptive_sqrt3: %d x %d cells requested, at most %d per side are "
                         "supported", n, m, SB_SCENE_MAX_RESOLUTION);
+    char msg[512];
+    if (limits_check(ps, msg, sizeof msg)) return sb_error(cfg->ctx, SB_ERR_INPUT, "adaptive_sqrt3: %s", msg);
     const int crossed = (int)pval(ps, "method.mesh", 0) == 2;
-    const int adaptive = (int)pval(ps, "method.adaptive", 1), gens = adaptive ? 0 : (int)pval(ps, "method.max_generation", 6);
-    double cells = (double)n * m, nv = ((double)n + 1) * ((double)m + 1) + (crossed ? cells : 0);
-    double nt = (crossed ? 4.0 : 2.0) * cells;
-    for (int g = 0; g < gens; g += 2) {   /* a split (odd generation) and its flips: a vertex per triangle */
-        nv += nt;
-        nt *= 3.0;
+    const int adaptive = (int)pval(ps, "method.adaptive", 1), gmax = (int)pval(ps, "method.max_generation", 6);
+    const double cells = (double)n * m, nv0 = ((double)n + 1) * ((double)m + 1) + (crossed ? cells : 0);
+    const double nt0 = (crossed ? 4.0 : 2.0) * cells;
+    double nt = nt0, nv = nv0;
+    if (!adaptive) refined_size(&nt, &nv, gmax);
+    fill_size(sz, nt, nv, scene->n_loads);
+    if (adaptive) {
+        /* An adaptive run may refine every triangle to g_max (a curvature
+         * above every limit everywhere), so the fully refined mesh must fit
+         * too: refused here, naming method.max_generation, instead of
+         * running out of memory mid-run (issue 40).  The run's own memory
+         * check then estimates the base mesh the run starts from.  The
+         * sample grid and probes are left out of this bound (small). */
+        double ntf = nt0, nvf = nv0;
+        refined_size(&ntf, &nvf, gmax);
+        sb_method_size szf;
+        fill_size(&szf, ntf, nvf, scene->n_loads);
+        sb_memory_run mr = { scene->time.mode == SB_TIME_DYNAMIC, scene->time.steps, 0, 0, 0 };
+        sb_memory_estimate est, base;
+        sb_memory_estimate_run(sz, &mr, &base);
+        sb_memory_estimate_run(&szf, &mr, &est);
+        const double given = pval(ps, "run.max_memory", 0.0) * 1e9;
+        const double limit = given > 0 ? given : sb_memory_physical();
+        /* a base mesh over the limit is the core's refusal (sb_memory_check) */
+        const int base_fits = !(limit > 0 && base.bytes > limit) && base.dofs <= INT_MAX && base.nnz <= INT_MAX;
+        if (base_fits && (!(ntf * 3.0 <= INT_MAX) || !(est.dofs <= INT_MAX) || !(est.nnz <= INT_MAX) || (limit > 0 && est.bytes > limit))) {
+            char need[32], have[32];
+            sb_memory_format(est.bytes, need, sizeof need);
+            sb_memory_format(limit, have, sizeof have);
+            return sb_error(cfg->ctx, SB_ERR_INPUT, "adaptive_sqrt3: method.max_generation = %d on the %d x %d base mesh "
+                            "allows %.3g triangles (%.3g dofs) when the criterion refines everywhere, which would need "
+                            "about %s of memory (limit %s%s) or exceed the int indices; lower method.max_generation or "
+                            "the base resolution", gmax, n, m, ntf, 3.0 * nvf, need, have,
+                            given > 0 ? ", run.max_memory" : ", the machine's physical memory");
+        }
     }
-    memset(sz, 0, sizeof *sz);
-    sz->levels = 1;
-    sz->bs = 3;
-    sz->nodes[0] = nv;
-    sz->elements[0] = nt + 1.5 * nt;
-    sz->nodes_per_element = 4;
-    sz->stencil = 11;
-    sz->method_bytes = nt * 1500.0 + nv * (260.0 + 24.0 * scene->n_loads);
     return SB_OK;
 }
 
@@ -158,6 +235,8 @@ static int a3_create(void *state, const sb_scene *scene, const sb_method_config 
     S->curv_base = pval(ps, "method.curv_base", 2);
     S->curv_max = pval(ps, "method.curv_max", 20);
     S->coarsen_frac = pval(ps, "method.coarsen_fraction", 0.5);
+    char msg[512];
+    if (limits_check(ps, msg, sizeof msg)) return a3_fail(S, SB_ERR_INPUT, "%s", msg);
     /* Eq. 9 from the scene's material (mapping: a3.h) */
     const sb_material_spec *mt = &scene->material;
     const double h = mt->thickness;
