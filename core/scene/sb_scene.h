@@ -160,6 +160,13 @@ typedef struct sb_bc {
     int ramp_steps;          /* moving: 0 = all steps */
     sb_schedule schedule;    /* moving: n > 0 replaces the ramp (sb_schedule_factor) */
     int clamp_tangent;       /* moving: also prescribe the (rotated) tangents */
+    /* moving point, "slide" (docs/scene_format.md "Sliding pins"): the pinned
+     * material point runs from the "at" point (st of parts[0]) to slide_st as
+     * the motion factor runs from 0 to 1, and is held by a penalty spring of
+     * slide_stiffness N/m at its moved reference position (core sb_pin.c) */
+    int slide;
+    double slide_xi[2], slide_st[2];
+    double slide_stiffness;
 } sb_bc;
 
 /* ---- time ------------------------------------------------------------- */
