@@ -7,7 +7,7 @@ curve of bench/bhem/lateral_curve.py (docs/lateral_buckling.md).
     python3 bench/bhem/lateral.py scenes                 # writes the grid's scenes (results/bhem/lateral/scenes/)
     python3 bench/bhem/lateral.py run BIN METHOD [--solver S] [--max-runs N] [--grid small|full]
     python3 bench/bhem/lateral.py table                  # markdown rows from the committed summaries
-    python3 bench/bhem/lateral.py plot BIN               # results/bhem/lateral/verdicts.png (gnuplot)
+    python3 bench/bhem/lateral.py plot [METHOD_SOLVER]   # results/bhem/lateral/verdicts_METHOD_SOLVER.png (gnuplot)
 
 The plate: length L = 1 m along xi1 (clamped at xi1 = 0), width w along xi2,
 h = 2 mm, Y = 1e7 Pa, nu = 0.3 (Romero et al.'s own values are not available
@@ -137,12 +137,74 @@ def results():
     rows = []
     for f in sorted(glob.glob(os.path.join(OUT, "*", "w*_G[0-9][0-9].json"))):
         method = os.path.basename(os.path.dirname(f))      # METHOD_SOLVER
+        if method == "scenes":
+            continue
         t = os.path.basename(f)[:-5]
         r = int(t[1:4]) / 100.0
         g = int(t.split("_G")[1])
         d = load(method, t)
         rows.append((method, r, g, d))
     return rows
+
+
+def curve_points():
+    """(w/L, Gamma*_cr) of the committed master curve"""
+    pts = []
+    for line in open(os.path.join(OUT, "master_curve.csv")):
+        if line[0].isdigit():
+            a, b, _ = line.split(",")
+            pts.append((float(a), float(b)))
+    return pts
+
+
+def curve_at(r):
+    pts = curve_points()
+    for (a0, b0), (a1, b1) in zip(pts, pts[1:]):
+        if a0 <= r <= a1:
+            return b0 + (b1 - b0) * (r - a0) / (a1 - a0)
+    return float("nan")
+
+
+def plot(config, png, gnuplot="gnuplot"):
+    """the verdicts of one METHOD_SOLVER over the master curve (gnuplot PNG)"""
+    import tempfile
+    rows = [(r, g, verdict(d)) for m, r, g, d in results() if m == config]
+    if not rows:
+        return False
+    with tempfile.TemporaryDirectory() as tmp:
+        files = {}
+        for v in ("buckled", "flat", None):
+            f = os.path.join(tmp, "%s.dat" % v)
+            with open(f, "w") as o:
+                for r, g, vv in rows:
+                    if vv == v:
+                        o.write("%g %g\n" % (r, g))
+                o.write("\n")
+            files[v] = f
+        cf = os.path.join(tmp, "curve.dat")
+        with open(cf, "w") as o:
+            for a, b in curve_points():
+                if a <= 0.6:
+                    o.write("%g %g\n" % (a, b))
+        script = """set terminal pngcairo size 720,400 font ",10"
+set output '%s'
+set xlabel 'w/L'
+set ylabel 'Gamma*'
+set xrange [0:0.6]
+set yrange [11:25]
+set key outside right
+set title 'Lateral buckling, %s: verdicts over the master curve'
+plot '%s' w filledcurves y1=11 lc rgb '#fde0c5' t 'flat (theory)', \\
+     '%s' w filledcurves y1=25 lc rgb '#c7eae5' t 'buckled (theory)', \\
+     '%s' w l lw 2 lc rgb 'black' t 'Gamma*_cr(w/L)', \\
+     '%s' w p pt 7 ps 1.2 lc rgb '#01665e' t 'run: buckled', \\
+     '%s' w p pt 5 ps 1.0 lc rgb '#b35806' t 'run: flat', \\
+     '%s' w p pt 2 ps 1.2 lc rgb 'red' t 'run: not converged'
+""" % (png, config.replace("_", " "), cf, cf, cf, files["buckled"], files["flat"], files[None])
+        sp = os.path.join(tmp, "p.gp")
+        with open(sp, "w") as o:
+            o.write(script)
+        return subprocess.run([gnuplot, sp]).returncode == 0
 
 
 if __name__ == "__main__":
@@ -160,6 +222,9 @@ if __name__ == "__main__":
             grid = a[a.index("--grid") + 1]
         solver = a[a.index("--solver") + 1] if "--solver" in a else "tr"
         sys.exit(run(sys.argv[2], sys.argv[3], mr, grid, solver))
+    elif cmd == "plot":
+        cfg = sys.argv[2] if len(sys.argv) > 2 else "bhem_tr"
+        sys.exit(0 if plot(cfg, os.path.join(OUT, "verdicts_%s.png" % cfg)) else 1)
     else:
         print(__doc__)
         sys.exit(2)
