@@ -185,7 +185,8 @@ def plot(config, png, gnuplot="gnuplot"):
         with open(cf, "w") as o:
             for a, b in curve_points():
                 if a <= 0.6:
-                    o.write("%g %g\n" % (a, b))
+                    # second column: B = D w (anticlastic curvature prevented), Gamma*_cr / sqrt(1 - nu^2)
+                    o.write("%g %g %g\n" % (a, b, b / math.sqrt(1 - NU * NU)))
         script = """set terminal pngcairo size 720,400 font ",10"
 set output '%s'
 set xlabel 'w/L'
@@ -194,13 +195,14 @@ set xrange [0:0.6]
 set yrange [11:25]
 set key outside right
 set title 'Lateral buckling, %s: verdicts over the master curve'
-plot '%s' w filledcurves y1=11 lc rgb '#fde0c5' t 'flat (theory)', \\
-     '%s' w filledcurves y1=25 lc rgb '#c7eae5' t 'buckled (theory)', \\
-     '%s' w l lw 2 lc rgb 'black' t 'Gamma*_cr(w/L)', \\
+plot '%s' u 1:2 w filledcurves y1=11 lc rgb '#fde0c5' t 'flat (theory)', \\
+     '%s' u 1:2 w filledcurves y1=25 lc rgb '#c7eae5' t 'buckled (theory)', \\
+     '%s' u 1:2 w l lw 2 lc rgb 'black' t 'Gamma*_cr(w/L)', \\
+     '%s' u 1:3 w l lw 1 dt 2 lc rgb 'black' t 'with B = D w', \\
      '%s' w p pt 7 ps 1.2 lc rgb '#01665e' t 'run: buckled', \\
      '%s' w p pt 5 ps 1.0 lc rgb '#b35806' t 'run: flat', \\
      '%s' w p pt 2 ps 1.2 lc rgb 'red' t 'run: not converged'
-""" % (png, config.replace("_", " "), cf, cf, cf, files["buckled"], files["flat"], files[None])
+""" % (png, config.replace("_", " "), cf, cf, cf, cf, files["buckled"], files["flat"], files[None])
         sp = os.path.join(tmp, "p.gp")
         with open(sp, "w") as o:
             o.write(script)

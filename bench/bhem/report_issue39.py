@@ -136,6 +136,16 @@ def locking_section():
     P("\nThe free corners: (0,0) and (1,1), which hang after the pins have slid to (1,0) and (0,1) "
       "(symmetric; (0,0) shown).  Paper, Table 2: t_int = 3.38 s and t_obj = 4.37 s per step (dofs not given, "
       "10 × 10 patches, with self-collision, i5-13600KF); ours has no CCD (t_obj not measured).")
+    pics = [(t, k) for t in ("bhem_r10", "linear_fem_r15") for k in (250, 1000)
+            if os.path.exists(os.path.join("results/bhem/images", "locking_%s_s%d.png" % (t, k)))]
+    if pics:
+        P("\n| " + " | ".join("![%s step %d](bhem/images/locking_%s_s%d.png)" % (t, k, t, k) for t, k in pics) + " |")
+        P("|" + "---|" * len(pics))
+        P("| " + " | ".join("%s, step %d (%s)" % (t.replace("_r", " res "), k, "t = 0.5 s, before the pins slide"
+                                                   if k == 250 else "t = 2 s, pins at (1,0) and (0,1)")
+                            for t, k in pics) + " |")
+        P("\nDrawn by `shellbench render REC --step K --size 240x180 --spp 4 --color strain` from the runs' records "
+          "(not committed, 22 MB each).")
     by = {tag: d for tag, _, d, _ in runs}
 
     def dist(a, b):
