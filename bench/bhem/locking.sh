@@ -31,9 +31,14 @@ for tag in ${@:-$ALL}; do
   [ -s "$f" ] && continue
   method=${tag%_r*}
   res=${tag##*_r}
+  # the finer runs are the shape reference: no strain bound (their pins
+  # stretch the sheet without bound as the mesh resolves the point: bhem 20x20
+  # stops at step 227 with strain 4.0 under run.strain_max = 4); their largest
+  # strain is reported beside them
+  case $tag in *_r10|*_r15) smax=4 ;; *) smax=0 ;; esac
   echo "== $tag" >&2
   /usr/bin/time -f '{"cpu_user": %U, "cpu_sys": %S, "wall": %e, "max_rss_kb": %M}' -o "$OUT/$tag.time.json" \
     nice -n 10 "$BIN" run --scene "$SCENE" --method "$method" --solver lsnewton --res "$res" \
-    --out "$OUT/$tag.h5" --summary json --quiet --set run.strain_max=4 > "$f.tmp" 2> "$OUT/$tag.log"
+    --out "$OUT/$tag.h5" --summary json --quiet --set run.strain_max=$smax > "$f.tmp" 2> "$OUT/$tag.log"
   mv "$f.tmp" "$f"
 done
