@@ -5,7 +5,7 @@ Gamma* and w/L, the runs, and the buckled/flat verdicts drawn over the master
 curve of bench/bhem/lateral_curve.py (docs/lateral_buckling.md).
 
     python3 bench/bhem/lateral.py scenes                 # writes the grid's scenes (results/bhem/lateral/scenes/)
-    python3 bench/bhem/lateral.py run BIN METHOD [--solver S] [--max-runs N] [--grid small|full]
+    python3 bench/bhem/lateral.py run BIN METHOD [--solver S] [--max-runs N] [--grid small|pair|full]
     python3 bench/bhem/lateral.py table                  # markdown rows from the committed summaries
     python3 bench/bhem/lateral.py plot [METHOD_SOLVER]   # results/bhem/lateral/verdicts_METHOD_SOLVER.png (gnuplot)
 
@@ -42,6 +42,7 @@ D = Y * H ** 3 / (12 * (1 - NU * NU))
 GRIDS = {
     "full": ([0.1, 0.2, 0.3, 0.4, 0.5], list(range(12, 25))),
     "small": ([0.2, 0.4], [12, 16, 20, 24]),
+    "pair": ([0.2, 0.4], list(range(12, 25))),
 }
 # patches (or elements) per metre along each side, per method: bhem as the
 # paper (20 per metre); the others about the same dofs
