@@ -110,8 +110,8 @@ def locking_section():
     P = out.append
     runs = [(tag, name, _load(os.path.join(LOCK, tag + ".json")), _load(os.path.join(LOCK, tag + ".time.json")))
             for tag, name in LOCK_RUNS]
-    runs = [r for r in runs if r[2]]
-    if not runs:
+    runs = [r for r in runs if r[2] or r[0] in ("bhem_r20", "linear_fem_r31")]
+    if not any(r[2] for r in runs):
         return out
     P("\n### Locking: sliding pins (BHEM Fig. 21, Table 2 \"Locking\")\n")
     P("`bench/bhem/scenes/locking.json` (`bench/bhem/locking.sh`): 1 m sheet, Y = 1e4 Pa, ν = 0.3, h = 1 mm, "
@@ -126,6 +126,8 @@ def locking_section():
       "| max Green strain | pin violation (m) | Φ_E(x_end) − Φ_E(X) (J) | centre z | free corners (x, y, z) |")
     P("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for tag, name, d, t in runs:
+        if not d:
+            continue
         cpu = (t["cpu_user"] + t["cpu_sys"]) / max(d["steps"], 1) if t else float("nan")
         pc = d["probes"]
         corner = pc["corner_00"]["position"]
@@ -152,28 +154,49 @@ def locking_section():
     def dist(a, b):
         pa, pb = a["probes"]["corner_00"]["position"], b["probes"]["corner_00"]["position"]
         return math.sqrt(sum((x - y) ** 2 for x, y in zip(pa, pb)))
-    if "bhem_r20" in by:
-        ref = by["bhem_r20"]
-        P("\nAgainst bhem 20² (the finest run) — the hanging corner's distance and the potential change:\n")
-        P("| run | dofs | corner distance to bhem 20² (m) | Φ_E change / bhem 20²'s |")
-        P("|---|---|---|---|")
+    pr = {}
+    pf = os.path.join(LOCK, "probes.csv")
+    if os.path.exists(pf):
+        for row in csv.DictReader(open(pf)):
+            pr[(row["run"], int(row["step"]), row["probe"])] = (float(row["x"]), float(row["y"]), float(row["z"]))
+    steps = sorted({s for (t, s, n) in pr if t == "bhem_r20"})
+    if steps:
+        def dist(t, s):
+            a, b = pr.get((t, s, "corner_00" if s > 250 else "corner_01")), pr.get(("bhem_r20", s, "corner_00" if s > 250 else "corner_01"))
+            return math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b))) if a and b else None
+        P("\nThe shape against bhem 20² (the finest run), step by step (`results/bhem/locking/probes.csv`, "
+          "extracted from the records by `bench/bhem/locking_probes.py`; a reference still running is read where "
+          "it got to): the distance of a hanging corner from bhem 20²'s — (0,1) at step 250, hanging from the "
+          "diagonal pins before they slide, (0,0) afterwards — and the centre's height.\n")
+        P("| run | dofs | " + " | ".join("corner distance, step %d (cm) | centre z, step %d (m)" % (s, s) for s in steps) + " |")
+        P("|---|---|" + "---|---|" * len(steps))
         for tag, name, d, _ in runs:
-            P("| %s | %d | %.4f | %.3f |" % (name, d["dofs"], dist(d, ref), d["potential_change"] / ref["potential_change"]))
+            cells = []
+            for s in steps:
+                dd = dist(tag, s)
+                c = pr.get((tag, s, "center"))
+                cells.append("%s | %s" % ("%.2f" % (100 * dd) if dd is not None else "—", "%.3f" % c[2] if c else "—"))
+            if any(not c.startswith("— | —") for c in cells):
+                P("| %s | %s | %s |" % (name + ("" if d else " (running, read from its partial record)"),
+                                        d["dofs"] if d else "—", " | ".join(cells)))
         b10, l15, l31 = by.get("bhem_r10"), by.get("linear_fem_r15"), by.get("linear_fem_r31")
-        if b10 and l15:
-            db, dl = dist(b10, ref), dist(l15, ref)
-            rb, rl = b10["potential_change"] / ref["potential_change"], l15["potential_change"] / ref["potential_change"]
-            P("\n**Reading.**  At the same number of dofs (%d and %d) the hanging corner of bhem 10² ends %.1f cm "
-              "from bhem 20²'s and linear_fem's %.1f cm; bhem 10² releases %.1f %% of bhem 20²'s potential energy, "
-              "linear_fem %.1f %%%s.  %s" % (
-                  b10["dofs"], l15["dofs"], 100 * db, 100 * dl, 100 * rb, 100 * rl,
-                  (" (linear_fem at res 31, %d dofs: %.1f cm, %.1f %%)" % (l31["dofs"], 100 * dist(l31, ref),
-                                                                        100 * l31["potential_change"] / ref["potential_change"])
-                   if l31 else ""),
-                  "A discretization that locks is too stiff: it hangs higher and releases less energy than the "
-                  "converged sheet; these two numbers are how much of that each shows here.  Both are sheets of "
-                  "a soft material held at points, whose strain at the pins grows as the mesh resolves them "
-                  "(the largest strain column), so the comparison is of the global shape."))
+        last = steps[-1]
+        if b10 and l15 and dist("bhem_r10", last) is not None and dist("linear_fem_r15", last) is not None:
+            db, dl = dist("bhem_r10", last), dist("linear_fem_r15", last)
+            d31 = dist("linear_fem_r31", last)
+            cz = lambda t: pr[(t, last, "center")][2] - pr[("bhem_r20", last, "center")][2]  # noqa: E731
+            ctr = "; the centre hangs %.1f cm (bhem 10²) and %.1f cm (linear_fem) above bhem 20²'s%s" % (
+                100 * cz("bhem_r10"), 100 * cz("linear_fem_r15"),
+                (", linear_fem res 31 %.1f cm" % (100 * cz("linear_fem_r31"))) if ("linear_fem_r31", last, "center") in pr else "")
+            head = ("\n**Reading** (step %d, the latest step bhem 20² has reached).  At the same number of dofs "
+                    "(%d and %d) bhem 10²'s hanging corner is %.1f cm from bhem 20²'s and linear_fem's %.1f cm%s" % (
+                        last, b10["dofs"], l15["dofs"], 100 * db, 100 * dl,
+                        ("; linear_fem at res 31 (%s dofs) %.1f cm" % (l31["dofs"] if l31 else "5.8k", 100 * d31))
+                        if d31 is not None else ""))
+            P(head + ctr + ".  A discretization that locks is too stiff: its sheet hangs higher and folds less "
+              "freely than the converged one; the distances above are how much of that each shows.  Both sheets are "
+              "of a soft material held at points, whose strain at the pins grows as the mesh resolves them (the "
+              "largest-strain column), so the comparison is of the global shape.")
     return out
 
 
@@ -237,6 +260,30 @@ def needles_section():
     return out
 
 
+def locking_compare():
+    """(last step bhem 20^2 reached of 250/500/750/1000, dist(tag), centre gap(tag)) from probes.csv, or None"""
+    pf = os.path.join(LOCK, "probes.csv")
+    if not os.path.exists(pf):
+        return None
+    pr = {}
+    for row in csv.DictReader(open(pf)):
+        pr[(row["run"], int(row["step"]), row["probe"])] = (float(row["x"]), float(row["y"]), float(row["z"]))
+    steps = sorted({s for (t, s, n) in pr if t == "bhem_r20"})
+    if not steps:
+        return None
+    last = steps[-1]
+    corner = "corner_00" if last > 250 else "corner_01"
+
+    def dist(t):
+        a, b = pr.get((t, last, corner)), pr.get(("bhem_r20", last, corner))
+        return math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b))) if a and b else None
+
+    def cz(t):
+        a, b = pr.get((t, last, "center")), pr.get(("bhem_r20", last, "center"))
+        return a[2] - b[2] if a and b else float("nan")
+    return last, dist, cz
+
+
 def summary_section():
     """one row per paper item: the paper's number, ours, the ratio, the setting's differences"""
     out = []
@@ -267,15 +314,16 @@ def summary_section():
           % (cpu, b10["seconds"]["total"] / max(b10["steps"], 1), b10["dofs"], b10["status"], cpu / 3.38))
         P("| Table 2, Locking, t_obj | 4.37 s per CCD step | not measured: no CCD in our scene | — | self-collision "
           "of bhem is refused under the impulse model (docs/contact.md) |")
-        b20 = lk["bhem_r20"][0]
+        cmp_ = locking_compare()
         l15 = lk["linear_fem_r15"][0]
-        if b20 and l15:
-            def dist(a, b):
-                pa, pb = a["probes"]["corner_00"]["position"], b["probes"]["corner_00"]["position"]
-                return math.sqrt(sum((x - y) ** 2 for x, y in zip(pa, pb)))
-            P("| Fig. 21, locking at 10² patches | \"folds without locking\" (picture) | hanging corner %.1f cm from "
-              "bhem 20²'s; linear_fem at %d dofs: %.1f cm | — | no self-collision; 1 m sheet assumed |"
-              % (100 * dist(b10, b20), l15["dofs"], 100 * dist(l15, b20)))
+        if cmp_ and l15:
+            last, dist, cz = cmp_
+            if dist("bhem_r10") is not None and dist("linear_fem_r15") is not None:
+                P("| Fig. 21, locking at 10² patches | \"folds without locking\" (picture) | step %d: hanging corner "
+                  "%.1f cm and centre %.1f cm from bhem 20²'s; linear_fem at %d dofs: %.1f cm and %.1f cm | — | no "
+                  "self-collision; 1 m sheet and the slide schedule assumed |" % (
+                      last, 100 * dist("bhem_r10"), 100 * cz("bhem_r10"), l15["dofs"], 100 * dist("linear_fem_r15"),
+                      100 * cz("linear_fem_r15")))
     n16 = _load(os.path.join(NEEDLES, "r16.json"))
     n2 = _load(os.path.join(NEEDLES, "exp_dt_2ms_paper.json"))
     if n16 and n2:
