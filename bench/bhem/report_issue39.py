@@ -317,8 +317,9 @@ def summary_section():
           "machine), %d dofs, %s | %.4f (CPU) | no self-collision (the paper's run has it, and its t_int is marked ‡); "
           "size 1 m and the slide schedule assumed; penalty pins; one core of a shared 2-core EPYC vs an i5-13600KF |"
           % (cpu, b10["seconds"]["total"] / max(b10["steps"], 1), b10["dofs"], b10["status"], cpu / 3.38))
-        P("| Table 2, Locking, t_obj | 4.37 s per CCD step | not measured: no CCD in our scene | — | self-collision "
-          "of bhem is refused under the impulse model (docs/contact.md) |")
+        P("| Table 2, Locking, t_obj | 4.37 s per CCD step | not measured: our scene has no collision handling | — | "
+          "bhem's impulse pipeline refuses self-collision (docs/contact.md); the barrier model's self-contact was "
+          "not tried on this scene |")
         cmp_ = locking_compare(250)
         l15 = lk["linear_fem_r15"][0]
         b20 = lk["bhem_r20"][0]
