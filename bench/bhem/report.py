@@ -215,4 +215,8 @@ if rows:
       "docs/render.md).  Ray tracing the patches, the paper's Table 1: results/bhem_table1.md.\n")
     out.extend(rows)
 
+# ---- issue 39: lateral buckling (Fig. 20), locking (Fig. 21), needles at 16² ----
+from report_issue39 import sections as issue39_sections  # noqa: E402
+out.extend(issue39_sections())
+
 print("\n".join(out))

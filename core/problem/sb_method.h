@@ -35,6 +35,9 @@ enum {
                                               (Hermite): honours a moving bc's "derivative" key */
 };
 
+/* The most terms point_terms may return (16 Hermite/B-spline functions). */
+#define SB_POINT_TERMS_MAX 16
+
 typedef struct sb_method_config {
     int res;                    /* finest resolution (elements per side); 0 = method default */
     int levels;                 /* levels in the hierarchy (>= 1) */
@@ -188,6 +191,13 @@ typedef struct sb_method_type {
      * contact.model = "impulse" (refused at set-up with a sentence). */
     int  (*impulse_response)(void *state, const struct sb_scene *scene, double dt, double t1, const double *x0,
                              double *x1, struct sb_impulse_stats *st);
+    /* optional (sliding pins, core/problem/sb_pin.h): the basis of `level`
+     * at grid parameter st as terms x(st) = sum_a w[a] (x[dof[a]], x[dof[a]+1],
+     * x[dof[a]+2]), at most SB_POINT_TERMS_MAX, all within one element of the
+     * level's pattern.  Returns the number of terms, or SB_ERR_INPUT when st
+     * lies outside the domain.  NULL: the method holds nodes only (a scene
+     * with a sliding pin is refused with a sentence). */
+    int  (*point_terms)(const void *state, int level, const double st[2], int *dof, double *w);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

@@ -4,6 +4,7 @@
 #include "sb_context.h"
 #include "sb_galerkin.h"
 #include "sb_contact.h"
+#include "sb_pin.h"
 #include "sb_self.h"
 #include "sb_impulse.h"
 
@@ -27,6 +28,7 @@ typedef struct level_data {
     double *tmp;              /* n */
     sb_galerkin *gal;         /* H = I^T H_{l+1} I (built on first use) */
     sb_contact *contact;      /* barrier + friction of the level (NULL: the scene has no obstacles) */
+    sb_pins *pins;            /* sliding pins of the level (NULL: none; sb_pin.h) */
 } level_data;
 
 struct sb_problem {
@@ -52,6 +54,7 @@ static void level_free(sb_problem *p, level_data *L)
 {
     (void)p;
     sb_contact_free(L->contact);
+    sb_pins_free(L->pins);
     sb_galerkin_free(L->gal);
     sb_linsolve_free(L->lin);
     sb_matrix_free(&L->H);
@@ -141,6 +144,25 @@ static int contact_create(sb_problem *p)
     return SB_OK;
 }
 
+/* Sliding pins (sb_pin.h) on every level; none for a scene without them. */
+static int pins_create(sb_problem *p)
+{
+    for (int l = 0; l < p->nl; l++) {
+        sb_pins_free(p->lv[l].pins);
+        p->lv[l].pins = NULL;
+        int rc = sb_pins_create(p->ctx, p->mt, p->ms, p->scene, l, &p->lv[l].pins);
+        if (rc) return rc;
+    }
+    return SB_OK;
+}
+
+double sb_problem_pin_violation(const sb_problem *p, const double *x, int *n_pins)
+{
+    const level_data *L = &p->lv[p->nl - 1];
+    *n_pins = sb_pins_count(L->pins);
+    return sb_pins_violation(L->pins, x);
+}
+
 int sb_problem_create(sb_context *ctx, const sb_method_type *mt, void *ms, const sb_scene *scene,
                       sb_problem **out)
 {
@@ -167,6 +189,7 @@ int sb_problem_create(sb_context *ctx, const sb_method_type *mt, void *ms, const
     for (int l = 0; l < p->nl; l++)
         if ((rc = level_setup(p, l))) goto fail;
     if ((rc = contact_create(p))) goto fail;
+    if ((rc = pins_create(p))) goto fail;
     *out = p;
     return SB_OK;
 fail:
@@ -189,6 +212,7 @@ int sb_problem_rebuild(sb_problem *p)
     int rc = SB_OK;
     for (int l = 0; l < p->nl && rc == SB_OK; l++) rc = level_setup(p, l);
     if (rc == SB_OK) rc = contact_create(p);   /* the sample points follow the new mesh */
+    if (rc == SB_OK) rc = pins_create(p);
     return rc;
 }
 
@@ -492,6 +516,9 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
     if (rc) return rc < 0 ? rc : sb_error(p->ctx, SB_ERR_INTERNAL, "method %s: set_step failed", p->mt->name);
     for (int l = 0; l < p->nl; l++) {
         level_data *L = &p->lv[l];
+        if (L->pins && (rc = sb_pins_set_step(L->pins, si)))
+            return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "method %s: a sliding pin's point at step %d "
+                            "could not be evaluated on level %d", p->mt->name, si->step, l);
         const sb_dirichlet *bc = p->mt->dirichlet ? p->mt->dirichlet(p->ms, l) : NULL;
         int first = si->step <= 1 || L->bc == NULL;
         if (bc && (first || bc->n != L->bc->n)) {
@@ -635,6 +662,9 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
     double e = 0.0;
     int rc = p->mt->energy(p->ms, level, x, &e, g, H);
     if (rc < 0) return rc;
+    if (L->pins && rc == SB_OK && sb_pins_energy(L->pins, x, &e, g, H))
+        return sb_error(p->ctx, SB_ERR_INTERNAL, "method %s: a sliding pin of level %d couples dofs outside the "
+                        "method's sparsity pattern", p->mt->name, level);
     if (L->contact && rc == SB_OK) {
         /* contact barrier and lagged friction (docs/contact.md), timed as
          * the event "collide" (also inside this evaluation's own time) */

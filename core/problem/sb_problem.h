@@ -109,6 +109,9 @@ int  sb_problem_galerkin_prepare(sb_problem *p, int lc);
  * outside every obstacle (1 when the scene has no obstacles); solvers scale
  * their trial steps by it.  Counted as the event "collide". */
 int    sb_problem_has_contact(const sb_problem *p);
+/* max |x(st(f)) - p(f)| of the finest level's sliding pins at x (sb_pin.h),
+ * their number in *n_pins (0: none, and 0 is returned) */
+double sb_problem_pin_violation(const sb_problem *p, const double *x, int *n_pins);
 /* contact.model = "impulse" (docs/contact.md): whether the run calls the
  * method's impulse_response after every accepted step, and that call on
  * the finest level (x0 at t_n, x1 at t1 corrected in place; timed as event

@@ -37,11 +37,19 @@ void sb_run_judge_penalty(run_state *R)
 {
     sb_run *rec = &R->rec;
     rec->has_penalty = 0;
-    if (!R->mt->penalty_violation) return;
     sb_penalty_report pr;
+    memset(&pr, 0, sizeof pr);
     const int F = sb_problem_finest(R->prob);
-    int rc = R->mt->penalty_violation(R->ms, F, R->x, &pr);
-    if (rc < 0 || pr.points == 0) return;
+    int rc = R->mt->penalty_violation ? R->mt->penalty_violation(R->ms, F, R->x, &pr) : SB_OK;
+    if (rc < 0) return;
+    /* sliding pins (sb_pin.h) are penalty constraints too, whatever the method */
+    int n_pins = 0;
+    const double pin_v = sb_problem_pin_violation(R->prob, R->x, &n_pins);
+    if (n_pins) {
+        pr.points += n_pins;
+        pr.position_max = fmax(pr.position_max, pin_v);
+    }
+    if (pr.points == 0) return;
     double u = 0.0;
     for (int i = 0; i < rec->n_samples; i++) {
         const double *a = rec->sample_pos + 3 * i, *b = rec->sample_ref + 3 * i;

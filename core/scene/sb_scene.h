@@ -166,6 +166,13 @@ typedef struct sb_bc {
                                 of Hermite elements only (BHEM paper §4.2, "Neumann constraints"):
                                 methods without SB_METHOD_NODAL_DERIVATIVES refuse the scene before
                                 any work (sb_run_scene_method_check) */
+    /* moving point, "slide" (docs/scene_format.md "Sliding pins"): the pinned
+     * material point runs from the "at" point (st of parts[0]) to slide_st as
+     * the motion factor runs from 0 to 1, and is held by a penalty spring of
+     * slide_stiffness N/m at its moved reference position (core sb_pin.c) */
+    int slide;
+    double slide_xi[2], slide_st[2];
+    double slide_stiffness;
 } sb_bc;
 
 /* ---- time ------------------------------------------------------------- */

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "sb_geometry.h"
 #include "sb_scene_json.h"
 
 #define MAX_RAMP 1000000L
@@ -124,6 +125,50 @@ static int parse_derivative(sbj_ctx *c, const json_t *o, sb_bc *bc)
     return SB_OK;
 }
 
+/* "slide": {"to": [x, y], "stiffness": k} on a moving condition with one
+ * point in "at" and no "on" (docs/scene_format.md "Sliding pins"). */
+#define MAX_PIN_STIFFNESS 1e15
+static int parse_slide(sbj_ctx *c, const json_t *o, const sb_domain *d, sb_bc *bc)
+{
+    static const char *const keys[] = { "to", "stiffness", NULL };
+    json_t *sl;
+    int r = sbj_get_object(c, o, "slide", 0, &sl);
+    if (r || !sl) return r;
+    if (bc->n_parts != 1 || bc->parts[0].kind != SB_PART_POINT)
+        return sbj_fail(c, "slide", 1, "a sliding pin needs exactly one point in \"at\" and no \"on\" (got %d %s%s)",
+                        bc->n_parts, bc->n_parts == 1 && bc->parts[0].kind != SB_PART_POINT ? "edge" : "part",
+                        bc->n_parts == 1 ? "" : "s");
+    if (bc->clamp_tangent || bc->derivative)
+        return sbj_fail(c, "slide", 1, "\"slide\" and \"%s\" exclude each other (a sliding pin holds the "
+                        "position only)", bc->clamp_tangent ? "clamp_tangent" : "derivative");
+    size_t mark = sbj_push(c, "slide");
+    json_t *to = json_object_get(sl, "to");
+    if (!(r = sbj_check_keys(c, sl, keys))) {
+        if (!to) r = sbj_fail(c, NULL, 0, "missing required key \"to\" (the material point the pin slides to)");
+        else {
+            size_t m2 = sbj_push(c, "to");
+            r = sbj_parse_point(c, to, d, bc->slide_xi, bc->slide_st);
+            sbj_pop(c, m2);
+        }
+    }
+    if (!r) r = sbj_get_number(c, sl, "stiffness", 1, &bc->slide_stiffness, NULL);
+    if (!r && !(bc->slide_stiffness > 0.0 && bc->slide_stiffness <= MAX_PIN_STIFFNESS))
+        r = sbj_fail(c, "stiffness", 0, "must be in (0, %g] N/m, got %g", MAX_PIN_STIFFNESS, bc->slide_stiffness);
+    /* the pin runs along the straight segment in (s, t): every point of it
+       must lie in the domain (an L-shape's notch may cut it) */
+    for (int k = 1; !r && k < 64; k++) {
+        const double f = k / 64.0;
+        const double st[2] = { bc->parts[0].st[0] + f * (bc->slide_st[0] - bc->parts[0].st[0]),
+                               bc->parts[0].st[1] + f * (bc->slide_st[1] - bc->parts[0].st[1]) };
+        if (!sb_domain_contains_st(d, st[0], st[1]))
+            r = sbj_fail(c, "to", 0, "the pin's path from (%g, %g) to (%g, %g) leaves the domain", bc->parts[0].xi[0],
+                         bc->parts[0].xi[1], bc->slide_xi[0], bc->slide_xi[1]);
+    }
+    sbj_pop(c, mark);
+    bc->slide = r == SB_OK;
+    return r;
+}
+
 static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_time_spec *tm, sb_bc *bc)
 {
     static const char *const kinds[] = { "fixed", "clamped", "symmetry", "moving", "free", NULL };
@@ -131,7 +176,7 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_ti
     static const char *const k_clamp[] = { "type", "on", "at", NULL };
     static const char *const k_sym[] = { "type", "on", "normal", NULL };
     static const char *const k_mov[] = { "type", "on", "at", "components", "translation", "rotation",
-                                         "ramp_steps", "schedule", "clamp_tangent", "derivative", NULL };
+                                         "ramp_steps", "schedule", "clamp_tangent", "derivative", "slide", NULL };
     static const char *const k_free[] = { "type", "on", NULL };
     static const char *const *const keys[] = { k_fixed, k_clamp, k_sym, k_mov, k_free };
     static const char *const axes[] = { "x", "y", "z", NULL };
@@ -156,8 +201,8 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_ti
         if ((r = parse_components(c, o, &bc->components))) return r;
         if ((r = sbj_get_vec(c, o, "translation", 0, 3, bc->translation, &has_t))) return r;
         if ((r = parse_rotation(c, o, bc))) return r;
-        if (!has_t && !json_object_get(o, "rotation"))
-            return sbj_fail(c, NULL, 0, "a moving boundary needs \"translation\" and/or \"rotation\"");
+        if (!has_t && !json_object_get(o, "rotation") && !json_object_get(o, "slide"))
+            return sbj_fail(c, NULL, 0, "a moving boundary needs \"translation\", \"rotation\" and/or \"slide\"");
         if ((r = sbj_get_int(c, o, "ramp_steps", 0, 0, MAX_RAMP, &ramp))) return r;
         bc->ramp_steps = (int)ramp;
         int has_s = 0;
@@ -165,7 +210,8 @@ static int parse_bc(sbj_ctx *c, const json_t *o, const sb_domain *d, const sb_ti
         if (has_s && json_object_get(o, "ramp_steps"))
             return sbj_fail(c, "schedule", 1, "\"schedule\" and \"ramp_steps\" exclude each other (the schedule sets the timing)");
         if ((r = sbj_get_bool(c, o, "clamp_tangent", &bc->clamp_tangent))) return r;
-        return parse_derivative(c, o, bc);
+        if ((r = parse_derivative(c, o, bc))) return r;
+        return parse_slide(c, o, d, bc);
     }
     case SB_BC_CLAMPED:
     case SB_BC_FREE:

@@ -60,6 +60,10 @@ static int refuse(a3_state *S, const sb_scene *sc)
                        "model (Eq. 18-19) needs a flat rest state; use a plane geometry", sc->name);
     for (int b = 0; b < sc->n_bcs; b++) {
         const sb_bc *bc = &sc->bcs[b];
+        if (bc->kind == SB_BC_MOVING && bc->slide)
+            return a3_fail(S, SB_ERR_UNSUPPORTED, "scene %s: boundary[%d] is a sliding pin (\"slide\"), a point held "
+                           "between vertices, which the adaptive mesh (whose vertices change) does not impose",
+                           sc->name, b);
         if (bc->kind == SB_BC_CLAMPED || bc->kind == SB_BC_SYMMETRY || (bc->kind == SB_BC_MOVING && bc->clamp_tangent))
             return a3_fail(S, SB_ERR_UNSUPPORTED, "scene %s: boundary[%d] (%s) prescribes a rotation, which the vertex-only "
                            "model cannot impose (use fixed, moving without clamp_tangent, or free)", sc->name, b,

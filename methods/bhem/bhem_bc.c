@@ -157,6 +157,7 @@ int bhem_bc_build(bhem_state *S, bhem_level *L)
             rc = bhem_fail(S, SB_ERR_INPUT, "bc %d: symmetry axis %d is not 0, 1 or 2", b, bc->axis);
             break;
         }
+        if (bc->kind == SB_BC_MOVING && bc->slide) continue;   /* a penalty in the core (sb_pin.h), not eliminated */
         for (int k = 0; k < bc->n_parts && rc == SB_OK; k++) rc = apply_part(S, L, b, &bc->parts[k], owner);
     }
     if (rc) { free(owner); return rc; }

@@ -260,6 +260,23 @@ static int bhem_eval_points(const void *state, int level, const double *x, int n
     return bhem_eval(S, &S->lv[level], x, np, st, pos);
 }
 
+/* Sliding pins (sb_method.h point_terms): x(st) = sum_I N_I(th) q_I over the
+ * 16 Hermite functions of the patch containing st (BHEM Eq. 16). */
+static int bhem_point_terms(const void *state, int level, const double st[2], int *dof, double *w)
+{
+    const bhem_state *S = state;
+    const bhem_level *L = &S->lv[level];
+    double th1, th2, N[BHEM_NB];
+    const int e = bhem_locate(L, st[0], st[1], &th1, &th2);
+    if (e < 0) return SB_ERR_INPUT;
+    bhem_basis_eval(th1, th2, L->hs, L->ht, N, NULL, NULL, NULL, NULL, NULL);
+    for (int I = 0; I < BHEM_NB; I++) {
+        dof[I] = L->elem_dofs[(size_t)e * BHEM_NED + 3 * I];
+        w[I] = N[I];
+    }
+    return BHEM_NB;
+}
+
 static int bhem_prolong_op(void *state, int lc, const double *xc, double *xf) { return bhem_prolong(state, lc, xc, xf); }
 static int bhem_restrict_op(void *state, int lc, const double *gf, double *gc) { return bhem_restrict(state, lc, gf, gc); }
 static int bhem_prolong_matrix_op(const void *state, int lc, struct sb_csr *I) { return bhem_prolong_matrix(state, lc, I); }
@@ -304,5 +321,6 @@ const sb_method_type sb_method_bhem = {
     .describe = bhem_describe,
     .surface = bhem_surface,
     .contact_points = bhem_contact_points,
+    .point_terms = bhem_point_terms,
     .impulse_response = bhem_impulse_response,
 };

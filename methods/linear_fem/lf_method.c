@@ -248,6 +248,18 @@ static int lf_eval_op(const void *state, int level, const double *x, int np, con
     return lf_eval(S, &S->lv[level], x, np, st, pos);
 }
 
+/* Sliding pins (sb_method.h point_terms): the barycentric weights of st in
+ * its triangle (the linear interpolant of the vertex positions). */
+static int lf_point_terms(const void *state, int level, const double st[2], int *dof, double *w)
+{
+    const lf_state *S = state;
+    const lf_level *L = &S->lv[level];
+    const int t = sb_mesh_locate(&L->mesh, &L->loc, st[0], st[1], w);
+    if (t < 0) return SB_ERR_INPUT;
+    for (int i = 0; i < 3; i++) dof[i] = 3 * L->mesh.tri[3 * t + i];
+    return 3;
+}
+
 static int lf_material_state_op(void *state, int level, const double *x, sb_material_state *ms)
 {
     return lf_material_state(state, level, x, ms);
@@ -304,4 +316,5 @@ const sb_method_type sb_method_linear_fem = {
     .describe = lf_describe,
     .surface = lf_surface,
     .contact_points = lf_contact_points,
+    .point_terms = lf_point_terms,
 };

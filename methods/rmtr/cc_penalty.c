@@ -170,7 +170,11 @@ int cc_points_build(cc_state *S, int l, cc_err *e)
         const int slope = bc->kind == SB_BC_CLAMPED || bc->kind == SB_BC_SYMMETRY;
         if (bc->kind == SB_BC_CLAMPED) proto.mask = 7u;
         if (bc->kind == SB_BC_SYMMETRY) proto.mask = 1u << bc->axis;
-        if (bc->kind == SB_BC_MOVING && bc->clamp_tangent)
+        if (bc->kind == SB_BC_MOVING && bc->slide)
+            st = cc_fail(e, SB_ERR_UNSUPPORTED, "boundary condition %d (a sliding pin, \"slide\") is not supported by "
+                         "the rmtr method: its penalty points are fixed at set-up, a pin between control points "
+                         "that moves every step is not implemented", b);
+        else if (bc->kind == SB_BC_MOVING && bc->clamp_tangent)
             st = cc_fail(e, SB_ERR_UNSUPPORTED, "boundary condition %d (moving with prescribed tangents) is "
                          "not supported by the rmtr penalty method", b);
         else st = add_parts(S, L, bc->n_parts, bc->parts, proto, slope, &B, e);
