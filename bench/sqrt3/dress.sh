@@ -9,7 +9,7 @@
 # accuracy price (distance of the adaptive surface to the full one on an
 # 11 x 11 material grid, bench/sqrt3/dress_series.py).
 #
-#   bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|others|pictures]
+#   bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|large-series|others|pictures]
 #
 #   small    (default) base mesh 6 x 28 cells (336 triangles), 6 generations
 #            (full resolution 27 x: about 9,000 triangles), the whole 2 s; the
@@ -27,7 +27,9 @@
 #            models, bhem and rmtr with the barrier; the impulse model is
 #            refused by bhem (self-contact) and rmtr (no response), recorded
 #            as such), OTHER_STEPS steps (default 100)
-#   pictures only the missing pictures (from the records, or re-run)
+#   large-series  the large runs' series from their checkpoints, as far as
+#            they got (run it while no large run is running)
+#   pictures only the missing pictures (from the records)
 #
 # Each run writes a JSON summary (results/sqrt3/runs/dress-*.json, committed)
 # and its process CPU time (…​.cpu, committed: the machine is shared, wall
@@ -89,9 +91,15 @@ one_run() {
 
 A3="--method adaptive_sqrt3 --solver linearized --samples 11 --set run.single_step_rtol=1e300"
 
-series() {   # series TAG_FULL TAG_ADAPTIVE CSV
-  [ -s "$OUT/records/$1.h5" ] && [ -s "$OUT/records/$2.h5" ] || return 0
-  python3 bench/sqrt3/dress_series.py "$OUT/records/$1.h5" "$OUT/records/$2.h5" > "$3.tmp" && mv "$3.tmp" "$3"
+# series TAG_FULL TAG_ADAPTIVE CSV: from the records, or from the checkpoints
+# (.h5.partial) of runs stopped part-way (the large mode: the series then
+# covers the steps both have done, and the report says so)
+series() {
+  local f="$OUT/records/$1.h5" a="$OUT/records/$2.h5"
+  [ -s "$f" ] || f="$f.partial"
+  [ -s "$a" ] || a="$a.partial"
+  [ -s "$f" ] && [ -s "$a" ] || return 0
+  python3 bench/sqrt3/dress_series.py "$f" "$a" > "$3.tmp" && mv "$3.tmp" "$3"
 }
 
 # picture TAG SCENE STEP [run options]: a small PNG of the recorded surface at
@@ -149,6 +157,9 @@ large)
   done
   series dress-large-full dress-large-adaptive "$OUT/series_dress_large.csv"
   ;;
+large-series)   # the series of the large runs as far as they got (stop them first)
+  series dress-large-full dress-large-adaptive "$OUT/series_dress_large.csv"
+  ;;
 others)
   SI="$OUT/dress_others_impulse.json" SB="$OUT/dress_others_barrier.json"
   variant "$SI" dress_others_impulse "$OTHER_STEPS" impulse
@@ -169,6 +180,6 @@ pictures)
     picture dress-adaptive dress $s
   done
   ;;
-*) echo "usage: bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|others|pictures]" >&2; exit 2;;
+*) echo "usage: bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|large-series|others|pictures]" >&2; exit 2;;
 esac
 python3 bench/sqrt3/report.py "$OUT" > results/sqrt3_report.md

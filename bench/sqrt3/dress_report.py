@@ -12,7 +12,7 @@ import csv, json, math, os, sys
 
 # the paper's dress (Bender & Deul, Sec. 7, Fig. 10)
 PAPER = {"full": 66636, "adaptive": 37392, "cloth": 1.8, "collide": 8.7, "overall": 3.13, "share": 1.7}
-MOMENTS = ((80, "0.4 s: fallen, before the walk"), (230, "1.15 s: left leg back, right leg forward"),
+MOMENTS = ((80, "0.4 s: fallen, the walk begins"), (230, "1.15 s: mid-stride"),
            (400, "2.0 s: the end"))
 
 
@@ -56,26 +56,26 @@ def parts(rows, who):
             "tri": sum(g(r, "triangles") for r in rows) / len(rows)}
 
 
-def paper_rows(d, size, full_tag, ad_tag, csv_name, planned):
+def paper_rows(d, size, full_tag, ad_tag, csv_name, planned, limits, base):
     """the paper's figures beside ours for one size; [] when not run"""
     f, a = load(d, full_tag), load(d, ad_tag)
     rows = series(d, csv_name)
-    if not f or not a or not rows:
+    if not rows:
         return [], None
     pf, pa = parts(rows, "full"), parts(rows, "adaptive")
     cf, ca = cpu(d, full_tag), cpu(d, ad_tag)
     rms = [r["rms"] for r in rows if math.isfinite(r["rms"])]
     mx = [r["max"] for r in rows if math.isfinite(r["max"])]
     n = len(rows)
-    bound = "" if n >= planned else " (first %d of %d steps, to t = %.2f s)" % (n, planned, rows[-1]["t"])
+    bound = "" if n >= planned else " (**bounded**: the first %d of %d steps, to t = %.3g s, from the runs' checkpoints)" % (
+        n, planned, rows[-1]["t"])
     sp = lambda k: pf[k] / pa[k] if pa[k] > 0 else float("nan")
     out = []
     row = lambda q, p, o, r, diff: out.append("| %s | %s | %s | %s | %s | %s |" % (size, q, p, o, r, diff))
     row("full-resolution triangles", "66,636", "%.0f" % pf["tri"], "%.3f" % (pf["tri"] / PAPER["full"]),
-        "our skirt (a circle skirt, 6 generations on a %s-triangle base mesh)%s" % (
-            "{:,}".format(int(round(pf["tri"] / 27))) if pf["tri"] > 0 else "?", bound))
+        "our circle skirt, 6 generations on a %s-triangle base mesh%s" % ("{:,}".format(base), bound))
     row("adaptive triangles (mean over the steps)", "37,392", "%.0f" % pa["tri"], "%.3f" % (pa["tri"] / PAPER["adaptive"]),
-        "default limits l_base 2, l_gmax 20 /m (paper: 'low limits', values not given)")
+        "limits %s (paper: 'low limits', values not given)" % limits)
     red = pf["tri"] / pa["tri"]
     row("mesh reduction (full / adaptive)", "1.78 x", "%.2f x" % red, "%.2f" % (red / 1.78), "")
     row("**cloth speed-up** (step without collision handling)", "1.8 x", "%.2f x" % sp("cloth"),
@@ -94,7 +94,7 @@ def paper_rows(d, size, full_tag, ad_tag, csv_name, planned):
         "11 x 11 material grid, every step")
     row("max distance to the full run / 1.2 m, largest over time", "not measured", fmt(max(mx)) if mx else "—", "—",
         "")
-    info = {"f": f, "a": a, "pf": pf, "pa": pa, "rows": rows}
+    info = {"f": f, "a": a, "pf": pf, "pa": pa, "rows": rows, "bound": bound}
     return out, info
 
 
@@ -102,6 +102,10 @@ def collision_detail(size, info):
     f, a = info["f"], info["a"]
     out = []
     for name, d in (("full", f), ("adaptive", a)):
+        if not d:
+            out.append("| %s | %s | no summary (stopped part-way; its counts are not in a checkpoint) | | | | | | | |" % (
+                size, name))
+            continue
         c = d.get("contact") or {}
         s = d["steps"]
         out.append("| %s | %s | %s (%s) | %d | %.2f | %s | %s | %s | %s | %s |" % (
@@ -161,24 +165,29 @@ def dress_section(d):
            "records by `bench/sqrt3/dress_series.py`; the records are not committed) and the pictures; runs: "
            "`bash bench/sqrt3/dress.sh` (small), `… large` (the paper's size, in pieces), `… others`.  The scene, "
            "the body and every choice: [docs/sqrt3_dress.md](../docs/sqrt3_dress.md).", "",
-           "Scene `bench/scenes/dress.json`: a circle skirt (flat 330° annulus sector, waist radius 0.125 m, "
-           "length 0.475 m, the open back seam where a zipper would be) held along the waist, falling from "
+           "Scene `bench/scenes/dress.json`: a calf-length circle skirt (flat 330° annulus sector, waist radius "
+           "0.125 m, length 0.7 m, the open back seam where a zipper would be) held along the waist, falling from "
            "horizontal onto a body of 12 analytic obstacles (capsules and a sphere: torso, shoulders, head, hips, "
-           "thighs, shins, upper arms, forearms) that walks in place from 0.4 s to 2 s (legs ±25°, arms ±15° "
+           "thighs, shins, upper arms, forearms) that walks in place from 0.3 s to 2 s (legs ±30°, arms ±15° "
            "about hip and shoulder joints, schedules); E = E_s = 5000 N/m (the paper), ν = 0.33, ρ = 0.1 kg/m², "
            "dt = 5 ms, 400 steps; `contact.model` impulse (the paper's Sec. 6 pipeline) with self-contact, "
            "thickness 1 mm, friction 0.3.  adaptive_sqrt3, `linearized` (Eq. 21), 6 generations, adaptation "
-           "every 5 steps, default limits.  **Cloth** = a step's seconds without `collide`, `adapt`, recording and "
+           "every 5 steps, refinement limits (Eq. 23) l_base 5, l_gmax 50 /m (the scene's) and the method's defaults "
+           "2, 20 /m.  **Cloth** = a step's seconds without `collide`, `adapt`, recording and "
            "checkpoints; **collision** = event `collide` (the impulse response: proximity, CCD passes, impact "
            "zones, spatial hashing); **overall** = the step without recording and checkpoints.  Seconds are wall "
-           "clock on a shared 2-core machine under heavy load from other jobs (load average 15-25): ratios are "
+           "clock on a shared 2-core machine under heavy load from other jobs (load average 25-45 during these runs): ratios are "
            "indicative; the process CPU-time ratio is given beside the overall one.", "",
            "| size | quantity | paper | ours | ours / paper | setting differences |", "|---|---|---|---|---|---|"]
     detail, notrun = [], []
-    for size, ft, at, csvn in (("small (base 6 x 28)", "dress-full", "dress-adaptive", "series_dress.csv"),
-                               ("paper's size (base 16 x 77)", "dress-large-full", "dress-large-adaptive",
-                                "series_dress_large.csv")):
-        rows, info = paper_rows(d, size, ft, at, csvn, 400)
+    for size, ft, at, csvn, lim in (
+            ("small (base 6 x 28)", "dress-full", "dress-adaptive", "series_dress.csv", "5, 50 /m (the scene's)"),
+            ("small, default limits", "dress-full", "dress-adaptive-default", "series_dress_default.csv",
+             "2, 20 /m (the method's defaults)"),
+            ("paper's size (base 16 x 77)", "dress-large-full", "dress-large-adaptive", "series_dress_large.csv",
+             "5, 50 /m (the scene's)")):
+        base = 2464 if "16 x 77" in size else 336   # 2 triangles per base cell
+        rows, info = paper_rows(d, size, ft, at, csvn, 400, lim, base)
         if not rows:
             notrun.append(size)
             continue
@@ -193,7 +202,8 @@ def dress_section(d):
                 "", "| size | run | status | steps | CCD passes / step | impact zones | CCD tests | CCD hits | "
                 "proximity impulses | unresolved steps |", "|---|---|---|---|---|---|---|---|---|---|"]
         for size, info in detail:
-            out += collision_detail(size, info)
+            if "default" not in size:
+                out += collision_detail(size, info)
         out += ["", "**Over time** (%s): triangles and the accuracy price (distance to the full run / 1.2 m)." % detail[0][0],
                 "", "| t (s) | triangles adaptive | triangles full | RMS distance | max distance |", "|---|---|---|---|---|"]
         rows = detail[0][1]["rows"]
