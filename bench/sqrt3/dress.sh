@@ -165,6 +165,7 @@ others)
   variant "$SI" dress_others_impulse "$OTHER_STEPS" impulse
   variant "$SB" dress_others_barrier "$OTHER_STEPS" barrier
   one_run dress-lf-impulse "$SI" none --method linear_fem --solver linearized
+  one_run dress-lf-impulse-lsnewton "$SI" none --method linear_fem --solver lsnewton
   one_run dress-lf-barrier "$SB" none --method linear_fem --solver lsnewton
   one_run dress-bhem-barrier "$SB" none --method bhem --solver lsnewton
   one_run dress-rmtr-barrier "$SB" none --method rmtr --solver lsnewton

@@ -118,6 +118,7 @@ def collision_detail(size, info):
 def others(d):
     out = []
     for tag, what in (("dress-lf-impulse", "linear_fem, impulse, linearized"),
+                      ("dress-lf-impulse-lsnewton", "linear_fem, impulse, lsnewton"),
                       ("dress-lf-barrier", "linear_fem, barrier, lsnewton"),
                       ("dress-bhem-barrier", "bhem, barrier, lsnewton"),
                       ("dress-rmtr-barrier", "rmtr, barrier, lsnewton")):
