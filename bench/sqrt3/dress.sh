@@ -9,7 +9,7 @@
 # accuracy price (distance of the adaptive surface to the full one on an
 # 11 x 11 material grid, bench/sqrt3/dress_series.py).
 #
-#   bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|large-series|others|pictures]
+#   bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|small-series|large-series|others|pictures]
 #
 #   small    (default) base mesh 6 x 28 cells (336 triangles), 6 generations
 #            (full resolution 27 x: about 9,000 triangles), the whole 2 s; the
@@ -27,12 +27,14 @@
 #            models, bhem and rmtr with the barrier; the impulse model is
 #            refused by bhem (self-contact) and rmtr (no response), recorded
 #            as such), OTHER_STEPS steps (default 100)
-#   large-series  the large runs' series from their checkpoints, as far as
-#            they got (run it while no large run is running)
+#   small-series, large-series  the series (and the small runs' pictures)
+#            from the records or, for runs stopped part-way, from their
+#            checkpoints, as far as they got (run them while none of those
+#            runs is running)
 #   pictures only the missing pictures (from the records)
 #
 # Each run writes a JSON summary (results/sqrt3/runs/dress-*.json, committed)
-# and its process CPU time (…​.cpu, committed: the machine is shared, wall
+# and its process CPU time (TAG.cpu, committed: the machine is shared, wall
 # times are inflated by the load; the report gives both); records go to
 # results/sqrt3/records/ (NOT committed: hundreds of MB at the paper's size).
 # run.single_step_rtol=1e300: every linearized step is taken (the paper's
@@ -99,7 +101,7 @@ series() {
   [ -s "$f" ] || f="$f.partial"
   [ -s "$a" ] || a="$a.partial"
   [ -s "$f" ] && [ -s "$a" ] || return 0
-  python3 bench/sqrt3/dress_series.py "$f" "$a" > "$3.tmp" && mv "$3.tmp" "$3"
+  python3 bench/sqrt3/dress_series.py "$f" "$a" --contact "${3%.csv}_contact.json" > "$3.tmp" && mv "$3.tmp" "$3"
 }
 
 # picture TAG SCENE STEP [run options]: a small PNG of the recorded surface at
@@ -109,12 +111,25 @@ picture() {
   local tag=$1 scene=$2 step=$3; shift 3
   local png="$OUT/images/$tag-$step.png" rec="$OUT/records/$tag.h5"
   [ -s "$png" ] && return 0
+  [ -s "$rec" ] || rec="$rec.partial"   # a run stopped part-way: its checkpoint
   if [ ! -s "$rec" ]; then
     echo "$tag: no record (results/sqrt3/records/$tag.h5); run the mode first" >&2
     return 0
   fi
   "$BIN" render "$rec" --step "$step" --camera "$CAMERA" --size 200x200 --spp 6 --out "$png" --quiet \
     || echo "$tag: render of step $step failed" >&2
+}
+
+# both small runs at 0.4 s (step 80), 1.15 s (230) and the last step both
+# recorded (400, or less for runs stopped part-way: the series' last row)
+pictures() {
+  local last
+  last=$(tail -n 1 "$OUT/series_dress.csv" 2> /dev/null | cut -d, -f1)
+  for s in 80 230 ${last:-400}; do
+    [ "$s" -gt 0 ] 2> /dev/null || continue
+    picture dress-full dress $s
+    picture dress-adaptive dress $s
+  done
 }
 
 case "$MODE" in
@@ -131,10 +146,7 @@ small)
   done
   series dress-full dress-adaptive "$OUT/series_dress.csv"
   series dress-full dress-adaptive-default "$OUT/series_dress_default.csv"
-  for s in 80 230 400; do
-    picture dress-full dress $s
-    picture dress-adaptive dress $s
-  done
+  pictures
   ;;
 large)
   SC="$OUT/dress_large.json"
@@ -157,6 +169,11 @@ large)
   done
   series dress-large-full dress-large-adaptive "$OUT/series_dress_large.csv"
   ;;
+small-series)   # the small runs' series and pictures as far as they got (stop them first)
+  series dress-full dress-adaptive "$OUT/series_dress.csv"
+  series dress-full dress-adaptive-default "$OUT/series_dress_default.csv"
+  pictures
+  ;;
 large-series)   # the series of the large runs as far as they got (stop them first)
   series dress-large-full dress-large-adaptive "$OUT/series_dress_large.csv"
   ;;
@@ -176,11 +193,8 @@ others)
   done
   ;;
 pictures)
-  for s in 80 230 400; do
-    picture dress-full dress $s
-    picture dress-adaptive dress $s
-  done
+  pictures
   ;;
-*) echo "usage: bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|large-series|others|pictures]" >&2; exit 2;;
+*) echo "usage: bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|small-series|large-series|others|pictures]" >&2; exit 2;;
 esac
 python3 bench/sqrt3/report.py "$OUT" > results/sqrt3_report.md

@@ -12,8 +12,7 @@ import csv, json, math, os, sys
 
 # the paper's dress (Bender & Deul, Sec. 7, Fig. 10)
 PAPER = {"full": 66636, "adaptive": 37392, "cloth": 1.8, "collide": 8.7, "overall": 3.13, "share": 1.7}
-MOMENTS = ((80, "0.4 s: fallen, the walk begins"), (230, "1.15 s: mid-stride"),
-           (400, "2.0 s: the end"))
+MOMENTS = ((80, "the skirt fallen, the walk begun"), (230, "mid-stride"), (400, "the end"))
 
 
 def load(d, tag):
@@ -37,6 +36,14 @@ def series(d, name):
             return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
     except (OSError, ValueError):
         return []
+
+
+def contact_counts(d, csv_name):
+    """the impulse counts of both records (dress_series.py --contact), or {}"""
+    try:
+        return json.load(open(os.path.join(d, csv_name.replace(".csv", "_contact.json"))))
+    except (OSError, ValueError):
+        return {}
 
 
 def fmt(x, f="%.3g"):
@@ -94,22 +101,26 @@ def paper_rows(d, size, full_tag, ad_tag, csv_name, planned, limits, base):
         "11 x 11 material grid, every step")
     row("max distance to the full run / 1.2 m, largest over time", "not measured", fmt(max(mx)) if mx else "—", "—",
         "")
-    info = {"f": f, "a": a, "pf": pf, "pa": pa, "rows": rows, "bound": bound}
+    info = {"f": f, "a": a, "pf": pf, "pa": pa, "rows": rows, "bound": bound,
+            "counts": contact_counts(d, csv_name)}
     return out, info
 
 
 def collision_detail(size, info):
-    f, a = info["f"], info["a"]
+    """the impulse counts of both runs, from their records (final or
+    checkpoint: dress_series.py --contact), else from the summaries"""
     out = []
-    for name, d in (("full", f), ("adaptive", a)):
-        if not d:
-            out.append("| %s | %s | no summary (stopped part-way; its counts are not in a checkpoint) | | | | | | | |" % (
-                size, name))
+    for name, key, summ in (("full", "full", info["f"]), ("adaptive", "adaptive", info["a"])):
+        c = info["counts"].get(key)
+        status = "%s (%s)" % (summ["status"], summ["reason"]) if summ else "stopped part-way (checkpoint)"
+        if not c and summ:
+            c = dict(summ.get("contact") or {}, steps=summ["steps"])
+        if not c or not c.get("steps"):
+            out.append("| %s | %s | %s | | | | | | | |" % (size, name, status))
             continue
-        c = d.get("contact") or {}
-        s = d["steps"]
-        out.append("| %s | %s | %s (%s) | %d | %.2f | %s | %s | %s | %s | %s |" % (
-            size, name, d["status"], d["reason"], s, c.get("ccd_iterations", 0) / s, "{:,}".format(c.get("impact_zones", 0)),
+        s = c["steps"]
+        out.append("| %s | %s | %s | %d | %.2f | %s | %s | %s | %s | %s |" % (
+            size, name, status, s, c.get("ccd_iterations", 0) / s, "{:,}".format(c.get("impact_zones", 0)),
             "{:,}".format(c.get("ccd_tests", 0)), "{:,}".format(c.get("ccd_hits", 0)),
             "{:,}".format(c.get("proximity_impulses", 0)), c.get("unresolved_steps", "—")))
     return out
@@ -144,15 +155,20 @@ def others(d):
 def pictures(d):
     imgs = os.path.join(d, "images")
     rel = os.path.join(os.path.basename(os.path.normpath(d)), "images")
-    have = [(s, w) for s, w in MOMENTS if os.path.exists(os.path.join(imgs, "dress-full-%d.png" % s))
-            or os.path.exists(os.path.join(imgs, "dress-adaptive-%d.png" % s))]
-    if not have:
+    steps = set()
+    for f in os.listdir(imgs) if os.path.isdir(imgs) else []:
+        for tag in ("dress-full-", "dress-adaptive-"):
+            if f.startswith(tag) and f.endswith(".png") and f[len(tag):-4].isdigit():
+                steps.add(int(f[len(tag):-4]))
+    if not steps:
         return []
-    out = ["", "| run | " + " | ".join("step %d (%s)" % (s, w) for s, w in have) + " |",
-           "|---|" + "---|" * len(have)]
-    for tag, name in (("dress-full", "full resolution"), ("dress-adaptive", "adaptive")):
+    what = dict(MOMENTS)
+    have = sorted(steps)
+    out = ["", "| run | " + " | ".join("step %d (t = %.3g s%s)" % (s, s * 0.005, ": " + what[s] if s in what else "")
+                                    for s in have) + " |", "|---|" + "---|" * len(have)]
+    for tag, name in (("dress-full", "full resolution"), ("dress-adaptive", "adaptive (5, 50 /m)")):
         cells = []
-        for s, _ in have:
+        for s in have:
             p = os.path.join(imgs, "%s-%d.png" % (tag, s))
             cells.append("![%s, step %d](%s/%s-%d.png)" % (name, s, rel, tag, s) if os.path.exists(p) else "—")
         out.append("| %s | %s |" % (name, " | ".join(cells)))
@@ -196,9 +212,27 @@ def dress_section(d):
         detail.append((size, info))
     if notrun:
         out += ["", "Not run (no summaries or series): %s." % ", ".join(notrun)]
+    for size, info in detail:
+        rows = info["rows"]
+        if info["bound"] and rows[-1]["t"] < 0.3:
+            out += ["", "**%s is bounded** to its first %d steps (t <= %.3g s): the skirt is still falling, nearly flat "
+                    "(the walk starts at 0.3 s), and the adaptive mesh has hardly left its base mesh (%.0f triangles on "
+                    "average against %.0f), so these rows compare a coarse flat sheet with the full one; they are not "
+                    "comparable with the paper's averages over a whole walk." % (
+                        size, len(rows), rows[-1]["t"], info["pa"]["tri"], info["pf"]["tri"])]
+        elif not info["bound"]:
+            late = [r for r in rows if r["t"] > 0.3]
+            if late:
+                fr = sum(r["triangles_adaptive"] / r["triangles_full"] for r in late) / len(late)
+                out += ["", "**%s**: during the walk (t > 0.3 s) the adaptive mesh holds %.0f %% of the full "
+                        "resolution's triangles on average (the folded skirt's mean curvature is above the limits "
+                        "almost everywhere), and collision handling costs the adaptive run %.2f x the full run's "
+                        "time." % (size, 100 * fr, info["pa"]["collide"] / info["pf"]["collide"]
+                                   if info["pf"]["collide"] > 0 else float("nan"))]
     if detail:
         out += ["", "**Collision handling** (the paper explains its 8.7 x by more CCD passes and impact zones at full "
-                "resolution): per run, CCD passes per step (at most 5, then impact zones), impact zones formed, CCD "
+                "resolution): per run, over the steps its record holds (a run stopped part-way: up to its last "
+                "checkpoint), CCD passes per step (at most 5, then impact zones), impact zones formed, CCD "
                 "tests after culling, collisions resolved by impulses, proximity impulses, steps left with a collision.",
                 "", "| size | run | status | steps | CCD passes / step | impact zones | CCD tests | CCD hits | "
                 "proximity impulses | unresolved steps |", "|---|---|---|---|---|---|---|---|---|---|"]
@@ -214,8 +248,13 @@ def dress_section(d):
     pics = pictures(d)
     if pics:
         out += ["", "**Pictures** (small size, `shellbench render --step K`, the body at its pose of that step; "
-                "drawn from the records by `bench/sqrt3/dress.sh`):"] + pics
-    out += ["", "**Other methods** on the same scene (`bash bench/sqrt3/dress.sh … others`: the first 100 steps, 0.5 s; "
+                "drawn from the records, or from the checkpoint of a run stopped part-way (its picture says "
+                "CHECKPOINT), by `bench/sqrt3/dress.sh`):"] + pics
+    planned = [r["steps_planned"] for r in (load(d, t) for t in ("dress-lf-impulse", "dress-lf-barrier",
+                                                                 "dress-bhem-barrier", "dress-rmtr-barrier")) if r]
+    n = planned[0] if planned else 0
+    out += ["", "**Other methods** on the same scene (`bash bench/sqrt3/dress.sh … others`: the first %d steps, "
+            "%.3g s; " % (n, 0.005 * n) +
             "the barrier variant differs only in `contact.model`; each method at its bundled resolution, the scene's "
             "`methods` section):", "", "| method, contact, solver | status | steps | dofs | seconds | contact |",
             "|---|---|---|---|---|---|"] + others(d)

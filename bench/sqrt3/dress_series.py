@@ -9,8 +9,15 @@ domain's diameter (1.2 m: two points of the 330-degree outer arc opposite
 each other; the suite's error measure, DESIGN.md "Accuracy").  Every step,
 so the report can sum the components.  CSV on stdout.
 
-    python3 bench/sqrt3/dress_series.py FULL.h5 ADAPTIVE.h5 > results/sqrt3/series_dress.csv
+    python3 bench/sqrt3/dress_series.py FULL.h5 ADAPTIVE.h5 [--contact FILE.json] > results/sqrt3/series_dress.csv
+
+A record may be a checkpoint (OUT.h5.partial) of a run stopped part-way: the
+series then ends at its last step.  --contact writes the impulse response's
+counts (/final/contact: proximity impulses, CCD tests, hits, passes, impact
+zones, unresolved steps) of both records with their step counts, so that the
+report has them also for runs without a summary.
 """
+import json
 import math, re, subprocess, sys
 
 DIAG = 1.2
@@ -41,6 +48,20 @@ def samples(path):
     return out
 
 
+def contact(path):
+    """the attributes of /final/contact (integers) and the steps recorded"""
+    text = h5(path, "-A", "-g", "/final/contact")
+    out = {}
+    for block in text.split('ATTRIBUTE "')[1:]:
+        name = block.split('"', 1)[0]
+        m = re.search(r"\(0\): ([-0-9]+)\s*\n", block)
+        if "H5T_STD_I" in block and m:
+            out[name] = int(m.group(1))
+    out["steps"] = len(numbers(h5(path, "-d", "/history/steps/t")))
+    out["record"] = path
+    return out
+
+
 def run(path):
     d = {c: numbers(h5(path, "-d", "/history/steps/" + c)) for c in COLS}
     d["t"] = numbers(h5(path, "-d", "/history/steps/t"))
@@ -49,6 +70,9 @@ def run(path):
 
 
 def main():
+    if len(sys.argv) > 4 and sys.argv[3] == "--contact":
+        with open(sys.argv[4], "w") as fh:
+            json.dump({"full": contact(sys.argv[1]), "adaptive": contact(sys.argv[2])}, fh, indent=1)
     f, a = run(sys.argv[1]), run(sys.argv[2])
     n = min(len(f["t"]), len(a["t"]))
     head = ["step", "t"] + ["%s_full" % c for c in COLS] + ["%s_adaptive" % c for c in COLS] + ["rms", "max"]
