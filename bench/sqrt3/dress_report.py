@@ -226,7 +226,7 @@ def dress_section(d):
                 fr = sum(r["triangles_adaptive"] / r["triangles_full"] for r in late) / len(late)
                 out += ["", "**%s**: during the walk (t > 0.3 s) the adaptive mesh holds %.0f %% of the full "
                         "resolution's triangles on average (the folded skirt's mean curvature is above the limits "
-                        "almost everywhere), and collision handling costs the adaptive run %.2f x the full run's "
+                        "over most of it), and collision handling costs the adaptive run %.2f x the full run's "
                         "time." % (size, 100 * fr, info["pa"]["collide"] / info["pf"]["collide"]
                                    if info["pf"]["collide"] > 0 else float("nan"))]
     if detail:
