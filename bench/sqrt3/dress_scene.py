@@ -42,7 +42,9 @@ for side, s in (("left", 1), ("right", -1)):
     hip = (0, s * HIP_Y, HIP_Z)
     knee = (0, s * HIP_Y, KNEE_Z)
     ankle = (0, s * HIP_Y, ANKLE_Z)
-    leg = swing(hip, LEG_SWING, s)           # the left leg swings forward first (factor +1: foot to -x? see below)
+    # a positive factor turns the leg about +y (right-handed: the foot towards -x,
+    # backwards): the left leg swings back first, the right one forward
+    leg = swing(hip, LEG_SWING, s)
     obst.append(capsule("thigh_" + side, hip, knee, 0.07, motion=leg))
     obst.append(capsule("shin_" + side, knee, ankle, 0.05, motion=leg))
 for side, s in (("left", 1), ("right", -1)):
