@@ -7,6 +7,8 @@ series that bench/sqrt3/distance.py read from the records.  Never re-runs.
 """
 import csv, json, math, os, subprocess, sys
 
+from dress_report import dress_section
+
 DIR = sys.argv[1] if len(sys.argv) > 1 else "results/sqrt3"
 RUNS = (("curtain-adaptive-cholmod", "adaptive, CHOLMOD"), ("curtain-full-cholmod", "full resolution, CHOLMOD"),
         ("curtain-adaptive-pcg", "adaptive, preconditioned CG"),
@@ -749,6 +751,7 @@ def main():
     out += curtain_paper()
     out += breakdown()
     out += convergence()
+    out += dress_section(DIR)   # bench/sqrt3/dress_report.py: the dress (issue 40)
     print("\n".join(out))
 
 
