@@ -145,6 +145,24 @@ def section(results_root):
     return "\n".join(L) + "\n"
 
 
+def summary_verdict(results_root):
+    """the verdict cell of the summary row: per solver, whether all four scenes agree with the paper's statement"""
+    big = read(os.path.join(results_root, "dt_stability_large", "report.md"))
+    if not big:
+        return None
+    agree, differ, unf = [], [], []
+    for so in SOLVERS:
+        vs = [verdict(big[(sc, "rmtr", so)][1], so) for sc in SCENES if (sc, "rmtr", so) in big]
+        (unf if any(v.startswith("not") for v in vs) or not vs else
+         agree if all(v.startswith("agrees") for v in vs) else differ).append(so)
+    out = "reproduced at 1,083 dofs for %s" % ", ".join(agree) if agree else "not reproduced"
+    if differ:
+        out += "; not for %s (converges at dt = 1 s where the paper needs smaller dt)" % ", ".join(differ)
+    if unf:
+        out += "; unfinished: %s" % ", ".join(unf)
+    return out
+
+
 def summary_cell(results_root):
     """one sentence for the report's summary table"""
     big = read(os.path.join(results_root, "dt_stability_large", "report.md"))
