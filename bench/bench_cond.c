@@ -155,7 +155,9 @@ int main(int argc, char **argv)
  * history of H as comment lines ("# trace ...").
  *
  *   bench_cond parts SCENE RES [method.K=V | solver.K=V | run.K=V ...]
- *              [tag=NAME] [dense_max=N] [lanczos=KMAX] [both] [trace] [modes] [only=MATRIX] [header] */
+ *              [tag=NAME] [dense_max=N] [lanczos=KMAX] [both] [trace] [modes] [only=MATRIX] [split]
+ *              [state=initial] [header]
+ *   split: also K_mem and K_bend (rows) and the terms' shares of H's extreme eigenvalues ("# split", below) */
 #include "sb_eigen.h"
 
 typedef struct cond_op { sb_matrix *A; sb_problem *p; } cond_op;
@@ -218,8 +220,8 @@ static void measure_lanczos(sb_problem *p, sb_matrix *A, int kmax, cond_row *r, 
     cond_op c = { A, p };
     double *h[8];
     for (int i = 0; i < 8; i++) h[i] = calloc((size_t)kmax, sizeof(double));
-    sb_lanczos_result a = { 0, 0, 0, 0, 0, h[0], h[1], h[2], h[3] };
-    sb_lanczos_result b = { 0, 0, 0, 0, 0, h[4], h[5], h[6], h[7] };
+    sb_lanczos_result a = { .hist_theta_max = h[0], .hist_res_max = h[1], .hist_theta_min = h[2], .hist_res_min = h[3] };
+    sb_lanczos_result b = { .hist_theta_max = h[4], .hist_res_max = h[5], .hist_theta_min = h[6], .hist_res_min = h[7] };
     r->dense = 0;
     r->cond1 = NAN;
     r->lmax = r->lmin = NAN;
@@ -278,6 +280,159 @@ static void describe_modes(const sb_matrix *A, const double *X, double a, double
     free(w);
 }
 
+/* ---- split: which energy term sets each extreme eigenvalue of H (issue 43) ----
+ *
+ * For a unit eigenvector v of H = M/dt^2 + K_el + K_pen its eigenvalue is the
+ * sum of the terms' Rayleigh quotients,
+ *     lambda = v'(M/dt^2)v + v'K_mem v + v'K_bend v + v'K_pen v,
+ * so each term's share says which one sets lambda.  K_el is split into
+ * membrane and bending by its dependence on the thickness at the same x: the
+ * section energy is int_{-tau/2}^{tau/2} psi(A - 2 xi B) dxi (RMTR paper Eq.
+ * 3.3-3.4 through the thickness, E(xi) = A - 2 xi B; the Gauss rule in xi is
+ * symmetric), so at fixed x only odd powers of tau occur:
+ *     K_el(tau) = tau K_1 + tau^3 K_3 + O(tau^5)
+ * (tau K_1: the membrane strain A alone; tau^3 K_3 = d2/dx2 of
+ * (tau^3/6) psi''(A)[B, B]: bending).  Two more copies of the method (beta =
+ * 0) at tau/2 and tau/4 give
+ *     K_bend = 4/3 (K_el(tau) - 2 K_el(tau/2))      (O(tau^5) dropped)
+ *     K_bend' = 16/15 (K_el(tau) - 4 K_el(tau/4))   (a check: the two differ
+ *                                                    by the O(tau^5) rest)
+ *     K_mem = K_el - K_bend.
+ * Assumption where the paper is silent: none; this is a property of the
+ * discretization (6 Gauss points through the thickness, sb_material.c).
+ * Output: "# split" comment lines
+ *     # split,WHICH,lambda,mass,membrane,bending,penalty,bending_check,relres,ghost
+ * WHICH = min / max (the extreme eigenvectors: dense dsyevd or the Lanczos
+ * Ritz vectors, relres their relative residual) and, at dense sizes,
+ * smooth = the smallest eigenvalue whose eigenvector has less than half of
+ * |v|^2 on the ghost control points (the lowest mode of the cloth itself). */
+typedef struct split_mats { const sb_matrix *M, *Ke, *Kh, *Kq, *Kpen; double idt2; } split_mats;
+
+static double quad(const sb_matrix *A, const double *v, double *w)
+{
+    const int n = A->pat->n;
+    sb_matrix_symv(A, v, w);
+    return sb_dot(n, v, w);
+}
+
+static double ghost_share(int n, const double *v, const double *X, double a, double b)
+{
+    double g = 0, e = 1e-9;
+    for (int i = 0; i < n / 3; i++) {
+        double x = X[3 * i], y = X[3 * i + 1];
+        if (x < -e || x > a + e || y < -e || y > b + e)
+            g += v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2];
+    }
+    return g;
+}
+
+static void split_line(const char *which, double lam, double relres, const double *v, const split_mats *S,
+                       const double *X, double a, double b, double *w)
+{
+    const int n = S->Ke->pat->n;
+    double m = S->M ? S->idt2 * quad(S->M, v, w) : 0.0;
+    double ke = quad(S->Ke, v, w), kh = quad(S->Kh, v, w), kq = quad(S->Kq, v, w);
+    double bend = 4.0 / 3.0 * (ke - 2.0 * kh), bend2 = 16.0 / 15.0 * (ke - 4.0 * kq);
+    double pen = quad(S->Kpen, v, w);
+    printf("# split,%s,%.10g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.3f\n", which, lam, m, ke - bend, bend, pen, bend2, relres,
+           ghost_share(n, v, X, a, b));
+}
+
+static void split_terms(sb_problem *p, sb_matrix *H, const split_mats *S, int dense_max, int kmax, const double *X,
+                        double a, double b)
+{
+    const int n = H->pat->n;
+    double *w = malloc((size_t)n * sizeof *w);
+    if (n <= dense_max) {
+        double *D = dense_of(H), *lam = malloc((size_t)n * sizeof *lam);
+        if (D && lam && w && sb_eig_dense_sym_vec(n, D, lam) == SB_OK) {
+            split_line("min", lam[0], 0.0, D, S, X, a, b, w);
+            split_line("max", lam[n - 1], 0.0, D + (size_t)(n - 1) * n, S, X, a, b, w);
+            for (int j = 0; j < n; j++)
+                if (ghost_share(n, D + (size_t)j * n, X, a, b) < 0.5) {
+                    char tag[32];
+                    snprintf(tag, sizeof tag, "smooth_%d", j + 1);
+                    split_line(tag, lam[j], 0.0, D + (size_t)j * n, S, X, a, b, w);
+                    break;
+                }
+        }
+        free(D);
+        free(lam);
+        free(w);
+        return;
+    }
+    double *vmax = malloc((size_t)n * sizeof *vmax), *vmin = malloc((size_t)n * sizeof *vmin);
+    cond_op c = { H, p };
+    sb_lanczos_result ra, rb;
+    memset(&ra, 0, sizeof ra);
+    memset(&rb, 0, sizeof rb);
+    ra.vec_max = vmax;
+    rb.vec_max = vmin;                         /* the largest Ritz value of H^-1: lambda_min of H */
+    if (w && vmax && vmin && sb_lanczos_extreme(n, op_mult, &c, kmax, 1e-10, NULL, &ra) == SB_OK)
+        split_line("max", ra.theta_max, ra.res_max / fabs(ra.theta_max), vmax, S, X, a, b, w);
+    sb_matrix *Hp = sb_problem_hessian(p, 0);
+    memcpy(Hp->val, H->val, (size_t)H->pat->nnz * sizeof *Hp->val);
+    if (w && vmax && vmin && sb_problem_factor(p, 0, 0.0) == SB_OK &&
+        sb_lanczos_extreme(n, op_solve, &c, kmax, 1e-10, NULL, &rb) == SB_OK && rb.theta_max > 0)
+        split_line("min", 1.0 / rb.theta_max, rb.res_max / rb.theta_max, vmin, S, X, a, b, w);
+    free(vmax);
+    free(vmin);
+    free(w);
+}
+
+/* split: K_bend and K_mem from two more copies of the method at tau/2 and
+ * tau/4 (beta = 0, the same x), their extreme eigenvalues as CSV rows, then
+ * the shares of H's extreme eigenvalues ("# split" lines).  0, or nonzero
+ * when a copy cannot be set up. */
+static int bench_split(const sb_scene *sc, const sb_method_type *mt, sb_method_config *cfg2, const double *x0,
+                       sb_matrix *H, const sb_matrix *Kf, const sb_matrix *Ke, const sb_matrix *M, double idt2,
+                       sb_problem *p, int dense_max, int kmax, const double *X, const char *tag, int res, double h,
+                       int conv, double gn)
+{
+    const sb_pattern *pat = H->pat;
+    sb_scene s2 = *sc, s4 = *sc;                 /* shallow copies: only the thickness differs */
+    s2.material.thickness = 0.5 * sc->material.thickness;
+    s4.material.thickness = 0.25 * sc->material.thickness;
+    void *m2 = calloc(1, mt->state_size), *m4 = calloc(1, mt->state_size);
+    if (!m2 || !m4 || mt->create(m2, &s2, cfg2)) { free(m2); free(m4); return 1; }
+    if (mt->create(m4, &s4, cfg2)) { mt->destroy(m2); free(m2); free(m4); return 1; }
+    sb_matrix Kh, Kq, Kpen, Kb, Km;
+    sb_matrix_init(&Kh, pat); sb_matrix_init(&Kq, pat); sb_matrix_init(&Kpen, pat);
+    sb_matrix_init(&Kb, pat); sb_matrix_init(&Km, pat);
+    double e;
+    sb_matrix_zero(&Kh); sb_matrix_zero(&Kq);
+    mt->energy(m2, 0, x0, &e, NULL, &Kh);        /* K_el(tau/2) */
+    mt->energy(m4, 0, x0, &e, NULL, &Kq);        /* K_el(tau/4) */
+    sb_matrix_zero(&Kpen); sb_matrix_axpy(&Kpen, 1.0, Kf); sb_matrix_axpy(&Kpen, -1.0, Ke);
+    sb_matrix_zero(&Kb); sb_matrix_axpy(&Kb, 4.0 / 3.0, Ke); sb_matrix_axpy(&Kb, -8.0 / 3.0, &Kh);
+    sb_matrix_zero(&Km); sb_matrix_axpy(&Km, 1.0, Ke); sb_matrix_axpy(&Km, -1.0, &Kb);
+    const int n = pat->n;
+    const sb_matrix *V[2] = { &Km, &Kb };
+    const char *name[2] = { "K_mem", "K_bend" };
+    for (int v = 0; v < 2; v++) {              /* lambda_max of each part; lambda_min where it factors */
+        cond_row r;
+        memset(&r, 0, sizeof r);
+        sb_matrix A;
+        sb_matrix_init(&A, pat);
+        sb_matrix_zero(&A);
+        sb_matrix_axpy(&A, 1.0, V[v]);
+        if (n <= dense_max) measure_dense(&A, &r);
+        else measure_lanczos(p, &A, kmax, &r, NULL, name[v]);
+        double cond2 = r.lmin > 0 ? r.lmax / r.lmin : NAN;
+        printf("%s,%s,%d,%d,%.6g,%s,%.10g,%.10g,%.6g,%.6g,%s,%d,%d,%.3g,%.3g,%d,%.3g\n", sc->name, tag, res, n, h,
+               name[v], r.lmin, r.lmax, cond2, r.cond1, r.dense ? "dense" : "lanczos", r.dense ? 0 : r.steps_min,
+               r.dense ? 0 : r.steps_max, r.dense ? 0.0 : r.rel_min, r.dense ? 0.0 : r.rel_max, conv, gn);
+        sb_matrix_free(&A);
+    }
+    split_mats S = { M, Ke, &Kh, &Kq, &Kpen, idt2 };
+    split_terms(p, H, &S, dense_max, kmax, X, sc->domain.size[0], sc->domain.size[1]);
+    fflush(stdout);
+    sb_matrix_free(&Kh); sb_matrix_free(&Kq); sb_matrix_free(&Kpen); sb_matrix_free(&Kb); sb_matrix_free(&Km);
+    mt->destroy(m2); mt->destroy(m4);
+    free(m2); free(m4);
+    return 0;
+}
+
 static int bench_cond_parts(int argc, char **argv)
 {
     if (argc < 3) {
@@ -286,7 +441,7 @@ static int bench_cond_parts(int argc, char **argv)
         return 2;
     }
     const char *scene_name = argv[1];
-    int res = atoi(argv[2]), dense_max = 1100, kmax = 150, both = 0, trace = 0, modes = 0;
+    int res = atoi(argv[2]), dense_max = 1100, kmax = 150, both = 0, trace = 0, modes = 0, split = 0, at_initial = 0;
     const char *only = NULL;   /* only=NAME: measure that matrix alone (e.g. only=H at 51,483 dofs) */
     const char *tag = "paper";
     sb_context ctx, ctx2;
@@ -314,6 +469,8 @@ static int bench_cond_parts(int argc, char **argv)
         else if (!strcmp(argv[i], "both")) both = 1;
         else if (!strcmp(argv[i], "trace")) trace = 1;
         else if (!strcmp(argv[i], "modes")) modes = 1;
+        else if (!strcmp(argv[i], "split")) split = 1;
+        else if (!strcmp(argv[i], "state=initial")) at_initial = 1;
         else if (!strncmp(argv[i], "only=", 5)) only = argv[i] + 5;
         else if (!strcmp(argv[i], "header"))
             printf("scene,setting,res,dofs,h,variant,lambda_min,lambda_max,cond2,cond1,how,steps_min,steps_max,"
@@ -343,7 +500,11 @@ static int bench_cond_parts(int argc, char **argv)
     mt->set_step(ms2, &si);
     int it;
     double f, gn;
-    sb_reason why = sb_solve_step(st, ss, p, &ctx.params, 1, x0, &it, &f, &gn);
+    /* state=initial: H at the first step's initial iterate (x_n, the flat
+     * unstretched cloth, with the boundary at its prescribed values) instead
+     * of at the converged step: the paper does not say at which x Fig. 9
+     * measures H (issue 43); step_converged is then -1 */
+    const int conv = at_initial ? -1 : sb_reason_converged(sb_solve_step(st, ss, p, &ctx.params, 1, x0, &it, &f, &gn));
     /* H of the problem (inertia included), and its parts */
     sb_problem_eval(p, 0, x0, &f, g, sb_problem_hessian(p, 0));
     gn = sb_norm2(n, g);
@@ -393,12 +554,16 @@ static int bench_cond_parts(int argc, char **argv)
             printf("%s,%s,%d,%d,%.6g,%s,%.10g,%.10g,%.6g,%.6g,%s,%d,%d,%.3g,%.3g,%d,%.3g\n", sc.name, tag, res, n, h,
                    V[v].name, r.lmin, r.lmax, cond2, r.cond1, r.dense ? "dense" : "lanczos", r.dense ? 0 : r.steps_min,
                    r.dense ? 0 : r.steps_max, r.dense ? 0.0 : r.rel_min, r.dense ? 0.0 : r.rel_max,
-                   sb_reason_converged(why), gn);
+                   conv, gn);
             fflush(stdout);
             if (pass == 0 && !(both && n <= dense_max)) break;
         }
     }
     if (modes && n <= dense_max) describe_modes(&Hp, x, sc.domain.size[0], sc.domain.size[1]);
+    if (split && bench_split(&sc, mt, &cfg2, x0, &Hp, &Kf, &Ke, dynamic ? &M : NULL, idt2, p, dense_max, kmax, x, tag,
+                             res, h, conv, gn)) {
+        fprintf(stderr, "bench_cond: split: set-up at tau/2, tau/4 failed: %s\n", ctx2.err);
+    }
     sb_matrix_free(&Hp); sb_matrix_free(&Kf); sb_matrix_free(&Ke); sb_matrix_free(&M); sb_matrix_free(&A);
     free(x); free(x0); free(v0); free(g);
     st->free(ss);

@@ -82,7 +82,7 @@ SB_TEST(lanczos_laplacian_extremes)
     int n = 2000, kmax = 300;
     double *h[4];
     for (int i = 0; i < 4; i++) h[i] = calloc((size_t)kmax, sizeof(double));
-    sb_lanczos_result r = { 0, 0, 0, 0, 0, h[0], h[1], h[2], h[3] };
+    sb_lanczos_result r = { .hist_theta_max = h[0], .hist_res_max = h[1], .hist_theta_min = h[2], .hist_res_min = h[3] };
     /* lambda_max by Lanczos on A: converges (residual bound small) and the
      * bound holds: an eigenvalue lies within res of theta */
     CHECK_EQ_INT(sb_lanczos_extreme(n, lap_mult, &n, kmax, 1e-10, NULL, &r), SB_OK);
@@ -149,11 +149,47 @@ SB_TEST(lanczos_ill_conditioned_diagonal)
     free(d);
 }
 
+/* The Ritz vectors: unit vectors whose residual ||A v - theta v|| is the
+ * reported bound, and (diagonal A, well separated ends) the extreme unit
+ * coordinate vectors; NULL outputs are left alone */
+SB_TEST(lanczos_ritz_vectors)
+{
+    int n = 400;
+    double *d = malloc((size_t)(n + 1) * sizeof *d), *vmax = malloc((size_t)n * sizeof *vmax);
+    double *vmin = malloc((size_t)n * sizeof *vmin), *w = malloc((size_t)n * sizeof *w);
+    d[0] = n;
+    for (int i = 0; i < n; i++) d[1 + i] = 1.0 + i;          /* 1 .. 400 */
+    d[1 + 0] = 0.01;                                          /* lambda_min well separated */
+    d[1 + n - 1] = 1e3;                                       /* lambda_max well separated */
+    sb_lanczos_result r;
+    memset(&r, 0, sizeof r);
+    r.vec_max = vmax;
+    r.vec_min = vmin;
+    CHECK_EQ_INT(sb_lanczos_extreme(n, diag_mult, d, 120, 0, NULL, &r), SB_OK);
+    CHECK_REL(r.theta_max, 1e3, 1e-12);
+    for (int side = 0; side < 2; side++) {
+        const double *v = side ? vmin : vmax, th = side ? r.theta_min : r.theta_max, rb = side ? r.res_min : r.res_max;
+        double nv = 0, nr = 0;
+        diag_mult(d, v, w);
+        for (int i = 0; i < n; i++) { nv += v[i] * v[i]; nr += (w[i] - th * v[i]) * (w[i] - th * v[i]); }
+        CHECK_REL(nv, 1.0, 1e-10);
+        /* the computed residual equals the bound Lanczos reports (to round-off) */
+        CHECK_MSG(fabs(sqrt(nr) - rb) <= 1e-8 * fabs(d[n]) + 1e-6 * rb, "side %d: residual %.3g, bound %.3g", side,
+                  sqrt(nr), rb);
+    }
+    CHECK(fabs(vmax[n - 1]) > 1 - 1e-10);                     /* e_n */
+    /* the smallest end converges more slowly (relative gap 0.99 / 1e3): still
+     * mostly on e_1 */
+    CHECK(fabs(vmin[0]) > 0.99);
+    free(d); free(vmax); free(vmin); free(w);
+}
+
 static const sb_test_case cases[] = {
     SB_CASE(dense_laplacian_spectrum),
     SB_CASE(dense_cond1_laplacian),
     SB_CASE(lanczos_laplacian_extremes),
     SB_CASE(lanczos_ill_conditioned_diagonal),
+    SB_CASE(lanczos_ritz_vectors),
     SB_END
 };
 

@@ -185,6 +185,7 @@ SB_TEST(every_committed_study_plans)
 {
     const char *files[] = { "bench/studies/default.json", "bench/studies/accuracy.json",
                             "bench/studies/dt_stability.json", "bench/studies/dt_stability_large.json",
+                            "bench/studies/dt_stability_large_rmtr.json",
                             "bench/studies/scaling_small.json", "bench/nightly/nightly.json",
                             "bench/studies/accuracy_sqrt3.json" };
     for (size_t i = 0; i < sizeof files / sizeof *files; i++) {

@@ -143,6 +143,19 @@ int sb_lanczos_extreme(int n, sb_eig_op op, void *ctx, int kmax, double rtol, co
             break;
         for (int i = 0; i < n; i++) vn[i] = w[i] / bk;
     }
+    /* the Ritz vectors V_k y of the extreme Ritz values (z holds the
+     * eigenvectors of the last T_k; the Lanczos vectors V_k are orthonormal,
+     * so V_k y is a unit vector) */
+    for (int side = 0; side < 2 && res->steps > 0; side++) {
+        double *out = side ? res->vec_min : res->vec_max;
+        if (!out) continue;
+        const int k = res->steps, j = side ? 0 : k - 1;
+        memset(out, 0, (size_t)n * sizeof *out);
+        for (int c = 0; c < k; c++) {
+            const double y = z[c + (size_t)j * k], *vc = V + (size_t)c * n;
+            for (int i = 0; i < n; i++) out[i] += y * vc[i];
+        }
+    }
 out:
     free(V); free(w); free(a); free(b); free(theta); free(last); free(z); free(work);
     return rc;

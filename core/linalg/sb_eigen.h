@@ -38,6 +38,11 @@ typedef struct sb_lanczos_result {
     double res_min;
     /* per step k = 1..steps (arrays of length kmax, owned by the caller or NULL) */
     double *hist_theta_max, *hist_res_max, *hist_theta_min, *hist_res_min;
+    /* optional (length n, owned by the caller, or NULL): on return the unit
+     * Ritz vectors V_k y of theta_max and theta_min, whose residuals
+     * ||op v - theta v|| are res_max and res_min (issue 43: which energy term
+     * an extreme eigenvector of H lives in, by its Rayleigh quotient per term) */
+    double *vec_max, *vec_min;
 } sb_lanczos_result;
 
 /* Lanczos with full (twice) reorthogonalization from the start vector v0
