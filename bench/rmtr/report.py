@@ -1103,7 +1103,10 @@ def krylov_section():
     print("cells: finest + coarser tops (the nested start).  \"ours+K / paper\" counts V-cycles and Krylov steps alike;")
     print("a Krylov step costs its CG iterations, each one linear V-cycle (far cheaper than an RMTR V-cycle, which")
     print("runs up to 200 Schwarz-preconditioned CG iterations per smoothing step), so the seconds are the comparison.")
-    print("WU: assembly work units (Eq. 7.3).  Seconds were measured on a shared machine: ratios within ±20 %% are noise.\n")
+    print("WU: assembly work units (Eq. 7.3).  Seconds are the records' wall-clock seconds: the `rmtrd-*` records were")
+    print("made on an unloaded machine, the `rmtrdK-*` ones (2026-12-05) at a load average of 15-25, so the last column")
+    print("overstates the cost of the Krylov steps by up to the load factor; CPU seconds of both at the same load are in")
+    print("docs/krylov.md.\n")
     print("| scene | levels | dofs | paper | ours: V-cycles (status) | ours + Krylov (status) | ours+K / paper | WU (ours / +K) | s (ours / +K) | s: +K / ours |")
     print("|---|--:|--:|--:|---|---|--:|--:|--:|--:|")
     for x in lines:
