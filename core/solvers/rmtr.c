@@ -57,7 +57,10 @@
  *  - solver.nested (not in the paper; default: the first step of a run):
  *    nested iteration over the levels before the finest V-cycles, see
  *    promote(); its V-cycles on coarser top levels are outer iterations
- *    reported with their level (docs/rmtr.md "Nested start"). */
+ *    reported with their level (docs/rmtr.md "Nested start").
+ *  - solver.krylov (not in the paper; default off): finest-level trust-region
+ *    steps by Steihaug–Toint CG preconditioned by one linear V-cycle of the
+ *    same hierarchy, see krylov_iterate() and docs/krylov.md. */
 #include "sb_solver.h"
 #include "sb_trs.h"
 #include "sb_krylov.h"
@@ -111,7 +114,7 @@ static const sb_param_def rmtr_params[] = {
       "the fine one)" },
     { "krylov", SB_PARAM_CHOICE, 0, 0, 0, krylov_names,
       "Krylov acceleration (issue 38, not in the paper; docs/krylov.md): off (plain V-cycles), auto (once a V-cycle's "
-      "correction lies inside the finest radius, finest-level Steihaug-Toint CG preconditioned by one symmetric "
+      "correction lies inside half the finest radius, finest-level Steihaug-Toint CG preconditioned by one symmetric "
       "linear V-cycle, back to V-cycles on the boundary, negative curvature, a capped or a rejected step) or always "
       "(every finest-level iteration is such a step)" },
     { "krylov_max_iter", SB_PARAM_INT, 200, 1, 1e6, NULL, "Krylov acceleration: at most this many CG iterations per step" },
@@ -157,7 +160,7 @@ typedef struct rmtr_state {
     int own_coarse_radius;    /* solver.coarse_radius = own */
     double dc;                /* the top level's coarse-correction radius (own) */
     /* solver.krylov (issue 38): finest-level Steihaug-Toint CG preconditioned
-     * by one symmetric linear V-cycle (sb_precond_mg.c), see krylov_step() */
+     * by one symmetric linear V-cycle (sb_precond_mg.c), see krylov_iterate() */
     int kmode;                /* KRYLOV_* */
     int kr_alloc;             /* kr holds workspaces */
     sb_krylov kr;
