@@ -1088,6 +1088,94 @@ if pc:
 print("  The scenes are nonconvex: TR and RMTR can end a step in different local minima (compare f in the records).")
 
 
+def krylov_section():
+    """issue 38: Table 4's rows with the Krylov acceleration (solver.krylov=auto, records rmtrdK-*, written by
+    bench/rmtr/krylov.sh) beside the defaults (rmtrd-*), and the penalty diagnostic of pcg-mg on this hierarchy
+    (results/rmtr/krylov_penalty.csv)"""
+    def split(name):
+        """(V-cycles on the finest level, V-cycles on coarser tops (nested start), Krylov steps, their CG iterations)"""
+        def col(d):   # h5col, but a column older records lack (krylov_rtol) reads as absent
+            path = path_of(name)
+            out = subprocess.run(["h5dump", "-d", "/history/iterations/" + d, "-y", "-w", "0", path],
+                                 capture_output=True, text=True).stdout if os.path.exists(path) else ""
+            if "DATA {" not in out:
+                return None
+            body = out[out.find("DATA {") + 6:]
+            return [float(v) for v in body[:body.find("}")].split(",") if v.strip()]
+        it, lev, kr, li = (col(d) for d in ("iter", "level", "krylov_rtol", "linear_iters"))
+        if not it:
+            return None
+        kr = kr or [0.0] * len(it)
+        top = max(lev)
+        v = sum(1 for i, l, k in zip(it, lev, kr) if i > 0 and l == top and k == 0)
+        c = sum(1 for i, l in zip(it, lev) if i > 0 and l < top)
+        k = sum(1 for i, q in zip(it, kr) if i > 0 and q > 0)
+        cg = sum(n for i, q, n in zip(it, kr, li) if i > 0 and q > 0)
+        return v, c, k, cg
+    lines = []
+    for sc in SCENES:
+        for l in range(2, 7):
+            kn, kr = rec("rmtrdK-%s-l%d" % (sc, l))
+            if kr is None:
+                continue
+            pn, pr = rec("rmtrd-%s-l%d" % (sc, l))
+            sk, sp = split(kn), split(pn) if pr is not None else None
+            paper = T4[sc][l - 2] if l - 2 < len(T4[sc]) else None
+            cell = "—"
+            if sk:
+                cell = "%d + %d V-cycles, %d Krylov steps (%s CG its)" % (sk[0], sk[1], sk[2], num(sk[3]))
+            plain = "%d + %d" % (sp[0], sp[1]) if sp else "—"
+            vk = sk[0] + sk[1] + sk[2] if sk else None
+            lines.append("| %s | %d | %s | %s | %s (%s) | %s (%s) | %s | %s | %s | %s |" % (
+                NAMES[sc], l, dofs2(pn, kn), num(paper), plain, status(pr) if pr else "no record", cell, status(kr),
+                ratio(vk, paper) if vk and paper and ok(kr) else "—",
+                "%s / %s" % (num(float(pr["work_assembly"]), "{:,.1f}"), num(float(kr["work_assembly"]), "{:,.1f}")) if pr else "—",
+                "%.3g / %.3g" % (float(pr["seconds"]), float(kr["seconds"])) if pr else "—",
+                ratio(float(kr["seconds"]), float(pr["seconds"])) if pr and ok(pr) and ok(kr) else "—"))
+    if not lines:
+        return
+    print("\n## Table 4 with Krylov acceleration (issue 38, `solver.krylov=auto`)\n")
+    print("\"ours\" (the defaults, records `rmtrd-*`) against the same with `solver.krylov=auto` (records `rmtrdK-*`,")
+    print("`bash bench/rmtr/krylov.sh`): once a V-cycle's correction lies inside half the finest radius, the finest level")
+    print("takes trust-region steps whose subproblem is solved by Steihaug–Toint CG preconditioned by one symmetric")
+    print("linear V-cycle over the same hierarchy (Galerkin operators, block Gauss–Seidel, CHOLMOD on 4×4), back to")
+    print("V-cycles on the boundary, negative curvature, the CG cap (200) or a rejected step (docs/krylov.md).  V-cycle")
+    print("cells: finest + coarser tops (the nested start).  \"ours+K / paper\" counts V-cycles and Krylov steps alike;")
+    print("a Krylov step costs its CG iterations, each one linear V-cycle (far cheaper than an RMTR V-cycle, which")
+    print("runs up to 200 Schwarz-preconditioned CG iterations per smoothing step), so the seconds are the comparison.")
+    print("WU: assembly work units (Eq. 7.3).  Seconds are the records' wall-clock seconds: the `rmtrd-*` records were")
+    print("made on an unloaded machine, the `rmtrdK-*` ones (2026-12-05) at a load average of 15-25, so the last column")
+    print("overstates the cost of the Krylov steps by up to the load factor; CPU seconds of both at the same load are in")
+    print("docs/krylov.md.\n")
+    print("| scene | levels | dofs | paper | ours: V-cycles (status) | ours + Krylov (status) | ours+K / paper | WU (ours / +K) | s (ours / +K) | s: +K / ours |")
+    print("|---|--:|--:|--:|---|---|--:|--:|--:|--:|")
+    for x in lines:
+        print(x)
+    pen = "results/rmtr/krylov_penalty.csv"
+    if os.path.exists(pen):
+        with open(pen) as fh:
+            data = list(csv.DictReader(fh))
+        print("\n### Why the Krylov steps need many CG iterations here: the penalty (issue 38, item 5)\n")
+        print("CG iterations (rtol 1e-6, cap 3,000) of the first Newton iteration of the trampoline's first step,")
+        print("`lsnewton` with `solver.linear=pcg-mg` (one V-cycle of this hierarchy) and `pcg-amg` (hypre BoomerAMG),")
+        print("with the scene's boundary penalty β (`method.beta_scale=1`) and with β scaled down (a different problem:")
+        print("the boundary is then nearly free; diagnostic only).  ≥ 3,000: the cap.\n")
+        bss = sorted({r["beta_scale"] for r in data}, key=lambda v: -float(v))
+        lvs = sorted({int(r["levels"]) for r in data})
+        print("| preconditioner | β scale | " + " | ".join("%d levels (%s dofs)" % (l, num(int(next(r["dofs"] for r in data if int(r["levels"]) == l)))) for l in lvs) + " |")
+        print("|---|--:|" + "--:|" * len(lvs))
+        for lin in ("pcg-mg", "pcg-amg"):
+            for b in bss:
+                cells = []
+                for l in lvs:
+                    r = next((r for r in data if r["linear"] == lin and r["beta_scale"] == b and int(r["levels"]) == l), None)
+                    cells.append("—" if r is None else ("≥ " if r["krylov_status"] == "1" else "") + num(int(r["cg_iterations"])))
+                print("| %s | %s | %s |" % (lin, b, " | ".join(cells)))
+
+
+krylov_section()
+
+
 _redirect.__exit__(None, None, None)
 
 

@@ -57,9 +57,13 @@
  *  - solver.nested (not in the paper; default: the first step of a run):
  *    nested iteration over the levels before the finest V-cycles, see
  *    promote(); its V-cycles on coarser top levels are outer iterations
- *    reported with their level (docs/rmtr.md "Nested start"). */
+ *    reported with their level (docs/rmtr.md "Nested start").
+ *  - solver.krylov (not in the paper; default off): finest-level trust-region
+ *    steps by Steihaug–Toint CG preconditioned by one linear V-cycle of the
+ *    same hierarchy, see krylov_iterate() and docs/krylov.md. */
 #include "sb_solver.h"
 #include "sb_trs.h"
+#include "sb_krylov.h"
 #include "sb_context.h"
 
 #include <math.h>
@@ -70,6 +74,8 @@
 static const char *const coarse_model_names[] = { "auto", "nonlinear", "galerkin", "corrected", NULL };
 enum { MODEL_AUTO = 0, MODEL_NONLINEAR = 1, MODEL_GALERKIN = 2, MODEL_CORRECTED = 3 };
 static const char *const coarse_radius_names[] = { "fine", "own", NULL };
+static const char *const krylov_names[] = { "off", "auto", "always", NULL };
+enum { KRYLOV_OFF = 0, KRYLOV_AUTO = 1, KRYLOV_ALWAYS = 2 };
 
 static const sb_param_def rmtr_params[] = {
     { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
@@ -106,6 +112,16 @@ static const sb_param_def rmtr_params[] = {
       "radius of the top level's coarse corrections (not in the paper's choice): fine (Alg. 4.2 line 4: the fine "
       "radius, the paper's) or own (a radius of their own, updated by the multilevel ratio Eq. 4.11, never below "
       "the fine one)" },
+    { "krylov", SB_PARAM_CHOICE, 0, 0, 0, krylov_names,
+      "Krylov acceleration (issue 38, not in the paper; docs/krylov.md): off (plain V-cycles), auto (once a V-cycle's "
+      "correction lies inside half the finest radius, finest-level Steihaug-Toint CG preconditioned by one symmetric "
+      "linear V-cycle, back to V-cycles on the boundary, negative curvature, a capped or a rejected step) or always "
+      "(every finest-level iteration is such a step)" },
+    { "krylov_max_iter", SB_PARAM_INT, 200, 1, 1e6, NULL, "Krylov acceleration: at most this many CG iterations per step" },
+    { "krylov_rtol", SB_PARAM_REAL, -1, -1, 0.5, NULL,
+      "Krylov acceleration: CG stops at ||H s + g|| <= krylov_rtol ||g||; -1: Eisenstat-Walker forcing (choice 2)" },
+    { "krylov_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,
+      "Krylov acceleration: block Gauss-Seidel sweeps before (forward) and after (backward) each coarse correction" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -143,6 +159,16 @@ typedef struct rmtr_state {
     double consistency_err;   /* max relative |grad h^l(x0) - R g^{l+1}| seen (Eq. 4.5) */
     int own_coarse_radius;    /* solver.coarse_radius = own */
     double dc;                /* the top level's coarse-correction radius (own) */
+    /* solver.krylov (issue 38): finest-level Steihaug-Toint CG preconditioned
+     * by one symmetric linear V-cycle (sb_precond_mg.c), see krylov_iterate() */
+    int kmode;                /* KRYLOV_* */
+    int kr_alloc;             /* kr holds workspaces */
+    sb_krylov kr;
+    int k_max;                /* CG iterations per step */
+    double k_rtol;            /* fixed relative tolerance, < 0: Eisenstat-Walker */
+    double k_eta, k_gprev;    /* the forcing term and the ||g|| it was taken at */
+    int k_next;               /* auto: the next finest iteration is a Krylov step */
+    int k_setup;              /* the preconditioner was set up for the current finest Hessian */
 } rmtr_state;
 
 enum { COARSE_UNUSABLE = 100 };   /* internal: a coarse level could not build its model */
@@ -161,6 +187,7 @@ static void rmtr_free(void *st)
         sb_matrix_free(&V->E);
         sb_trs_free(&V->trs);
     }
+    if (R->kr_alloc) sb_krylov_free(&R->kr);
 }
 
 /* ||I_l^L v||_2 (free dofs) for v in lv[l].tmp; uses the tmp of finer levels */
@@ -292,6 +319,29 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         }
         if (!rc && R->corrected) rc = sb_matrix_init(&R->lv[l].E, sb_problem_hessian(p, l)->pat);
         if (rc) return rc;
+    }
+    R->kmode = sb_param_int(ps, "solver.krylov");
+    if (R->kmode != KRYLOV_OFF) {
+        /* the V-cycle preconditioner over all levels of the hierarchy; its
+         * alloc refuses a hierarchy without Galerkin products (with a sentence) */
+        R->k_max = sb_param_int(ps, "solver.krylov_max_iter");
+        R->k_rtol = sb_param(ps, "solver.krylov_rtol");
+        sb_precond_opts o = { sb_param_int(ps, "solver.krylov_sweeps"), 0.5 };
+        sb_context *kctx = sb_problem_context(p);
+        for (int l = 0; l < R->L_fine; l++)
+            if (sb_problem_galerkin_prepare(p, l))
+                return sb_error(kctx, SB_ERR_UNSUPPORTED, "solver.krylov=%s needs Galerkin coarse operators I^T H I on "
+                                "every level (its preconditioner is a V-cycle of them), but the pattern of level %d of "
+                                "method %s cannot hold them: use solver.krylov=off with this method",
+                                krylov_names[R->kmode], l, sb_problem_method_type(p)->name);
+        R->kr_alloc = 1;
+        int rc = sb_krylov_alloc(&R->kr, p, R->L_fine, &sb_precond_mg, &o);
+        if (rc) {
+            sb_context *ctx = sb_problem_context(p);
+            char msg[sizeof ctx->err];
+            snprintf(msg, sizeof msg, "%s", ctx->err);
+            return sb_error(ctx, rc, "solver.krylov=%s: %s", krylov_names[R->kmode], msg);
+        }
     }
     return SB_OK;
 }
@@ -661,6 +711,8 @@ static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *i
     set_top(R, R->L_fine);
     rlevel *V = &R->lv[R->L];
     sb_copy(V->n, x, V->x);
+    R->k_next = R->k_setup = 0;     /* every step starts with V-cycles, the forcing afresh */
+    R->k_eta = R->k_gprev = 0.0;
     const int nested = R->nested == 2 || (R->nested == 1 && sb_problem_step(p) <= 1);
     /* with a nested start the finest Hessian is first needed at the prolongated start */
     int rc = start_top(R, p, !nested);
@@ -685,9 +737,136 @@ static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *i
     return rc;
 }
 
+/* Krylov acceleration (solver.krylov, issue 38; not in the RMTR paper).
+ * One finest-level trust-region iteration (Alg. 4.1 with the radius update
+ * of Alg. 4.3 lines 1-3, Delta^{L+1} = infinity on the finest level) whose
+ * subproblem  min g^T s + 1/2 s^T H s, ||s||_2 <= Delta  is solved by
+ * Steihaug–Toint CG (Steihaug 1983, Toint 1981; Nocedal & Wright Alg. 7.2)
+ * preconditioned by one linear V-cycle B over the same hierarchy: Galerkin
+ * coarse operators I^T H I (the Hessians of the Galerkin coarse models of
+ * Gratton, Sartenaer & Toint 2008 at the same point), forward block
+ * Gauss–Seidel before and backward after the coarse correction, CHOLMOD on
+ * the coarsest level (sb_precond_mg.c).  B is symmetric, and positive
+ * definite when H is (R^{-1} + R^{-T} - H = D, Xu & Zikatanov 2002), so CG
+ * stays valid; where it is not (indefinite H), CG restarts without it
+ * (sb_krylov.c, recorded) and negative curvature ends the step on the
+ * boundary as Steihaug–Toint does.
+ *
+ * Why: after the nonconvex start of the hard scenes the V-cycles are a
+ * stationary linear multigrid iteration on a nearly singular Hessian (rho ~ 1,
+ * radius inactive, ||g|| x 0.97 per V-cycle, docs/rmtr.md); the few soft
+ * modes behind that rate are what a Krylov method around the same V-cycle
+ * removes in a few iterations (Saad, Iterative Methods, §13.1 on
+ * multigrid as a preconditioner).
+ *
+ * ASSUMPTIONS (the paper is silent, docs/krylov.md):
+ *  - the trust region is Euclidean in the finest dofs (the level norm 4.9 at
+ *    l = L); the preconditioner does not change the norm (sb_krylov.c);
+ *  - CG stops at ||H s + g|| <= eta ||g|| with eta the Eisenstat–Walker
+ *    forcing term (choice 2) of the current ||g|| (solver.krylov_rtol fixes it),
+ *    or at solver.krylov_max_iter iterations: the truncated step is judged by
+ *    the ratio test like any other (recorded as krylov_status 1);
+ *  - a rejected Krylov step sets Delta = gamma1 min(Delta, ||s||) (Conn,
+ *    Gould & Toint, Trust-Region Methods, §17.1 allow any Delta+ <= gamma1
+ *    Delta): the finest radius of the V-cycles is often far larger than
+ *    any step (inactive), and halving it alone would take hundreds of
+ *    rejections before a boundary step of Steihaug–Toint fits;
+ *  - auto: a Krylov step follows a finest V-cycle whose correction was
+ *    accepted and lay inside half its radius (the criterion of
+ *    has_correction, radius inactive), and another Krylov step follows a
+ *    Krylov step that was accepted and ended inside the radius with CG
+ *    converged; anything else (boundary, negative curvature, cap,
+ *    rejection) returns to the V-cycles, whose coarse corrections handle the
+ *    nonconvex phases.  Every step starts with V-cycles. */
+static int krylov_iterate(rmtr_state *R, sb_problem *p, double *x, sb_iterate_info *info)
+{
+    const int L = R->L;
+    rlevel *V = &R->lv[L];
+    const int n = V->n;
+    int rc;
+    if (!V->hess_ok) {
+        if ((rc = h_eval(R, p, L, V->x, &V->f, V->g, 1)) < 0) return rc;
+        V->hess_ok = 1;
+        V->fresh = 1;
+        R->k_setup = 0;
+    }
+    const double gnorm = sb_problem_norm(p, L, V->g);
+    if (!R->k_setup) {
+        /* the preconditioner of the Hessian at x (coarse Galerkin operators,
+         * block inverses, coarsest factor), once per iterate; the forcing
+         * term of this iterate, kept while its steps are rejected */
+        R->k_eta = R->k_rtol >= 0.0 ? R->k_rtol : sb_forcing_ew2(gnorm, R->k_gprev, R->k_eta);
+        R->k_gprev = gnorm;
+        if ((rc = sb_krylov_setup(&R->kr, p)) < 0) return rc;
+        R->k_setup = 1;
+    }
+    const double t0 = sb_now();
+    sb_krylov_result kr;
+    rc = sb_krylov_solve(&R->kr, p, V->g, V->delta, R->k_eta, R->k_max, V->s, &kr);
+    sb_problem_count_qp(p, L, sb_now() - t0);
+    if (rc < 0) return rc;
+    double pred = kr.pred, snorm = kr.snorm;
+    int interior = kr.status == SB_KRYLOV_CONVERGED;
+    {
+        /* contact step filter (docs/contact.md), m(tau s) as in local_tr */
+        double tau = sb_problem_step_bound(p, L, V->x, V->s);
+        if (tau < 1.0) {
+            double gs = sb_dot(n, V->g, V->s), sHs = -2.0 * (pred + gs);
+            sb_scal(n, tau, V->s);
+            pred = -(tau * gs + 0.5 * tau * tau * sHs);
+            snorm *= tau;
+            interior = 0;
+        }
+    }
+    for (int i = 0; i < n; i++) V->xt[i] = V->x[i] + V->s[i];
+    /* Eq. (4.2); from gradients where f - f_trial is round-off (the Krylov
+     * paths' test, sb_krylov_f_noise, as tr.c) */
+    double ft;
+    int have_gt = 0;
+    rc = h_eval(R, p, L, V->xt, &ft, NULL, 0);
+    if (rc < 0) return rc;
+    double rho = sb_tr_ratio(rc, V->f, ft, pred);
+    if (rc == SB_OK && (sb_krylov_f_noise(V->f, ft, pred) || sb_tr_ared_unreliable(V->f, ft, pred))) {
+        double f2;
+        rc = h_eval(R, p, L, V->xt, &f2, V->gt, 0);
+        if (rc < 0) return rc;
+        have_gt = rc == SB_OK;
+        rho = rc == SB_OK ? sb_tr_ratio_grad(n, V->g, V->gt, V->s, pred) : -INFINITY;
+    }
+    const double f_old = V->f, delta_old = V->delta;
+    int accepted = 0;
+    if (rho > R->eta1) {
+        if ((rc = accept_trial(R, p, L, ft, have_gt)) < 0) return rc;
+        if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
+        accepted = 1;
+        R->k_setup = 0;
+    }
+    /* Alg. 4.3 lines 1-3 on the finest level (see the assumption on rejection) */
+    if (rho < R->eta1) V->delta = R->gamma1 * fmin(V->delta, snorm > 0 ? snorm : V->delta);
+    else if (rho > R->eta2) V->delta = fmin(R->gamma2 * V->delta, 1e300);
+    R->k_next = accepted && interior;
+    info->level = L;
+    info->f = V->f;
+    info->df = accepted ? f_old - V->f : 0.0;
+    info->accepted = accepted;
+    info->step_norm = accepted ? snorm : 0.0;
+    info->rho = 0;                   /* no coarse corrections in this iteration */
+    info->gnorm = sb_problem_norm(p, L, V->g);
+    info->delta = V->delta;
+    info->linear_iters = kr.iters;
+    info->linear_rtol = R->k_eta;
+    info->linear_status = (int)kr.status;
+    info->has_correction = interior && snorm < 0.5 * delta_old;
+    info->correction = snorm;
+    sb_copy(n, V->x, x);
+    return SB_OK;
+}
+
 static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
 {
     rmtr_state *R = st;
+    if (R->L == R->L_fine && (R->kmode == KRYLOV_ALWAYS || (R->kmode == KRYLOV_AUTO && R->k_next)))
+        return krylov_iterate(R, p, x, info);
     const int top = R->L;
     rlevel *V = &R->lv[top];
     double f_old = V->f, delta_old = V->delta;
@@ -712,6 +891,13 @@ static int rmtr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *inf
      * the cycle are then as the model asked) */
     info->has_correction = sn > 0 && info->step_norm < 0.5 * delta_old;
     info->correction = info->step_norm;
+    if (R->kmode != KRYLOV_OFF) {
+        /* the V-cycle overwrote the coarse Hessians and the coarsest factor
+         * the preconditioner lives in; auto: a Krylov step next when the
+         * radius was inactive (see krylov_iterate) */
+        R->k_setup = 0;
+        R->k_next = top == R->L_fine && rc == SB_OK && info->has_correction;
+    }
     if (top == R->L_fine) {
         if (rc == SB_NONFINITE) info->fail = SB_REASON_NONFINITE;
         sb_copy(V->n, V->x, x);
@@ -738,6 +924,15 @@ static void rmtr_describe(const void *st, char *buf, size_t len)
              R->model_param == MODEL_AUTO ? " (auto)" : "", R->mu1, R->mu2, R->cg_iter, sb_trs_precond_names[R->precond],
              R->nested == 2 ? "every step" : R->nested == 1 ? "first step" : "off",
              R->own_coarse_radius ? "own" : "fine");
+    if (R->kmode != KRYLOV_OFF) {
+        size_t k = strlen(buf);
+        char kd[512];
+        sb_krylov_describe(&R->kr, kd, sizeof kd);
+        if (k < len)
+            snprintf(buf + k, len - k, "; Krylov acceleration %s: finest-level Steihaug-Toint %s, at most %d CG "
+                     "iterations, rtol %s", krylov_names[R->kmode], kd, R->k_max,
+                     R->k_rtol >= 0 ? "fixed" : "Eisenstat-Walker");
+    }
 }
 
 const sb_solver_type sb_solver_rmtr = {
