@@ -209,4 +209,10 @@ if rows:
       "docs/render.md).  Ray tracing the patches, the paper's Table 1: results/bhem_table1.md.\n")
     out.extend(rows)
 
+# ---- linear FEM beside BHEM (paper Figs. 14-17, issue 39): its own module ----
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fem_report import fem_sections  # noqa: E402
+
+out.extend([""] + fem_sections(os.path.join(os.path.dirname(RUNS.rstrip("/")), "fem"), "bhem/fem"))
+
 print("\n".join(out))
