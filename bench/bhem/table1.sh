@@ -43,13 +43,14 @@ record cylinder $SC/render_cylinder.json 10
 record drape $SC/draped_cloth.json 10
 
 machine=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
+batch=$(date -u +%Y-%m-%dT%H:%MZ)   # one call: table1.py compares algorithms within it (the same load)
 for rep in $(seq 1 "$REPEATS"); do
   for scene in plane cylinder drape; do
     for alg in $ALGS; do
       echo "== $scene $alg (repeat $rep of $REPEATS)" >&2
       line=$("$BIN" render "$OUT/$scene.h5" --size 480x360 --spp 16 --intersect "$alg" \
                --out "$OUT/${scene}_$alg.png" --stats --quiet) || exit 1
-      echo "{\"scene\": \"$scene\", \"repeat\": $rep, \"machine\": \"$machine\", \"load\": \"$(cut -d' ' -f1 /proc/loadavg)\", \"stats\": $line}" \
+      echo "{\"batch\": \"$batch\", \"scene\": \"$scene\", \"repeat\": $rep, \"machine\": \"$machine\", \"load\": \"$(cut -d' ' -f1 /proc/loadavg)\", \"stats\": $line}" \
         >> "$OUT/timings.jsonl"
     done
   done
