@@ -111,12 +111,13 @@ def curves(runs, png, title, xlabel):
         return False
     with open(dat, "w") as fh:
         fh.write("\n\n\n".join(b for _, b in blocks) + "\n")
-    plots = lambda col: ", ".join("'%s' index %d using 1:%d with linespoints pt 7 ps 0.4 title '%s'"
-                                  % (dat, i, col, t) for i, (t, _) in enumerate(blocks))
-    gp = ("set terminal pngcairo size 900,340 font ',9'\nset output '%s'\nset multiplot layout 1,2 title '%s'\n"
-          "set key left top\nset grid\nset xlabel '%s'\nset ylabel 'iterations (cumulative)'\nplot %s\n"
-          "set ylabel 'CPU seconds (cumulative)'\nset logscale y\nplot %s\nunset multiplot\n"
-          % (png, title, xlabel, plots(2), plots(3)))
+    dash = lambda t: 1 if t.startswith("BHEM(e)") else 2 if t.startswith("BHEM(p)") else 3
+    plots = lambda col: ", ".join("'%s' index %d using 1:%d with linespoints lc %d dt %d pt 7 ps 0.4 title '%s'"
+                                  % (dat, i, col, i + 1, dash(t), t) for i, (t, _) in enumerate(blocks))
+    gp = ("set terminal pngcairo size 1000,340 font ',9'\nset output '%s'\nset multiplot layout 1,2 title '%s'\n"
+          "set key outside right top\nset grid\nset xlabel '%s'\nset ylabel 'iterations (cumulative)'\nplot %s\n"
+          "set ylabel 'CPU seconds (cumulative)'\nset logscale y\nunset key\nplot %s\nunset multiplot\n"
+          % (png, title + " (solid BHEM(e), dashed BHEM(p), dotted FEM)", xlabel, plots(2), plots(3)))
     rc = subprocess.run(["gnuplot"], input=gp, text=True, capture_output=True).returncode
     os.remove(dat)
     return rc == 0 and os.path.exists(png)
