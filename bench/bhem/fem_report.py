@@ -149,7 +149,7 @@ def paper_rows(W, D):
     if be and fe:
         cands = [r for r in w if r["run"]["method"] == "linear_fem"]
         near = min(cands, key=lambda r: abs(r["run"]["dofs"] - be["run"]["dofs"]))
-        out.append("| Fig. 14 | FEM: fewer iterations, much more time than BHEM | at matched dofs, %s (%d dofs) against "
+        out.append("| Fig. 14 | FEM: fewer iterations, much more time than BHEM | nearest in dofs (of the runs made), %s (%d dofs) against "
                    "%s (%d): %d against %d iterations, %.1f against %.1f CPU s (peak %.3f against %.3f mm) | "
                    "iterations %.2f×, time %.2f× (FEM / BHEM) | CPU seconds on a shared machine; no wall clock |" % (
                        label(near), near["run"]["dofs"], label(be), be["run"]["dofs"], near["run"]["iterations"],
@@ -173,7 +173,7 @@ def paper_rows(W, D):
     if bd and fems:
         near = min(fems, key=lambda r: abs(r["run"]["dofs"] - bd["run"]["dofs"]))
         big = [r for r in fems if verts(r["run"]["method_info"]) >= 4000]
-        for fd, how in [(near, "nearest in dofs")] + ([(big[0], "4k vertices, as the paper")] if big and big[0] is not near else []):
+        for fd, how in [(near, "nearest in dofs of the runs made")] + ([(big[0], "4k vertices, as the paper")] if big and big[0] is not near else []):
             out.append("| Fig. 16 | BHEM 30² (11.5k dofs) converges in much fewer iterations and less time than FEM at "
                        "4k vertices (12k dofs) | %s (%d dofs): %d iterations, %.1f CPU s; %s (%d dofs, %s): %d "
                        "iterations, %.1f CPU s | iterations %.2f×, time %.2f× (FEM / BHEM) | corners pinned, not "
@@ -193,7 +193,7 @@ def paper_rows(W, D):
                                                              label(bd)))
         mn, mr = drape_metrics(near, bd) or {}, drape_metrics(bd, bd) or {}
         out.append("| Fig. 15 | at comparable dofs BHEM (30², 11.5k) shows more vivid wrinkles than FEM (4k vertices, "
-                   "12k dofs) | %s: %s crests; %s (nearest in dofs): %s crests, %s of them fake, %s of the reference's "
+                   "12k dofs) | %s: %s crests; %s (nearest in dofs of the runs made): %s crests, %s of them fake, %s of the reference's "
                    "missing, RMS Δz %s mm | — | crests as below |" % (
                        label(bd), mr.get("crests", "—"), label(near), mn.get("crests", "—"), mn.get("fake", "—"),
                        mn.get("missing", "—"), f(mn.get("rms_mm"), "%.1f")))
