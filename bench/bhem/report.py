@@ -219,4 +219,10 @@ if rows:
 from report_issue39 import sections as issue39_sections  # noqa: E402
 out.extend(issue39_sections())
 
+# ---- linear FEM beside BHEM (paper Figs. 14-17, issue 39): its own module ----
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fem_report import fem_sections  # noqa: E402
+
+out.extend([""] + fem_sections(os.path.join(os.path.dirname(RUNS.rstrip("/")), "fem"), "bhem/fem"))
+
 print("\n".join(out))

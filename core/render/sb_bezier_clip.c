@@ -74,7 +74,10 @@ static int clip_interval(const double *Q, int dir, double *c0, double *c1)
     return hull_interval(ymin, ymax, c0, c1);
 }
 
-static int push(sb_bezier_ws *ws, const double *Q, double u0, double u1, double v0, double v1, double limit)
+/* seq: NULL = best-first (key: the smallest ray parameter of the control
+ * points); else depth first (key: minus a running count, so the heap pops
+ * the region pushed last, a stack). */
+static int push(sb_bezier_ws *ws, const double *Q, double u0, double u1, double v0, double v1, double limit, long *seq)
 {
     double kmin = Q[2];
     for (int k = 1; k < 16; k++) kmin = fmin(kmin, Q[3 * k + 2]);
@@ -85,14 +88,20 @@ static int push(sb_bezier_ws *ws, const double *Q, double u0, double u1, double 
     sb_bez_region *R = &ws->pool[idx];
     memcpy(R->P, Q, sizeof R->P);
     R->u0 = u0; R->u1 = u1; R->v0 = v0; R->v1 = v1;
-    R->key = kmin;
+    R->key = seq ? -(double)++*seq : kmin;
     sb_bez_push(ws, idx);
     return 0;
 }
 
-int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, double eps, sb_bezier_ws *ws,
-                             sb_patch_hit *hit)
+/* textbook = 0: best-first with first-hit pruning (the search stops when the
+ * heap's smallest ray parameter passes the best root, and sub-patches behind
+ * it are never pushed); textbook = 1: Bézier clipping as NSK90 state it and
+ * most implementations do it: depth first, every root in (tmin, tmax) found,
+ * the smallest kept (only tmax, the caller's nearest hit so far, prunes). */
+static int clip_search(int textbook, const double *P, const sb_ray *r, double tmax, double eps, sb_bezier_ws *ws,
+                       sb_patch_hit *hit)
 {
+    long seq_store = 0, *seq = textbook ? &seq_store : NULL;
     /* the ray frame */
     double e1[3], e2[3];
     const double *d = r->d;
@@ -111,7 +120,7 @@ int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, doub
         Q[3 * k + 2] = p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
     }
     sb_bez_reset(ws);
-    if (push(ws, Q, 0, 1, 0, 1, tmax)) return -1;
+    if (push(ws, Q, 0, 1, 0, 1, tmax, seq)) return -1;
     int found = 0;
     double best = tmax, limit = tmax;
     long budget = SB_BEZ_BUDGET;
@@ -120,7 +129,7 @@ int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, doub
         sb_bez_region R = ws->pool[idx];
         sb_bez_release(ws, idx);
         ws->counts.regions++;
-        if (!(R.key < limit)) break;
+        if (!textbook && !(R.key < limit)) break;
         if (--budget < 0) { ws->counts.budget++; break; }
         double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
         for (int k = 0; k < 16; k++)
@@ -140,7 +149,7 @@ int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, doub
                 hit->u = 0.5 * (R.u0 + R.u1);
                 hit->v = 0.5 * (R.v0 + R.v1);
                 found = 1;
-                limit = best - eps;
+                if (!textbook) limit = best - eps;
             }
             continue;
         }
@@ -179,15 +188,27 @@ int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, doub
             if (lu >= lv) {
                 const double um = 0.5 * (R.u0 + R.u1);
                 sb_bezier_split_u(R.P, 0.5, A, B);
-                if (push(ws, A, R.u0, um, R.v0, R.v1, limit) || push(ws, B, um, R.u1, R.v0, R.v1, limit)) return -1;
+                if (push(ws, A, R.u0, um, R.v0, R.v1, limit, seq) || push(ws, B, um, R.u1, R.v0, R.v1, limit, seq)) return -1;
             } else {
                 const double vm = 0.5 * (R.v0 + R.v1);
                 sb_bezier_split_v(R.P, 0.5, A, B);
-                if (push(ws, A, R.u0, R.u1, R.v0, vm, limit) || push(ws, B, R.u0, R.u1, vm, R.v1, limit)) return -1;
+                if (push(ws, A, R.u0, R.u1, R.v0, vm, limit, seq) || push(ws, B, R.u0, R.u1, vm, R.v1, limit, seq)) return -1;
             }
             continue;
         }
-        if (push(ws, R.P, R.u0, R.u1, R.v0, R.v1, limit)) return -1;
+        if (push(ws, R.P, R.u0, R.u1, R.v0, R.v1, limit, seq)) return -1;
     }
     return found;
+}
+
+int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, double eps, sb_bezier_ws *ws,
+                             sb_patch_hit *hit)
+{
+    return clip_search(0, P, r, tmax, eps, ws, hit);
+}
+
+int sb_bezier_clip_dfs_intersect(const double *P, const sb_ray *r, double tmax, double eps, sb_bezier_ws *ws,
+                                 sb_patch_hit *hit)
+{
+    return clip_search(1, P, r, tmax, eps, ws, hit);
 }

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const sb_isect_names[] = { "subdivision", "newton", "clipping", NULL };
+const char *const sb_isect_names[] = { "subdivision", "newton", "clipping", "clipping-dfs", NULL };
 
 int sb_isect_find(const char *name)
 {
@@ -317,7 +317,8 @@ int sb_bezier_intersect(sb_isect_kind kind, const double *P, const double *lo, c
     switch (kind) {
     case SB_ISECT_SUBDIVISION: rc = heap_intersect(0, P, lo, hi, r, tmax, eps, ws, hit); break;
     case SB_ISECT_NEWTON: rc = heap_intersect(1, P, lo, hi, r, tmax, eps, ws, hit); break;
-    case SB_ISECT_CLIPPING: {
+    case SB_ISECT_CLIPPING:
+    case SB_ISECT_CLIPPING_DFS: {
         double t0, t1;
         double blo[3], bhi[3];
         if (!lo || !hi) {
@@ -325,7 +326,9 @@ int sb_bezier_intersect(sb_isect_kind kind, const double *P, const double *lo, c
             lo = blo;
             hi = bhi;
         }
-        rc = sb_ray_box(r, lo, hi, tmax, &t0, &t1) ? sb_bezier_clip_intersect(P, r, tmax, eps, ws, hit) : 0;
+        rc = !sb_ray_box(r, lo, hi, tmax, &t0, &t1) ? 0
+             : kind == SB_ISECT_CLIPPING ? sb_bezier_clip_intersect(P, r, tmax, eps, ws, hit)
+                                         : sb_bezier_clip_dfs_intersect(P, r, tmax, eps, ws, hit);
         break;
     }
     default: rc = 0;

@@ -16,7 +16,14 @@
  *                patch in a frame of the ray, clipped alternately in u and v
  *                to the parameter interval where the convex hull of its
  *                distances to a line through the ray can vanish, halved when
- *                a clip removes less than 20 %.
+ *                a clip removes less than 20 %; best first from the same
+ *                heap, the search ends when its smallest ray parameter
+ *                passes the best root (first-hit pruning).
+ *   clipping-dfs the same clipping as NSK90 describe it and most
+ *                implementations do it (the BHEM paper does not describe
+ *                its own): depth first, every root in (tmin, tmax) found and
+ *                the smallest kept; only tmax (the nearest hit on other
+ *                patches so far) prunes.  bench/bhem/table1.sh times both.
  *
  * All three search the whole patch and return the smallest t > tmin, so they
  * agree on the first hit (tests/test_render_isect.c); they differ in cost,
@@ -27,8 +34,12 @@
 #include "sb_bezier.h"
 #include "sb_ray.h"
 
-typedef enum { SB_ISECT_SUBDIVISION = 0, SB_ISECT_NEWTON = 1, SB_ISECT_CLIPPING = 2, SB_ISECT_COUNT } sb_isect_kind;
-extern const char *const sb_isect_names[];   /* "subdivision", "newton", "clipping", NULL */
+typedef enum {
+    SB_ISECT_SUBDIVISION = 0, SB_ISECT_NEWTON = 1, SB_ISECT_CLIPPING = 2,
+    SB_ISECT_CLIPPING_DFS = 3,   /* Bézier clipping depth first, every root (below) */
+    SB_ISECT_COUNT
+} sb_isect_kind;
+extern const char *const sb_isect_names[];   /* "subdivision", "newton", "clipping", "clipping-dfs", NULL */
 /* Kind by name; -1 if unknown. */
 int sb_isect_find(const char *name);
 
@@ -84,6 +95,8 @@ void sb_bez_release(sb_bezier_ws *ws, int idx);
 
 int sb_bezier_clip_intersect(const double *P, const sb_ray *r, double tmax, double eps, sb_bezier_ws *ws,
                              sb_patch_hit *hit);
+int sb_bezier_clip_dfs_intersect(const double *P, const sb_ray *r, double tmax, double eps, sb_bezier_ws *ws,
+                                 sb_patch_hit *hit);
 
 /* Regions one search may take before it stops with what it has (counts.budget). */
 #define SB_BEZ_BUDGET 200000

@@ -12,7 +12,7 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: shellbench render RECORD.h5 [--out FILE.png] [--size WxH] [--spp N] [--thumb]\n"
             "         [--camera AZ,EL[,ZOOM] | --camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]\n"
-            "         [--color none|curvature|strain|softening] [--intersect subdivision|newton|clipping]\n"
+            "         [--color none|curvature|strain|softening] [--intersect subdivision|newton|clipping|clipping-dfs]\n"
             "         [--step K] [--no-shadows] [--no-ground] [--title TEXT] [--stats] [--quiet]\n"
             "  draws the record's final state (or the recorded surface of step K) as a ray-traced PNG;\n"
             "  --thumb = --size 320x240 --spp 8; --stats prints the work counts as one JSON line\n");
@@ -107,7 +107,7 @@ int sb_render_main(int argc, char **argv)
         } else if (!strcmp(a, "--intersect")) {
             NEED();
             int k = sb_isect_find(v);
-            if (k < 0) BAD("--intersect: \"%s\" is not one of subdivision, newton, clipping", v);
+            if (k < 0) BAD("--intersect: \"%s\" is not one of subdivision, newton, clipping, clipping-dfs", v);
             rq.opt.isect = (sb_isect_kind)k;
         } else if (!strcmp(a, "--step")) {
             NEED();

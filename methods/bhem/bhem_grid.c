@@ -3,6 +3,7 @@
  * per-quadrature-point reference quantities (BHEM paper §4.1, §4.2, App. A). */
 #include "bhem.h"
 #include "sb_context.h"
+#include "sb_imperfection.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -98,46 +99,11 @@ int bhem_detect_periodic(bhem_state *S)
     return SB_OK;
 }
 
-/* Symmetry-breaking imperfection (used for buckling scenes, e.g. the wrinkled
- * sheet of BHEM §7.1, where the paper does not say what it uses): a smooth
- * out-of-plane field delta(s,t) = A * sum_m c_m sin(pi k_m s + phi_m)
- * sin(pi l_m t + psi_m) / sum|c_m| with 32 modes, k_m, l_m in 1..24, drawn
- * once from a fixed-seed LCG (deterministic, level independent, |delta| <= A).
- * It is added along the reference node normal n: x += delta n, hs x_s +=
- * hs delta_s n, ...  (the derivative of n is neglected: exact for flat
- * sheets, O(A * curvature) otherwise).  The imperfect surface IS the stress
- * free reference.  The LCG is kept instead of a gsl_rng (issue 31): its
- * draws define the imperfect reference surface of the scenes in
- * results/bhem_report.md, and another stream would be another scene. */
-enum { BHEM_IMP_MODES = 32 };
-static double lcg01(unsigned long long *st)
-{
-    *st = *st * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(*st >> 11) * (1.0 / 9007199254740992.0);
-}
-static void imperfection(double A, double s, double t, double out[4])
-{
-    unsigned long long st = 0x5eed5eedULL;
-    double c[BHEM_IMP_MODES], k[BHEM_IMP_MODES], l[BHEM_IMP_MODES], ph[BHEM_IMP_MODES], ps[BHEM_IMP_MODES];
-    double sum = 0.0;
-    for (int m = 0; m < BHEM_IMP_MODES; m++) {
-        c[m] = 2.0 * lcg01(&st) - 1.0;
-        k[m] = M_PI * (1 + (int)(24.0 * lcg01(&st)));
-        l[m] = M_PI * (1 + (int)(24.0 * lcg01(&st)));
-        ph[m] = 2.0 * M_PI * lcg01(&st);
-        ps[m] = 2.0 * M_PI * lcg01(&st);
-        sum += fabs(c[m]);
-    }
-    out[0] = out[1] = out[2] = out[3] = 0.0;
-    for (int m = 0; m < BHEM_IMP_MODES; m++) {
-        double a = k[m] * s + ph[m], b = l[m] * t + ps[m];
-        double w = A * c[m] / sum;
-        out[0] += w * sin(a) * sin(b);
-        out[1] += w * k[m] * cos(a) * sin(b);
-        out[2] += w * l[m] * sin(a) * cos(b);
-        out[3] += w * k[m] * l[m] * cos(a) * cos(b);
-    }
-}
+/* Symmetry-breaking imperfection (method.imperfection; the wrinkled sheet of
+ * BHEM §7.1): the field of core/scene/sb_imperfection.c, added along the
+ * reference node normal n: x += delta n, hs x_s += hs delta_s n, ...  (the
+ * derivative of n is neglected: exact for flat sheets, O(A * curvature)
+ * otherwise).  The imperfect surface IS the stress free reference. */
 
 static int check_notch(bhem_state *S, int n1, int n2)
 {
@@ -237,7 +203,7 @@ int bhem_level_build(bhem_state *S, bhem_level *L, int n1, int n2)
                              "the reference surface is singular at grid node (s,t) = (%g,%g) (parallel or zero "
                              "tangents, e.g. an annulus with r_in = 0 or a sphere pole); BHEM needs a regular chart", s, t);
         double imp[4] = { 0, 0, 0, 0 };
-        if (S->imperfection > 0.0) imperfection(S->imperfection, s, t, imp);
+        if (S->imperfection > 0.0) sb_imperfection_eval(S->imperfection, s, t, imp);
         for (int c = 0; c < 3; c++) {
             double nc = nrm[c] / an;
             q[c] = J.x[c] + imp[0] * nc;

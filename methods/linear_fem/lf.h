@@ -187,6 +187,7 @@ typedef struct lf_state {
     int bending, director, pattern, lumped;
     sb_hess_kind hess;
     double jitter;
+    double imperfection;      /* m: out-of-plane reference noise (sb_imperfection.c), 0 = none */
     unsigned long seed;
     const char *rng_name;
     int n_levels, res, cells_t;

@@ -6,6 +6,7 @@
 #include "lf.h"
 #include "sb_context.h"
 #include "sb_geometry.h"
+#include "sb_imperfection.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -182,6 +183,30 @@ static int hinges_build(lf_level *L)
     return SB_OK;
 }
 
+/* method.imperfection: every vertex on the imperfect reference surface
+ * X = chart(s,t) + delta(s,t) n(s,t) of core/scene/sb_imperfection.c, the
+ * field bhem adds at its nodes (so both methods buckle from the same
+ * surface; n = the chart's unit normal).  Recomputed from the chart at every
+ * level (refined vertices are not interpolated: level independent).  The
+ * imperfect surface is the stress-free reference and the initial state. */
+static int imperfect(lf_state *S, sb_mesh *m)
+{
+    for (int v = 0; v < m->nv; v++) {
+        const double s = m->st[2 * v], t = m->st[2 * v + 1];
+        sb_jet3 J;
+        sb_geometry_eval_st(S->scene, s, t, &J);
+        double n[3], imp[4];
+        sb_cross3(J.d1, J.d2, n);
+        const double an = sqrt(sb_dot3(n, n));
+        if (!(an > 0.0) || !isfinite(an))
+            return lf_fail(S, SB_ERR_INPUT, "method.imperfection: the reference surface has no normal at (s,t) = (%g,%g)",
+                           s, t);
+        sb_imperfection_eval(S->imperfection, s, t, imp);
+        for (int c = 0; c < 3; c++) m->X[3 * v + c] = J.x[c] + imp[0] * n[c] / an;
+    }
+    return SB_OK;
+}
+
 int lf_level_build(lf_state *S, int l)
 {
     lf_level *L = &S->lv[l];
@@ -199,6 +224,7 @@ int lf_level_build(lf_state *S, int l)
         if (rc) return lf_fail(S, rc, "refining level %d failed (status %d)", l - 1, rc);
     }
     if ((rc = sb_mesh_check(&L->mesh, err, sizeof err))) return lf_fail(S, SB_ERR_INTERNAL, "mesh check: %s", err);
+    if (S->imperfection > 0.0 && (rc = imperfect(S, &L->mesh))) return rc;
     const sb_mesh *m = &L->mesh;
     L->nv = m->nv;
     L->ne = m->ne;

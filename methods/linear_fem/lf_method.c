@@ -40,6 +40,9 @@ const sb_param_def lf_params[] = {
       "clamped per element)" },
     { "mass", SB_PARAM_CHOICE, 0, 0, 0, mass_choices, "mass matrix: consistent (rho A/12 (1 + delta_ij)) or lumped (rho A/3)" },
     { "cells_t", SB_PARAM_INT, 0, 0, SB_SCENE_MAX_RESOLUTION, NULL, "cells along t on the finest level (0 = same as --res)" },
+    { "imperfection", SB_PARAM_REAL, 0.0, 0.0, 1.0, NULL,
+      "amplitude (m) of the smooth deterministic out-of-plane imperfection of the reference surface that bhem's "
+      "method.imperfection uses (the same field of the grid parameter, core/scene/sb_imperfection.c; buckling scenes)" },
     { "n_thick", SB_PARAM_INT, 0, 0, 8, NULL, "Gauss points through the thickness (0 = material default)" },
     { NULL, SB_PARAM_REAL, 0, 0, 0, NULL, NULL }
 };
@@ -123,6 +126,8 @@ static int lf_create(void *state, const sb_scene *scene, const sb_method_config 
     S->lumped = choice(ps, "mass");
     S->jitter = pval(ps, "method.jitter", 0.3);
     S->cells_t = (int)pval(ps, "method.cells_t", 0);
+    S->imperfection = pval(ps, "method.imperfection", 0.0);
+    if (!(S->imperfection >= 0.0)) return lf_fail(S, SB_ERR_INPUT, "method.imperfection must be >= 0");
     S->seed = (unsigned long)pval(ps, "run.seed", 1);
     const int n_thick = (int)pval(ps, "method.n_thick", 0);
     S->edge_dofs = S->bending == LF_BEND_MIDEDGE && S->director == LF_DIR_EDGE;
