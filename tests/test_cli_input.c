@@ -121,10 +121,10 @@ SB_TEST(fifo_hdf5_bom_and_streams)
     /* a FIFO without a writer blocked `check` forever */
     snprintf(p, sizeof p, "%s/scene.fifo", tmpdir);
     CHECK(mkfifo(p, 0644) == 0);
-    int ec = sb_sh(out, sizeof out, err, sizeof err, "timeout 20 %s check %s", bin, p);
+    int ec = sb_sh(out, sizeof out, err, sizeof err, "timeout 600 %s check %s", bin, p);
     CHECK_EQ_INT(ec, 2);
     CHECK_MSG(strstr(err, "FIFO") && strstr(err, "/dev/stdin"), "%s", err);
-    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "timeout 20 %s run --scene %s --method bhem --solver tr --out none",
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "timeout 600 %s run --scene %s --method bhem --solver tr --out none",
                        bin, p), 2);
     CHECK(strstr(err, "FIFO") != NULL);
     CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s check /dev/zero", bin), 2);
@@ -246,7 +246,7 @@ SB_TEST(messages_say_what_is_wrong)
     char p[512];
     snprintf(p, sizeof p, "%s/fifoscene", tmpdir);
     CHECK(mkfifo(p, 0644) == 0);
-    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && SB_ROOT=%s timeout 20 %s run --scene fifoscene "
+    CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "cd %s && SB_ROOT=%s timeout 600 %s run --scene fifoscene "
                        "--method bhem --solver tr --out none", tmpdir, root, bin), 2);
     CHECK_MSG(strstr(err, "FIFO") && !strstr(err, "not found"), "%s", err);
     /* a bundled name is still found with a directory of that name in the way */

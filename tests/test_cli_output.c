@@ -169,7 +169,8 @@ SB_TEST(second_writer_refused_and_stale_lock_recovered)
     CHECK(pid > 0);
     if (pid <= 0) return;
     int seen = 0, status;
-    for (int i = 0; i < 3000 && !seen; i++) {   /* its lock appears at once, before the method is built */
+    for (int i = 0; i < 60000 && !seen; i++) {   /* its lock appears at once, before the method is built; the
+                                                   bound (10 minutes) only stops a hang on a heavily loaded machine */
         seen = access(lock, F_OK) == 0;
         if (!seen) usleep(10000);
     }

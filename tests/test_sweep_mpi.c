@@ -174,7 +174,7 @@ SB_TEST(a_rank_killed_mid_run_then_resume)
     /* the first run under way: its parent is a rank (a run is a child of its rank) */
     pid_t victim = 0;
     int status = 0, ended = 0;
-    for (int i = 0; i < 1500 && !victim && !ended; i++) {
+    for (int i = 0; i < 60000 && !victim && !ended; i++) {   /* until mpirun ends, at most 10 minutes */
         if (waitpid(job, &status, WNOHANG) == job) { ended = 1; break; }
         struct timespec nap = { 0, 10000000 };
         nanosleep(&nap, NULL);
