@@ -13,30 +13,12 @@
 #include "sb_method.h"
 #include "sb_solver.h"
 
-#include <hdf5.h>
+#include "record_x.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static double *read_x(const char *path, long *n)
-{
-    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (f < 0) return NULL;
-    hid_t d = H5Dopen2(f, "/final/x", H5P_DEFAULT);
-    double *x = NULL;
-    if (d >= 0) {
-        hid_t sp = H5Dget_space(d);
-        hsize_t dim[2] = { 0, 0 };
-        if (H5Sget_simple_extent_ndims(sp) == 1) H5Sget_simple_extent_dims(sp, dim, NULL);
-        *n = (long)dim[0];
-        x = *n > 0 ? malloc(sizeof(double) * (size_t)*n) : NULL;
-        if (x && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, x) < 0) { free(x); x = NULL; }
-        H5Sclose(sp);
-        H5Dclose(d);
-    }
-    H5Fclose(f);
-    return x;
-}
 
 int main(int argc, char **argv)
 {
