@@ -11,20 +11,19 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static int mkdir_p(const char *path)
+/* the directories above the file PATH (sb_mkdir_p on its parent) */
+static int mkdir_parent(const char *path)
 {
-    char tmp[1024];
-    if (snprintf(tmp, sizeof tmp, "%s", path) >= (int)sizeof tmp) {
+    char dir[4200];
+    const char *slash = strrchr(path, '/');
+    if (!slash || slash == path) return 0;
+    if ((size_t)(slash - path) >= sizeof dir) {
         errno = ENAMETOOLONG;
         return -1;
     }
-    for (char *p = tmp + 1; *p; p++)
-        if (*p == '/') {
-            *p = 0;
-            if (mkdir(tmp, 0777) && errno != EEXIST) return -1;
-            *p = '/';
-        }
-    return 0;
+    memcpy(dir, path, (size_t)(slash - path));
+    dir[slash - path] = 0;
+    return sb_mkdir_p(dir);
 }
 
 /* Every file the run may write beside the record must be new or regular. */
@@ -86,7 +85,7 @@ int sb_run_prepare_output(run_state *R, const sb_run_request *req, int levels, c
     }
     int code = check_paths(R, *out_path);
     if (code >= 0) return code;
-    if (mkdir_p(*out_path)) {
+    if (mkdir_parent(*out_path)) {
         sb_escape_print(err, "shellbench: cannot create the directory of %s: %s", *out_path, strerror(errno));
         return SB_EXIT_INPUT;
     }
