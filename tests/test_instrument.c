@@ -172,6 +172,8 @@ static void check_attribution(sb_test_state *T, const char *path, int want_check
     CHECK_MSG(peak0 > 1e6 && peak >= peak0, "%s: peak_rss_setup %g, peak_rss %g", path, peak0, peak);
     const double pa = attr_dbl(f, "/stats", "peak_rss_analyzed");   /* 0 without a factorization */
     CHECK_MSG(pa == 0 || (pa >= peak0 && pa <= peak), "%s: peak_rss_analyzed %g", path, pa);
+    const double pst = attr_dbl(f, "/stats", "peak_rss_start");   /* before set-up */
+    CHECK_MSG(pst > 0 && pst <= peak0, "%s: peak_rss_start %g, peak_rss_setup %g", path, pst, peak0);
     CHECK(attr_dbl(f, "/stats", "memory_estimate") > 0);
     size_t ns, nss;
     double *sp = dset(f, "/history/steps/peak_rss", &ns, NULL);

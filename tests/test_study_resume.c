@@ -5,6 +5,10 @@
  * is byte for byte the uninterrupted one's. */
 #include "sb_test.h"
 #include "sb_study_int.h"
+#include "sb_stats.h"
+
+#include <hdf5.h>
+#include <math.h>
 
 #include <stdlib.h>
 #include <string.h>
@@ -152,12 +156,67 @@ SB_TEST(an_interrupted_study_resumed_gives_the_same_report)
     free(st);
 }
 
+static double stats_attr(const char *path, const char *name)
+{
+    double v = NAN;
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0) return v;
+    hid_t a = H5Aopen_by_name(f, "/stats", name, H5P_DEFAULT, H5P_DEFAULT);
+    if (a >= 0) {
+        H5Aread(a, H5T_NATIVE_DOUBLE, &v);
+        H5Aclose(a);
+    }
+    H5Fclose(f);
+    return v;
+}
+
+/* A sweep's runs are forked from the sweep, whose plan sets every method up
+ * at every size (here bhem at about 4e5 dofs): the run's peak_rss must be
+ * its own, not the plan's (issue 42: before the fix a 51,483-dof run
+ * recorded the 1.2 GB of a 1e6-dof plan, and the memory estimate looked 2x
+ * off).  The sweep stops after the small run (--max-runs 1). */
+SB_TEST(a_sweep_run_s_peak_memory_is_its_own)
+{
+    char path[400], err[2048], rec[1100];
+    snprintf(path, sizeof path, "%s/peak.json", tmpdir);
+    FILE *f = fopen(path, "w");
+    fprintf(f, "{\"study\": \"peak\", \"records\": \"%s/peak\", \"scenes\": [\"plate_simply_supported\"],\n"
+               " \"methods\": [\"bhem\"], \"solvers\": [\"lsnewton\"], \"dofs\": [500, 400000]}\n", tmpdir);
+    fclose(f);
+    sb_study *st = calloc(1, sizeof *st);
+    int rc = sb_study_load(path, NULL, st, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    if (rc) { free(st); return; }
+    CHECK_EQ_INT(sweep(st, 1, 1), 4);
+    sb_plan p;
+    CHECK(sb_study_plan(st, &p, err, sizeof err) == 0);
+    CHECK_EQ_INT(p.n, 2);
+    rec[0] = 0;
+    for (int k = 0; k < p.n; k++) {
+        if (p.runs[k].dofs < 10000) snprintf(rec, sizeof rec, "%s", p.runs[k].out);
+        else CHECK_MSG(!sb_study_run_done(&p.runs[k]), "the 4e5-dof run was not to be run (--max-runs 1)");
+    }
+    /* the plan did grow this process: the test can fail */
+    const double parent_peak = sb_peak_rss();
+    const double start = stats_attr(rec, "peak_rss_start"), setup = stats_attr(rec, "peak_rss_setup"),
+                 peak = stats_attr(rec, "peak_rss"), est = stats_attr(rec, "memory_estimate");
+    CHECK_MSG(parent_peak > 150e6, "the plan's set-up at 4e5 dofs reached only %.0f MB", parent_peak / 1e6);
+    CHECK_MSG(start > 0 && start <= setup && setup <= peak, "%s: peak_rss_start %g, setup %g, peak %g", rec, start, setup, peak);
+    CHECK_MSG(peak < 0.5 * parent_peak && peak < 120e6,
+              "%s: peak_rss %.0f MB (estimate %.0f MB) carries the sweep's %.0f MB", rec, peak / 1e6, est / 1e6,
+              parent_peak / 1e6);
+    sb_plan_free(&p);
+    sb_study_free(st);
+    free(st);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_study_resume_XXXXXX");
     if (!mkdtemp(tmpdir)) return 3;
     if (chdir(sb_test_root()) != 0) return 3;
-    static const sb_test_case cases[] = { SB_CASE(an_interrupted_study_resumed_gives_the_same_report), SB_END };
+    static const sb_test_case cases[] = { SB_CASE(an_interrupted_study_resumed_gives_the_same_report),
+                                          SB_CASE(a_sweep_run_s_peak_memory_is_its_own), SB_END };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);

@@ -123,6 +123,11 @@ typedef struct sb_stats {
      * peak resident size after set-up and at the end (VmHWM) */
     double mem_estimate, peak_rss_setup, peak_rss;
     double peak_rss_analyzed;         /* right after the last symbolic analysis (0: none) */
+    /* VmHWM when the run began, before set-up: the process's own start
+     * (about 20 MB) for `run` and for a sweep's child whose peak was reset
+     * (sb_peak_rss_reset); the sweep's footprint when it was not, so that a
+     * report can tell a run's own peak from an inherited one (issue 42) */
+    double peak_rss_start;
     /* events open now (sb_stats_begin): start time and inclusive seconds of
      * the events closed inside each */
     int depth;
@@ -161,5 +166,16 @@ double sb_stats_self_total(const sb_stats *s, sb_event e);
 /* The process's peak resident size in bytes (VmHWM of /proc/self/status,
  * else getrusage's ru_maxrss), 0 when unknown. */
 double sb_peak_rss(void);
+/* Start a new peak: the high-water mark VmHWM becomes the current resident
+ * size (Linux >= 4.0, /proc/self/clear_refs "5").  A sweep's run is a forked
+ * child, which starts with its parent's resident pages and peak (the plan
+ * sets methods up at every size, up to 1.2 GB at 1e6 dofs): without this
+ * its peak_rss is the parent's (issue 42).  0 on success, -1 when the
+ * kernel does not allow it (the peak then includes the parent's). */
+int sb_peak_rss_reset(void);
+/* Give the heap's free pages back to the system (glibc malloc_trim), so that
+ * a process that forks runs after a large transient set-up (the plan) does
+ * not hand its freed but resident pages to every child.  No-op elsewhere. */
+void sb_release_free_memory(void);
 
 #endif

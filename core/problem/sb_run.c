@@ -585,6 +585,7 @@ int sb_run_execute(const sb_run_request *req, FILE *out, FILE *err, char **summa
     R->err = err;
     sb_output_lock_init(&R->lock);
     R->t_start = sb_stats_begin(&R->ctx.stats);   /* the set-up event (SB_EV_SETUP), closed by end_setup */
+    R->ctx.stats.peak_rss_start = sb_peak_rss();
     sb_run_progress_init(R, req);
     R->ctx.monitor = sb_run_monitor;
     R->ctx.monitor_data = R;

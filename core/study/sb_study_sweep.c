@@ -107,6 +107,8 @@ pid_t sb_study_start_child(const sb_study *st, const sb_plan_run *r, FILE *err)
      * sweep leaves no orphan run behind, only the run's checkpoint */
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(SB_EXIT_INTERNAL);
+    /* the run's peak_rss is its own, not the sweep's (issue 42) */
+    sb_peak_rss_reset();
     /* the child: its messages into OUT.log, its stdout discarded */
     FILE *log = fopen(lp, "w");
     int devnull = open("/dev/null", O_WRONLY);
