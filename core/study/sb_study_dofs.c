@@ -171,16 +171,27 @@ int sb_study_res_for_dofs(const sb_study *st, sb_dofs_cache *c, int i, int m, in
     int best = 0;
     long best_d = 0;
     double best_q = INFINITY;
-    /* widen until something is accepted: 3, then 12, then 40 either side */
+    /* dofs grow with the resolution: from the model's answer, walk up while
+     * the accepted counts stay below the target and down while they stay
+     * above it; the nearest in ratio is among the first accepted count on
+     * each side of the target.  Each count is a set-up (at 1e6 dofs about
+     * a second and 1 GB), so the walk stops at the first crossing instead
+     * of setting up every resolution of the window (issue 42: the plan of
+     * scaling_large.json took 24 s).  Widen until something is accepted:
+     * 3, then 12, then 40 either side. */
     static const int widths[] = { 3, 12, 40 };
     for (int w = 0; w < 3 && !best; w++)
-        for (int r = center - widths[w]; r <= center + widths[w]; r++) {
-            if (r < 1 || r > RES_MAX) continue;
-            rc = sb_study_dofs_at(st, c, i, m, levels, r, &d, why, len);
-            if (rc < 0) return rc;
-            if (rc > 0) continue;
-            double q = fabs(log((double)d / (double)target));
-            if (q < best_q - 1e-12) best_q = q, best = r, best_d = d;
+        for (int dir = 1; dir >= -1; dir -= 2) {
+            for (int r = dir > 0 ? center : center - 1; dir > 0 ? r <= center + widths[w] : r >= center - widths[w];
+                 r += dir) {
+                if (r < 1 || r > RES_MAX) continue;
+                rc = sb_study_dofs_at(st, c, i, m, levels, r, &d, why, len);
+                if (rc < 0) return rc;
+                if (rc > 0) continue;
+                double q = fabs(log((double)d / (double)target));
+                if (q < best_q - 1e-12 || (fabs(q - best_q) <= 1e-12 && r < best)) best_q = q, best = r, best_d = d;
+                if (dir > 0 ? d >= target : d <= target) break;   /* crossed: further counts are farther */
+            }
         }
     if (!best) {
         snprintf(why, len, "method %s on scene %s: no resolution near %d (%ld dofs) is accepted with %d level%s",
