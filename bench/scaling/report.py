@@ -367,6 +367,42 @@ def goals(rows, g1):
     return out
 
 
+def io_section():
+    """DIR/io.csv of bench/scaling/io_scaling.sh: reading records back"""
+    path = os.path.join(DIR, "io.csv")
+    try:
+        with open(path) as fh:
+            rs = list(csv.DictReader(fh))
+    except OSError:
+        return []
+    out = ["## Records read back: report, inspect, render, digest, ParaView", "",
+           "`bash bench/scaling/io_scaling.sh --paraview %s RECORD...` (wall seconds of each command on a copy of "
+           "the record; ParaView = `scripts/check_paraview.py`, every check of `make check-paraview` on the record's "
+           "XDMF sidecars under xvfb-run, with ParaView's start-up of a few seconds).  The issue asks for time "
+           "proportional to size: the fitted exponent of seconds against dofs over the largest four records of a "
+           "method is at most about 1." % path, "",
+           "| record | dofs | MB | report s | inspect s | render s | digest s (digest MB) | ParaView s |",
+           "|---|--:|--:|--:|--:|--:|--:|--:|"]
+    for r in sorted(rs, key=lambda r: (os.path.basename(r["record"]).split("-")[0], int(r["dofs"]))):
+        out.append("| %s | %s | %.1f | %s | %s | %s | %s (%.1f) | %s |" % (
+            os.path.relpath(r["record"], DIR), r["dofs"], int(r["bytes"]) / 1e6, r["report_s"], r["inspect_s"],
+            r["render_s"], r["digest_s"], int(r["digest_bytes"]) / 1e6, r["paraview_s"] or "—"))
+    out += ["", "| method | sizes | " + " | ".join(k for k in ("report", "inspect", "render", "digest", "ParaView"))
+            + " |", "|---|---|--:|--:|--:|--:|--:|"]
+    methods = sorted({os.path.basename(r["record"]).split("-")[0] for r in rs})
+    for m in methods:
+        q = sorted((r for r in rs if os.path.basename(r["record"]).split("-")[0] == m), key=lambda r: int(r["dofs"]))
+        ns = [int(r["dofs"]) for r in q]
+        cells = []
+        for k in ("report_s", "inspect_s", "render_s", "digest_s", "paraview_s"):
+            ys = [fnum(r[k]) for r in q]
+            cells.append(fmt_fit(*fit(ns, ys)) if all(math.isfinite(y) and y > 0 for y in ys) else "—")
+        out.append("| %s | %s | %s |" % (m, ", ".join(str(n) for n in ns), " | ".join(cells)))
+    out += ["", "Exponents below 1 mean a fixed start-up (process, HDF5, ParaView) dominates at these sizes; "
+            "nothing grows faster than the record.", ""]
+    return out
+
+
 def main():
     rows, src = load_rows()
     scenes = []
@@ -589,6 +625,7 @@ def main():
                    and r["memory_estimate"] > 0)
         if q:
             out.append("| %s | %.2f | %.2f | %.2f | %d |" % (s, q[0], q[len(q) // 2], q[-1], len(q)))
+    out += io_section()
     builds = sorted({r["build_id"] for r in rows})
     cores = sorted({r["blas_core"] for r in rows})
     thr = sorted({r["openblas_num_threads"] for r in rows})
