@@ -365,6 +365,49 @@ SB_TEST(memory_estimate_within_30_percent_of_peak)
     sb_sh(NULL, 0, NULL, 0, "rm -rf %s", dir);
 }
 
+/* run.supernodes=wide (sb_linsolve.c): CHOLMOD's relaxed amalgamation
+ * widened — the same factorization up to round-off (same nnz(L) and flops,
+ * the same converged probe), more stored entries (the merged supernodes'
+ * zeros), and an estimate that counts them. */
+SB_TEST(wide_supernodes_same_factorization_larger_blocks)
+{
+    char dir[64], path[160];
+    snprintf(dir, sizeof dir, "/tmp/sb_instr_s%ld", (long)getpid());
+    CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "rm -rf %s && mkdir -p %s", dir, dir), 0);
+    double probe[2] = { NAN, NAN }, lnz[2] = { 0, 0 }, stored[2] = { 0, 0 }, flops[2] = { 0, 0 }, est[2] = { 0, 0 };
+    static const char *const sn[2] = { "cholmod", "wide" };
+    for (int k = 0; k < 2; k++) {
+        char args[256];
+        snprintf(args, sizeof args, "--scene plate_simply_supported --method bhem --solver lsnewton --res 48 "
+                 "--set run.supernodes=%s", sn[k]);
+        int ec = run(dir, sn[k], args);
+        CHECK_MSG(ec == 0, "%s: exit %d: %s", args, ec, err);
+        snprintf(path, sizeof path, "%s/%s.h5", dir, sn[k]);
+        hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+        if (f < 0) continue;
+        size_t n;
+        double *v;
+        probe[k] = attr_dbl(f, "/error", "probe");
+        est[k] = attr_dbl(f, "/stats", "memory_estimate");
+        if ((v = dset(f, "/stats/chol_nnz_l", &n, NULL)) && n) lnz[k] = v[n - 1];
+        free(v);
+        if ((v = dset(f, "/stats/chol_factor_entries", &n, NULL)) && n) stored[k] = v[n - 1];
+        free(v);
+        if ((v = dset(f, "/stats/chol_flops", &n, NULL)) && n) flops[k] = v[n - 1];
+        free(v);
+        H5Fclose(f);
+    }
+    CHECK_MSG(isfinite(probe[0]) && fabs(probe[1] - probe[0]) <= 1e-9 * fabs(probe[0]) + 1e-15,
+              "probe error %.17g (cholmod) against %.17g (wide)", probe[0], probe[1]);
+    CHECK_MSG(lnz[0] > 0 && lnz[1] == lnz[0] && flops[1] == flops[0], "nnz(L) %g / %g, flops %g / %g", lnz[0], lnz[1],
+              flops[0], flops[1]);
+    CHECK_MSG(stored[1] > stored[0], "stored entries: cholmod %g, wide %g", stored[0], stored[1]);
+    CHECK_MSG(est[1] > est[0], "memory estimate: cholmod %g, wide %g", est[0], est[1]);
+    printf("    # bhem res 48: stored factor entries %.4g (cholmod) / %.4g (wide): x%.3f\n", stored[0], stored[1],
+           stored[1] / stored[0]);
+    sb_sh(NULL, 0, NULL, 0, "rm -rf %s", dir);
+}
+
 /* Records of format versions 1 and 2 (a committed reference, a committed
  * study digest) still read: summary and report. */
 SB_TEST(older_records_still_read)
@@ -401,6 +444,7 @@ int main(int argc, char **argv)
         SB_CASE(every_second_is_attributed),
         SB_CASE(cholmod_figures_per_factorization),
         SB_CASE(memory_estimate_within_30_percent_of_peak),
+        SB_CASE(wide_supernodes_same_factorization_larger_blocks),
         SB_CASE(older_records_still_read),
         SB_END,
     };

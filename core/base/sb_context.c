@@ -1,6 +1,7 @@
 /* sb_context.c — one context per run: parameters, cholmod_common, statistics, errors. */
 #include "sb_context.h"
 #include "sb_gsl.h"
+#include "sb_cholmod_alloc.h"
 
 #include <cholmod.h>
 #include <stdarg.h>
@@ -17,6 +18,7 @@ int sb_context_init(sb_context *ctx)
     sb_gsl_errors_off();
     cholmod_common *cm = malloc(sizeof *cm);
     if (!cm) return SB_ERR_NOMEM;
+    sb_cholmod_alloc_install();   /* large factors on huge pages (idempotent) */
     cholmod_start(cm);
     /* Always supernodal LL': an indefinite matrix is then reported as
      * CHOLMOD_NOT_POSDEF instead of being factored as LDL' (DESIGN.md). */

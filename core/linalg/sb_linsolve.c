@@ -3,6 +3,7 @@
  * workspaces (cholmod_solve2), count events, flops and nnz(L). */
 #include "sb_linsolve.h"
 #include "sb_context.h"
+#include "sb_params.h"
 
 #include <cholmod.h>
 #include <limits.h>
@@ -48,6 +49,15 @@ int sb_linsolve_create(sb_context *ctx, int level, sb_matrix *H, sb_linsolve **o
     ls->A->xtype = CHOLMOD_REAL;
     ls->A->x = H->val;
 
+    if (sb_param_int_or(&ctx->params, "run.supernodes", SB_SUPERNODES_CHOLMOD) == SB_SUPERNODES_WIDE) {
+        /* ASSUMPTION (measured, docs/scaling.md): wider relaxed amalgamation
+         * than CHOLMOD's defaults (nrelax 4/16/48, zrelax 0.8/0.1/0.05)
+         * merges more of a 2-D mesh's small supernodes, so the numeric
+         * factorization runs more of its flops in larger DGEMM/DSYRK
+         * blocks, for the stored zeros of the merged blocks */
+        cm->nrelax[0] = 16, cm->nrelax[1] = 48, cm->nrelax[2] = 128;
+        cm->zrelax[0] = 0.9, cm->zrelax[1] = 0.2, cm->zrelax[2] = 0.1;
+    }
     double t0 = sb_stats_begin(&ctx->stats);
     ls->L = cholmod_analyze(ls->A, cm);       /* fill-reducing ordering, symbolic, once */
     sb_stats_event(&ctx->stats, level, SB_EV_ANALYZE, t0);
@@ -132,3 +142,8 @@ int sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x)
 
 double sb_linsolve_flops(const sb_linsolve *ls) { return ls->flops; }
 double sb_linsolve_nnz_l(const sb_linsolve *ls) { return ls->lnz; }
+
+double sb_linsolve_fill(int supernodes)
+{
+    return supernodes == SB_SUPERNODES_WIDE ? 1.45 : 1.3;
+}

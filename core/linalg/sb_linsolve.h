@@ -10,6 +10,13 @@
 struct sb_context;
 typedef struct sb_linsolve sb_linsolve;
 
+/* run.supernodes: CHOLMOD's relaxed supernode amalgamation (issue 42) */
+enum { SB_SUPERNODES_CHOLMOD = 0, SB_SUPERNODES_WIDE = 1 };
+/* Stored entries of a supernodal factor per nonzero of L, as measured
+ * (chol_factor_entries / chol_nnz_l of plate and trampoline runs at
+ * 1e4-1e6 dofs): what the memory estimate counts for each choice. */
+double sb_linsolve_fill(int supernodes);
+
 /* Creates the solver for the matrix H (its values are used in place, not
  * copied: assemble into H, then factor) and performs the symbolic analysis. */
 int  sb_linsolve_create(struct sb_context *ctx, int level, sb_matrix *H, sb_linsolve **out);

@@ -2,6 +2,7 @@
  * refusal of runs that cannot fit or cannot be indexed (sb_memory.h). */
 #include "sb_memory.h"
 #include "sb_context.h"
+#include "sb_linsolve.h"
 
 #include <limits.h>
 #include <math.h>
@@ -49,8 +50,9 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
     if (lnz > 0.5 * n * (n + 1)) lnz = 0.5 * n * (n + 1);
     est->factor_nnz = lnz;
     /* CHOLMOD: the int pattern copy of A, the supernodal factor's values
-     * (1.3: the zeros supernodes store, measured), its indices and workspaces */
-    est->factor = 4.0 * (nnz_c + n) + 1.3 * 8.0 * lnz + 8.0 * 8.0 * n;
+     * (sb_linsolve_fill: the zeros supernodes store, measured; 1.3 with
+     * CHOLMOD's defaults), its indices and workspaces */
+    est->factor = 4.0 * (nnz_c + n) + sb_linsolve_fill(r->supernodes) * 8.0 * lnz + 8.0 * 8.0 * n;
     /* the run's and the solver's vectors on the finest level (x, x_n, v,
      * reference, resume point, gradient, trial point, steps ...) */
     est->vectors = 24.0 * 8.0 * est->dofs;

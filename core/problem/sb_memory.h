@@ -7,6 +7,7 @@
 #ifndef SB_MEMORY_H
 #define SB_MEMORY_H
 
+#include "sb_linsolve.h"   /* SB_SUPERNODES_* */
 #include "sb_method.h"
 
 #include <stddef.h>
@@ -26,6 +27,7 @@ typedef struct sb_memory_run {
     int steps, n_probes;
     int sample_n;                       /* sample grid per side */
     int multilevel;                     /* the solver factors only the coarsest level (rmtr) */
+    int supernodes;                     /* run.supernodes (0: CHOLMOD's defaults) */
 } sb_memory_run;
 
 /* The estimate of a discretization of size sz run as r.  The Cholesky

@@ -7,6 +7,8 @@
  * create(), from its dof counts, before the problem's matrices exist. */
 #include "sb_memory.h"
 #include "sb_run_state.h"
+#include "sb_linsolve.h"
+#include "sb_params.h"
 
 #include <string.h>
 
@@ -54,6 +56,7 @@ static void run_size(const run_state *R, sb_memory_run *mr)
     mr->n_probes = R->scene.n_probes;
     mr->sample_n = R->n_grid;
     mr->multilevel = (R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) != 0;
+    mr->supernodes = sb_param_int_or(&R->ctx.params, "run.supernodes", SB_SUPERNODES_CHOLMOD);
 }
 
 /* "--res 8" or "--res 8x4096": the resolution as the user gave it */

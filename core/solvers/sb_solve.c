@@ -9,6 +9,7 @@
 #include <string.h>
 
 static const char *const stop_names[] = { "scaled", "paper", NULL };
+static const char *const supernode_names[] = { "cholmod", "wide", NULL };
 
 const sb_param_def sb_solve_params[] = {
     { "stop", SB_PARAM_CHOICE, SB_STOP_SCALED, 0, 0, stop_names,
@@ -62,6 +63,10 @@ const sb_param_def sb_solve_params[] = {
     { "vectors", SB_PARAM_CHOICE, 0, 0, 0, sb_vector_choices,
       "vector width of the fast shell kernel (rmtr, bhem): auto = the widest this CPU runs; every width gives "
       "the same bits, only the speed differs (docs/performance.md)" },
+    { "supernodes", SB_PARAM_CHOICE, SB_SUPERNODES_CHOLMOD, 0, 0, supernode_names,
+      "CHOLMOD's relaxed supernode amalgamation: cholmod (its defaults, nrelax 4/16/48, zrelax 0.8/0.1/0.05) or "
+      "wide (16/48/128, 0.9/0.2/0.1: larger dense blocks, a faster numeric factorization at >= 1e5 dofs for a "
+      "larger factor; the same factorization up to round-off; docs/scaling.md)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
