@@ -43,6 +43,24 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
         if (l == F) est->nnz = nnz;
         if (l == C) nnz_c = nnz;
     }
+    /* the rmtr solver's own structures on each finer level of a pair (l-1, l),
+     * counted since issue 42 measured a 1.2e6-dof bhem run at twice its old
+     * estimate: the Galerkin product's full symmetric index of the fine
+     * pattern, its accumulators and marks (sb_galerkin.c), the prolongation
+     * and its transpose (sb_csr, int column + double value), and the additive
+     * Schwarz smoother's packed element factors (sb_schwarz.c, the default
+     * smoother_precond) with their dof lists */
+    if (r->multilevel)
+        for (int l = 1; l <= F; l++) {
+            double nnz_l;
+            (void)level_bytes(sz, l, 0, &nnz_l);
+            const double nf = sz->nodes[l] * sz->bs, nc = sz->nodes[l - 1] * sz->bs;
+            const double ps = (sz->prolong_per_dof > 0 ? sz->prolong_per_dof : 1.0) * nf;
+            const double m = (double)sz->nodes_per_element * sz->bs;
+            est->matrices += 2.0 * nnz_l * 12.0 + nf * (8.0 + 8.0 + 4.0 + 1.0) + nc * (8.0 + 4.0 + 2.0);
+            est->matrices += 2.0 * ps * 12.0 + (nf + nc) * 8.0;
+            est->matrices += sz->elements[l] * (0.5 * m * (m + 1.0) * 8.0 + m * 4.0 + 17.0);
+        }
     est->dofs = sz->nodes[F] * sz->bs;
     const double n = sz->nodes[C] * sz->bs, nodes = sz->nodes[C];
     /* nested-dissection growth of the Cholesky factor, at most dense */

@@ -96,6 +96,7 @@ static int lf_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_me
     sz->bs = edge_dofs ? 1 : 3;
     sz->nodes_per_element = edge_dofs ? LF_NED_MAX : 6;
     sz->stencil = edge_dofs ? 53 : bending == LF_BEND_HINGE ? 11 : 19;
+    sz->prolong_per_dof = 1.75;   /* per component: a vertex 1 coarse node, an edge midpoint 2 */
     double bytes = 0;
     for (int l = 0; l < levels; l++) {
         const int sh = levels - 1 - l;

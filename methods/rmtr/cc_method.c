@@ -168,6 +168,7 @@ static int cc_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_me
     sz->bs = 3;
     sz->nodes_per_element = 16;   /* the bicubic B-spline patch of a regular face */
     sz->stencil = 49;             /* control points sharing a face support: 7 x 7 */
+    sz->prolong_per_dof = 6.25;   /* Catmull-Clark per component: vertex 9, edge 6, face 4 coarse points */
     double bytes = 0;
     for (int l = 0; l < levels; l++) {
         double nl = (double)(n >> (levels - 1 - l)), ml = (double)(nt >> (levels - 1 - l));
