@@ -362,6 +362,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
     const int F = sb_problem_finest(R->prob);
     int n = sb_problem_n(R->prob, F);
     for (int step = first_step; step <= sc->time.steps; step++) {
+        R->material_current = 0;   /* x changes from here on */
         sb_stats_close_all(stats);
         double t0 = sb_now(), parts0[8];
         step_parts(stats, parts0);

@@ -21,6 +21,7 @@ sb_reason sb_run_judge_step(run_state *R, sb_reason reason)
     if (!(strain_max > 0) || !R->mt->material_state) return reason;
     sb_material_state *m = &R->rec.material;
     R->rec.has_material = R->mt->material_state(R->ms, F, R->x, m) == SB_OK;
+    R->material_current = R->rec.has_material;
     /* a state the material law cannot even evaluate is not admissible */
     if (!R->rec.has_material) return SB_REASON_STRAIN;
     for (int k = 0; k < 3; k++)

@@ -374,6 +374,7 @@ int sb_run_compute_error(run_state *R, FILE *err, int allow_unsealed, int skip_f
 void sb_run_record_material(run_state *R)
 {
     sb_run *rec = &R->rec;
+    if (R->material_current && rec->has_material) return;   /* the last step's judgement, of this x */
     rec->has_material = R->mt->material_state &&
         R->mt->material_state(R->ms, sb_problem_finest(R->prob), R->x, &rec->material) == SB_OK;
 }
