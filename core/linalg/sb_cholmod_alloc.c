@@ -8,8 +8,11 @@
  * pages in "madvise" mode (Debian's default) only memory asked for with
  * madvise(MADV_HUGEPAGE) gets 2 MB pages, which glibc's malloc never asks
  * for unless GLIBC_TUNABLES=glibc.malloc.hugetlb=1.  Measured on the bhem
- * plate at 199,692 dofs: the three factorizations of lsnewton take 18.7 s
- * with CHOLMOD's allocations on 4 kB pages, 15.6 s on huge pages.
+ * plate at 199,692 dofs, on the shared 2-core machine: the three
+ * factorizations of lsnewton took 18.7 s on 4 kB pages, 15.6 s with every
+ * allocation on huge pages (the glibc tunable), 16.1 s with these hooks;
+ * at 1.24e6 dofs beside two other large runs no gain was measurable
+ * (docs/scaling.md).
  *
  * How: SuiteSparse 5's allocator hooks (SuiteSparse_config, one per process;
  * set once, every context sets the same functions) point here.  Every block
