@@ -85,10 +85,15 @@ def read_record(path):
     for d in HIST:
         args += ["-d", "/history/iterations/" + d]
     v = parse_ddl(h5dump(path, args))
+    for d in HIST:
+        if "/history/iterations/" + d in v:
+            v[d] = v.pop("/history/iterations/" + d)
     if "n_dofs" not in v or "iter" not in v:
         return None
     r = {k: (v[k][0] if v.get(k) else "") for k in ROOT + STATS}
     r["linear"] = v.get("solver.linear", ["cholmod"])[0]
+    st = r["status"]
+    r["status"] = {0: "converged", 1: "not converged", 2: "unfinished"}.get(int(st), "failed") if st != "" else "?"
     rows = [k for k, it in enumerate(v["iter"]) if it > 0]
     li = [v["linear_iters"][k] for k in rows]
     ks = [int(v["krylov_status"][k]) for k in rows] if "krylov_status" in v else []
@@ -157,7 +162,9 @@ def main():
       "linear solve, line search); *wall s* the record's whole run (set-up and sample grids included); *CPU s* "
       "user + system seconds of the run's process (the machine was shared: 2 cores, one taken by another "
       "benchmark, so wall seconds carry the load; ratios below use CPU seconds where logged); *peak MB* the "
-      "process's peak resident memory (VmHWM).")
+      "process's peak resident memory (VmHWM) at the end of the run, *set-up MB* the same at the end of set-up "
+      "(mesh, patterns, the matrices of every level, quadrature data, the linear solver's allocations; no "
+      "factorization yet): the memory every path holds before it solves anything.")
     w("")
     scenes = []
     for r in recs:
@@ -170,19 +177,19 @@ def main():
         w("## %s" % sc)
         w("")
         w("| method | dofs | levels | linear | status | Newton | CG/Newton mean | max | capped | s/Newton | wall s "
-          "| CPU s | peak MB |")
-        w("|---|--:|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|")
+          "| CPU s | peak MB | set-up MB |")
+        w("|---|--:|--:|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
         rows = sorted((r for r in recs if r["scene_name"] == sc),
                       key=lambda r: (r["method"], r["n_dofs"], LINEAR.index(r["linear"]) if r["linear"] in LINEAR
                                      else 9))
         for r in rows:
             direct = r["linear"] == "cholmod"
-            st = r["status"] if r["status"] == "converged" else "%s (%s)" % (r["status"], r["reason"])
-            w("| %s | %s | %d | %s | %s | %d | %s | %s | %s | %s | %s | %s | %s |" % (
+            st = "%s (%s)" % (r["status"], r["reason"])
+            w("| %s | %s | %d | %s | %s | %d | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 r["method"], f0(r["n_dofs"]), int(r["levels"]), r["linear"], st, r["newton"],
                 "—" if direct else f1(r["cg_mean"]), "—" if direct else f0(r["cg_max"]),
                 "—" if direct else "%d" % r["capped"], f2(r["s_iter"]), f1(r["seconds_total"]), f1(r["cpu"]),
-                f0(mb(r["peak_rss"]))))
+                f0(mb(r["peak_rss"])), f0(mb(r["peak_rss_setup"]))))
         w("")
     # goals
     w("## The issue's goals")
