@@ -1,8 +1,10 @@
 /* sb_galerkin.c — Galerkin coarse Hessians H_c = S^T H_f S (sb_galerkin.h).
  *
  * Column by column of H_c: t = H_f S e_K (the fine Hessian applied to one
- * prolongated coarse basis vector, a sparse accumulation over the rows of
- * H_f that S e_K touches), then H_c(:,K) = S^T t restricted to rows J <= K.
+ * prolongated coarse basis vector, a sparse accumulation over the columns of
+ * H_f that S e_K touches: the upper part of each from the pattern, the lower
+ * part from a transposed index kept once per run), then H_c(:,K) = S^T t
+ * restricted to rows J <= K.
  * Cost per coarse dof: nnz(S e_K) x (row length of H_f) + nnz(t) x (row
  * length of S), i.e. O(n_f) in total for local operators. */
 #include "sb_galerkin.h"
@@ -38,9 +40,14 @@ struct sb_galerkin {
     int nf, nc;
     sb_csr S;          /* free fine rows x free coarse columns */
     sb_csr St;         /* its transpose (coarse rows) */
-    long *frp;         /* full symmetric row index of the fine pattern: nf+1 */
-    int *fcol;         /*   column of each entry */
-    long *fpos;        /*   position in the upper-triangle value array */
+    /* the strictly lower part of the fine pattern by columns (the rows of
+     * its upper triangle): column j's upper entries are read from the
+     * pattern itself, these give the entries (i, j), i > j, stored in
+     * column i of the upper triangle */
+    const sb_pattern *fine;
+    long *lrp;         /* nf+1 */
+    int *lrow;         /*   row i > j of each entry */
+    int *loff;         /*   its offset in column i: position colptr[i] + loff */
     const sb_pattern *coarse;
     const unsigned char *fixed_f, *fixed_c;   /* the caller's arrays, read at every product */
     double *t, *u;     /* dense accumulators: nf, nc */
@@ -53,7 +60,7 @@ void sb_galerkin_free(sb_galerkin *G)
     if (!G) return;
     sb_csr_free(&G->S);
     sb_csr_free(&G->St);
-    free(G->frp); free(G->fcol); free(G->fpos);
+    free(G->lrp); free(G->lrow); free(G->loff);
     free(G->t); free(G->u); free(G->tlist); free(G->ulist);
     free(G->tmark); free(G->umark); free(G->inpat);
     free(G);
@@ -95,38 +102,38 @@ static int transpose(const sb_csr *A, sb_csr *T)
     return SB_OK;
 }
 
-/* full symmetric row access to an upper-triangle CSC pattern */
-static int full_rows(sb_galerkin *G, const sb_pattern *P)
+/* The strictly lower part of an upper-triangle CSC pattern, by columns: for
+ * every stored (j, i) with j < i (column i, row j), the entry (i, j) under
+ * column j, with its offset in column i.  Together with the pattern's own
+ * columns this is full symmetric access at 8 bytes per off-diagonal entry
+ * (a full row index with 8-byte positions took 24 bytes per stored entry:
+ * 3 times the Hessian's values; docs/solvers.md, "Memory"). */
+static int lower_columns(sb_galerkin *G, const sb_pattern *P)
 {
     const int n = P->n;
-    G->frp = calloc((size_t)n + 1, sizeof *G->frp);
-    if (!G->frp) return SB_ERR_NOMEM;
-    for (int j = 0; j < n; j++)
-        for (long k = P->colptr[j]; k < P->colptr[j + 1]; k++) {
-            const int i = P->rowind[k];
-            G->frp[j + 1]++;
-            if (i != j) G->frp[i + 1]++;
-        }
-    for (int i = 0; i < n; i++) G->frp[i + 1] += G->frp[i];
-    G->fcol = malloc((size_t)G->frp[n] * sizeof *G->fcol);
-    G->fpos = malloc((size_t)G->frp[n] * sizeof *G->fpos);
+    G->lrp = calloc((size_t)n + 1, sizeof *G->lrp);
+    if (!G->lrp) return SB_ERR_NOMEM;
+    for (int i = 0; i < n; i++)
+        for (long k = P->colptr[i]; k < P->colptr[i + 1]; k++)
+            if (P->rowind[k] != i) G->lrp[P->rowind[k] + 1]++;
+    for (int j = 0; j < n; j++) G->lrp[j + 1] += G->lrp[j];
+    const long nl = G->lrp[n];
+    G->lrow = malloc((size_t)(nl > 0 ? nl : 1) * sizeof *G->lrow);
+    G->loff = malloc((size_t)(nl > 0 ? nl : 1) * sizeof *G->loff);
     long *next = malloc((size_t)(n > 0 ? n : 1) * sizeof *next);
-    if (!G->fcol || !G->fpos || !next) {
+    if (!G->lrow || !G->loff || !next) {
         free(next);
         return SB_ERR_NOMEM;
     }
-    memcpy(next, G->frp, (size_t)n * sizeof *next);
-    for (int j = 0; j < n; j++)
-        for (long k = P->colptr[j]; k < P->colptr[j + 1]; k++) {
-            const int i = P->rowind[k];
-            long d = next[j]++;
-            G->fcol[d] = i;
-            G->fpos[d] = k;
-            if (i != j) {
-                d = next[i]++;
-                G->fcol[d] = j;
-                G->fpos[d] = k;
-            }
+    memcpy(next, G->lrp, (size_t)n * sizeof *next);
+    /* columns i in increasing order: each lower column's rows come sorted */
+    for (int i = 0; i < n; i++)
+        for (long k = P->colptr[i]; k < P->colptr[i + 1]; k++) {
+            const int j = P->rowind[k];
+            if (j == i) continue;
+            const long d = next[j]++;
+            G->lrow[d] = i;
+            G->loff[d] = (int)(k - P->colptr[i]);   /* < column length <= n */
         }
     free(next);
     return SB_OK;
@@ -148,7 +155,8 @@ int sb_galerkin_create(const sb_csr *S, const sb_pattern *fine, const sb_pattern
     G->fixed_c = fixed_c;
     int rc = copy_nonzeros(S, &G->S);
     if (!rc) rc = transpose(&G->S, &G->St);
-    if (!rc) rc = full_rows(G, fine);
+    G->fine = fine;
+    if (!rc) rc = lower_columns(G, fine);
     if (!rc) {
         G->t = calloc((size_t)G->nf, sizeof *G->t);
         G->u = calloc((size_t)G->nc, sizeof *G->u);
@@ -180,7 +188,7 @@ int sb_galerkin_create(const sb_csr *S, const sb_pattern *fine, const sb_pattern
  * when the column has a nonzero outside the pattern. */
 static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
 {
-    const sb_pattern *C = G->coarse;
+    const sb_pattern *C = G->coarse, *F = G->fine;
     const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
     int outside = 0;
     /* t = Hf S e_K */
@@ -189,13 +197,23 @@ static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
         const int j = G->St.ci[q];
         const double s = G->St.v[q];
         if (ff && ff[j]) continue;
-        for (long r = G->frp[j]; r < G->frp[j + 1]; r++) {
-            const int i = G->fcol[r];
+        /* column j of Hf: rows i <= j from the upper triangle, rows i > j
+         * from the lower index */
+        for (long r = F->colptr[j]; r < F->colptr[j + 1]; r++) {
+            const int i = F->rowind[r];
             if (!G->tmark[i]) {
                 G->tmark[i] = 1;
                 G->tlist[nt++] = i;
             }
-            G->t[i] += hv ? hv[G->fpos[r]] * s : 1.0;
+            G->t[i] += hv ? hv[r] * s : 1.0;
+        }
+        for (long r = G->lrp[j]; r < G->lrp[j + 1]; r++) {
+            const int i = G->lrow[r];
+            if (!G->tmark[i]) {
+                G->tmark[i] = 1;
+                G->tlist[nt++] = i;
+            }
+            G->t[i] += hv ? hv[F->colptr[i] + G->loff[r]] * s : 1.0;
         }
     }
     /* u = S^T t, rows J <= K (upper triangle) */

@@ -5,9 +5,9 @@
  * I is the dof-level prolongation (fine rows, coarse columns) as a row-
  * compressed matrix, built once per level pair: by the method
  * (sb_method_type.prolong_matrix) or, when a method has none, by probing its
- * prolong() with unit vectors at set-up.  The symbolic work (I^T, the full
- * symmetric row index of the fine pattern) is done once in
- * sb_galerkin_create(); sb_galerkin_product() allocates nothing. */
+ * prolong() with unit vectors at set-up.  The symbolic work (I^T, the
+ * transposed index of the fine pattern's strictly lower part) is done once
+ * in sb_galerkin_create(); sb_galerkin_product() allocates nothing. */
 #ifndef SB_GALERKIN_H
 #define SB_GALERKIN_H
 

@@ -210,7 +210,7 @@ int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out)
         int k = (int)(pb->off[e + 1] - pb->off[e]);
         for (int a = 0; a < k; a++)
             for (int b = 0; b < k; b++)
-                if (nd[a] >= 0 && nd[b] >= 0 && nd[a] <= nd[b]) nmap += bs;
+                if (nd[a] >= 0 && nd[b] >= 0 && nd[a] <= nd[b]) nmap++;
         p->elem_map_off[e + 1] = nmap;
     }
     p->map = malloc((size_t)(nmap ? nmap : 1) * sizeof *p->map);
@@ -222,11 +222,17 @@ int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out)
         for (int a = 0; a < k; a++)
             for (int b = 0; b < k; b++) {
                 if (nd[a] < 0 || nd[b] < 0 || nd[a] > nd[b]) continue;
-                for (int j = 0; j < bs; j++) {
-                    long pos = find_pos(p, nd[a] * bs, nd[b] * bs + j);
-                    if (pos < 0) { rc = SB_ERR_INTERNAL; goto fail; }
-                    p->map[m++] = pos;
-                }
+                /* one offset per block: in every column of node nd[b] the
+                 * rows of node nd[a] start at the same place (its rank among
+                 * the column's neighbour nodes times bs) */
+                const int c0 = nd[b] * bs;
+                const long o = find_pos(p, nd[a] * bs, c0) - p->colptr[c0];
+                for (int j = 0; j < bs; j++)
+                    if (o < 0 || find_pos(p, nd[a] * bs, c0 + j) != p->colptr[c0 + j] + o) {
+                        rc = SB_ERR_INTERNAL;
+                        goto fail;
+                    }
+                p->map[m++] = (int)o;
             }
     }
     free(inc_off);
@@ -291,25 +297,27 @@ void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke)
     const int *nd = p->elem_nodes + p->elem_node_off[e];
     const int k = (int)(p->elem_node_off[e + 1] - p->elem_node_off[e]);
     const int m = bs * k;
-    const long *map = p->map + p->elem_map_off[e];
+    const int *map = p->map + p->elem_map_off[e];
+    const long *cp = p->colptr;
     double *val = A->val;
     for (int a = 0; a < k; a++) {
         if (nd[a] < 0) continue;
         for (int b = 0; b < k; b++) {
             if (nd[b] < 0 || nd[a] > nd[b]) continue;
             const double *blk = Ke + (size_t)(bs * a) * m + bs * b;
+            const long *col = cp + (size_t)nd[b] * bs;
+            const int o = *map++;
             if (nd[a] < nd[b]) {
                 for (int j = 0; j < bs; j++) {
-                    double *dst = val + map[j];
+                    double *dst = val + col[j] + o;
                     for (int i = 0; i < bs; i++) dst[i] += blk[(size_t)i * m + j];
                 }
             } else {
                 for (int j = 0; j < bs; j++) {
-                    double *dst = val + map[j];
+                    double *dst = val + col[j] + o;
                     for (int i = 0; i <= j; i++) dst[i] += blk[(size_t)i * m + j];
                 }
             }
-            map += bs;
         }
     }
 }
@@ -321,23 +329,25 @@ void sb_matrix_get_element(const sb_matrix *A, int e, double *Ke)
     const int *nd = p->elem_nodes + p->elem_node_off[e];
     const int k = (int)(p->elem_node_off[e + 1] - p->elem_node_off[e]);
     const int m = bs * k;
-    const long *map = p->map + p->elem_map_off[e];
+    const int *map = p->map + p->elem_map_off[e];
+    const long *cp = p->colptr;
     const double *val = A->val;
     memset(Ke, 0, (size_t)m * m * sizeof *Ke);
     for (int a = 0; a < k; a++) {
         if (nd[a] < 0) continue;
         for (int b = 0; b < k; b++) {
             if (nd[b] < 0 || nd[a] > nd[b]) continue;
+            const long *col = cp + (size_t)nd[b] * bs;
+            const int o = *map++;
             for (int j = 0; j < bs; j++) {
-                const double *src = val + map[j];
+                const double *src = val + col[j] + o;
                 for (int i = 0; i < bs; i++) {
                     /* the diagonal block stores its upper triangle only */
-                    const double v = nd[a] < nd[b] || i <= j ? src[i] : val[map[i] + j];
+                    const double v = nd[a] < nd[b] || i <= j ? src[i] : val[col[i] + o + j];
                     Ke[(size_t)(bs * a + i) * m + bs * b + j] = v;
                     Ke[(size_t)(bs * b + j) * m + bs * a + i] = v;
                 }
             }
-            map += bs;
         }
     }
 }

@@ -24,16 +24,20 @@ typedef struct sb_pattern {
     long *diag;         /* n: position of (i,i) */
     /* element scatter maps.  For element e with nodes nd[0..k), the ordered
      * local node pairs (a,b) in loop order a-major, b-minor that satisfy
-     * nd[a] >= 0, nd[b] >= 0 and nd[a] <= nd[b] each own bs entries: the
-     * position in the value array of the block's first row in column
-     * bs*nd[b] + j.  nd[a] < nd[b]: full bs x bs block; nd[a] == nd[b]
-     * (the diagonal block, also for a repeated node — periodic
-     * identification — where both orders are kept): upper triangle i <= j. */
+     * nd[a] >= 0, nd[b] >= 0 and nd[a] <= nd[b] each own one entry o: the
+     * block's first row in column c = bs*nd[b] + j is at position
+     * colptr[c] + o of the value array, the same o for every j (node
+     * nd[a]'s rank among the neighbour nodes of nd[b], times bs; 4 bytes a
+     * block: bs positions of 8 bytes each took a third of linear_fem's
+     * memory, docs/solvers.md "Memory").  nd[a] < nd[b]: full bs x bs block;
+     * nd[a] == nd[b] (the diagonal block, also for a repeated node —
+     * periodic identification — where both orders are kept): upper triangle
+     * i <= j. */
     int n_elems;
     long *elem_node_off;/* n_elems+1, into elem_nodes */
     int *elem_nodes;    /* node lists (-1 = no node) */
     long *elem_map_off; /* n_elems+1, into map */
-    long *map;          /* block column start positions */
+    int *map;           /* block row offsets within their columns */
 } sb_pattern;
 
 sb_pattern_builder *sb_pattern_builder_new(int n_nodes, int bs);
