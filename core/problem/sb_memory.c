@@ -12,7 +12,7 @@
 
 /* Bytes of the structures of one level of the problem (sb_problem.c,
  * sb_sparse.c): the pattern (row indices, column pointers, diagonal
- * positions), the element node lists and scatter maps (bs entries per
+ * positions), the element node lists and scatter maps (one 4-byte offset per
  * ordered node pair a <= b of an element), the value arrays of H (and M and
  * the damping matrix D of dynamic scenes), and the per-dof work vectors. */
 static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *nnz_out)
@@ -23,7 +23,7 @@ static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *
     const double nnz = sz->nodes[l] * (offdiag * bs * bs + 0.5 * bs * (bs + 1));
     *nnz_out = nnz;
     double b = nnz * 4.0 + 16.0 * n;                        /* rowind, colptr, diag */
-    b += ne * k * 4.0 + ne * 0.5 * k * (k + 1) * bs * 8.0;  /* element nodes, scatter map */
+    b += ne * k * 4.0 + ne * 0.5 * k * (k + 1) * 4.0;       /* element nodes, scatter map (4 B a node block) */
     b += nnz * 8.0 * (dynamic ? 3.0 : 1.0);                 /* H (M, D) */
     b += n * (1.0 + 4.0 * 8.0);                             /* fixed flags, tmp, xhat, xn, spare */
     return b;
@@ -45,8 +45,9 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
     }
     /* the rmtr solver's own structures on each finer level of a pair (l-1, l),
      * counted since issue 42 measured a 1.2e6-dof bhem run at twice its old
-     * estimate: the Galerkin product's full symmetric index of the fine
-     * pattern, its accumulators and marks (sb_galerkin.c), the prolongation
+     * estimate: the Galerkin product's index of the fine pattern's strictly
+     * lower part (a row and a 4-byte offset per off-diagonal entry), its
+     * accumulators and marks (sb_galerkin.c), the prolongation
      * and its transpose (sb_csr, int column + double value), and the additive
      * Schwarz smoother's packed element factors (sb_schwarz.c, the default
      * smoother_precond) with their dof lists */
@@ -57,7 +58,7 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
             const double nf = sz->nodes[l] * sz->bs, nc = sz->nodes[l - 1] * sz->bs;
             const double ps = (sz->prolong_per_dof > 0 ? sz->prolong_per_dof : 1.0) * nf;
             const double m = (double)sz->nodes_per_element * sz->bs;
-            est->matrices += 2.0 * nnz_l * 12.0 + nf * (8.0 + 8.0 + 4.0 + 1.0) + nc * (8.0 + 4.0 + 2.0);
+            est->matrices += (nnz_l - nf > 0 ? nnz_l - nf : 0) * 8.0 + nf * (8.0 + 8.0 + 4.0 + 1.0) + nc * (8.0 + 4.0 + 2.0);
             est->matrices += 2.0 * ps * 12.0 + (nf + nc) * 8.0;
             est->matrices += sz->elements[l] * (0.5 * m * (m + 1.0) * 8.0 + m * 4.0 + 17.0);
         }
