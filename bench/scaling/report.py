@@ -262,7 +262,7 @@ def plot(rows, scene, configs, png):
     panels = list(COMPONENTS) + ["peak_rss"]
     gp = ["set terminal pngcairo size 1000,740 font ',7' noenhanced", "set output '%s.tmp'" % png,
           "set multiplot layout 3,4 title '%s: exclusive seconds per component and peak memory against dofs "
-          "(log-log, one curve per method/solver)'" % scene, "set logscale xy", "set xrange [5e2:3e4]",
+          "(log-log, one curve per method/solver)'" % scene, "set logscale xy", "set xrange [5e2:%g]" % (2e6 if LARGE else 3e4),
           "set format x '%.0e'", "set format y '%g'", "set grid", "set key off"]
     data = {}
     for c in configs:
