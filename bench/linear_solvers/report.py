@@ -34,45 +34,17 @@ iteration (the granularity of the count).
 """
 import csv, glob, math, os, re, subprocess, sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from h5ddl import h5dump, parse_ddl  # noqa: E402  (bench/h5ddl.py)
+
 DIR = sys.argv[1] if len(sys.argv) > 1 else "results/linear_solvers"
 LINEAR = ("cholmod", "pcg-mg", "pcg-amg")
 GOAL_SCENES = ("plate_clamped", "trampoline_s2")
 GOAL_DOFS = 2.5e5
-NUM = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-?(inf|nan)$", re.I)
 ROOT = ("scene_name", "method", "solver", "levels", "res", "n_dofs", "status", "reason", "steps_planned",
         "steps_done", "build_id")
 STATS = ("seconds_total", "peak_rss", "peak_rss_setup")
 HIST = ("iter", "linear_iters", "krylov_status", "seconds", "seconds_assembly", "shift")
-
-
-def h5dump(path, args):
-    r = subprocess.run(["h5dump", "-y", "-w", "0", "-m", "%.17g"] + args + [path], capture_output=True, text=True)
-    return r.stdout
-
-
-def parse_ddl(txt):
-    """{name: [values]} of every ATTRIBUTE / DATASET block in h5dump's output"""
-    out, name, data, vals = {}, None, False, []
-    for line in txt.splitlines():
-        s = line.strip()
-        m = re.match(r'^(ATTRIBUTE|DATASET) "([^"]+)" \{$', s)
-        if m:
-            name, data, vals = m.group(2), False, []
-            continue
-        if s == "DATA {":
-            data = True
-            continue
-        if data:
-            if s == "}":
-                out[name] = vals
-                data = False
-                continue
-            for tok in re.findall(r'"[^"]*"|[^,\s]+', s):
-                if tok.startswith('"'):
-                    vals.append(tok[1:-1])
-                elif NUM.match(tok):
-                    vals.append(float(tok))
-    return out
 
 
 def read_record(path):

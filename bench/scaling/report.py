@@ -30,6 +30,9 @@ Figures (docs/recorded_figures.md, format 3):
 """
 import csv, glob, math, os, re, subprocess, sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from h5ddl import h5dump, parse_ddl  # noqa: E402  (bench/h5ddl.py)
+
 DIR = sys.argv[1] if len(sys.argv) > 1 else "results/scaling"
 TARGETS = (1000, 4000, 16000, 64000, 256000, 1000000)
 LARGE = "large" in os.path.basename(os.path.normpath(DIR))
@@ -60,37 +63,6 @@ DATASETS = ("/stats/events_self_seconds", "/stats/events_seconds", "/stats/event
             "/history/steps/iterations", "/history/iterations/linear_iters", "/history/iterations/level",
             "/history/iterations/iter")
 
-NUM = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-?(inf|nan)$", re.I)
-
-
-def h5dump(path, args):
-    r = subprocess.run(["h5dump", "-y", "-w", "0", "-m", "%.17g"] + args + [path], capture_output=True, text=True)
-    return r.stdout
-
-
-def parse_ddl(txt):
-    """{name: [values]} of every ATTRIBUTE / DATASET block in h5dump's output"""
-    out, name, data, vals = {}, None, False, []
-    for line in txt.splitlines():
-        s = line.strip()
-        m = re.match(r'^(ATTRIBUTE|DATASET) "([^"]+)" \{$', s)
-        if m:
-            name, data, vals = m.group(2), False, []
-            continue
-        if s == "DATA {":
-            data = True
-            continue
-        if data:
-            if s == "}":
-                out[name] = vals
-                data = False
-                continue
-            for tok in re.findall(r'"[^"]*"|[^,\s]+', s):
-                if tok.startswith('"'):
-                    vals.append(tok[1:-1])
-                elif NUM.match(tok):
-                    vals.append(float(tok))
-    return out
 
 
 def read_record(path):
