@@ -428,8 +428,9 @@ def io_section():
            "|---|--:|--:|--:|--:|--:|--:|--:|"]
     for r in sorted(rs, key=lambda r: (os.path.basename(r["record"]).split("-")[0], int(r["dofs"]))):
         out.append("| %s | %s | %.1f | %s | %s | %s | %s (%.1f) | %s |" % (
-            os.path.relpath(r["record"], DIR), r["dofs"], int(r["bytes"]) / 1e6, r["report_s"], r["inspect_s"],
-            r["render_s"], r["digest_s"], int(r["digest_bytes"]) / 1e6, r["paraview_s"] or "—"))
+            os.path.relpath(r["record"], DIR), r["dofs"], int(r["bytes"]) / 1e6, r["report_s"],
+            r["inspect_s"] or "— (no material state)", r["render_s"], r["digest_s"], int(r["digest_bytes"]) / 1e6,
+            r["paraview_s"] or "—"))
     out += ["", "| method | sizes | " + " | ".join(k for k in ("report", "inspect", "render", "digest", "ParaView"))
             + " |", "|---|---|--:|--:|--:|--:|--:|"]
     methods = sorted({os.path.basename(r["record"]).split("-")[0] for r in rs})
