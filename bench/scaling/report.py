@@ -431,11 +431,12 @@ def io_section():
             os.path.relpath(r["record"], DIR), r["dofs"], int(r["bytes"]) / 1e6, r["report_s"],
             r["inspect_s"] or "— (no material state)", r["render_s"], r["digest_s"], int(r["digest_bytes"]) / 1e6,
             r["paraview_s"] or "—"))
-    out += ["", "| method | sizes | " + " | ".join(k for k in ("report", "inspect", "render", "digest", "ParaView"))
+    out += ["", "| scene, method | sizes | " + " | ".join(k for k in ("report", "inspect", "render", "digest", "ParaView"))
             + " |", "|---|---|--:|--:|--:|--:|--:|"]
-    methods = sorted({os.path.basename(r["record"]).split("-")[0] for r in rs})
-    for m in methods:
-        q = sorted((r for r in rs if os.path.basename(r["record"]).split("-")[0] == m), key=lambda r: int(r["dofs"]))
+    key = lambda r: "%s %s" % (os.path.basename(os.path.dirname(r["record"])),
+                               os.path.basename(r["record"]).split("-")[0])
+    for m in sorted({key(r) for r in rs}):
+        q = sorted((r for r in rs if key(r) == m), key=lambda r: int(r["dofs"]))
         ns = [int(r["dofs"]) for r in q]
         cells = []
         for k in ("report_s", "inspect_s", "render_s", "digest_s", "paraview_s"):
