@@ -24,6 +24,7 @@
 #include "cli_sh.h"
 #include "fd_check.h"
 #include "sb_test.h"
+#include "method_fixture.h"
 
 extern const sb_method_type sb_method_bhem, sb_method_subdiv, sb_method_linear_fem;
 
@@ -51,38 +52,19 @@ static const char *const fd_scenes[] = {
     "\"contact\": {\"dhat\": 0.001, \"samples\": 2}}",
 };
 
-typedef struct setup {
-    sb_context ctx;
-    sb_scene sc;
-    const sb_method_type *mt;
-    void *ms;
-} setup;
+typedef sb_method_fixture setup;
 
 static int open_method(sb_test_state *T, setup *S, const char *text, const sb_method_type *mt, int res)
 {
-    memset(S, 0, sizeof *S);
-    sb_context_init(&S->ctx);
+    sb_method_fixture_init(S);
     char path[1024], err[1024];
     snprintf(path, sizeof path, "%s/tests/scenes/contact/inline.json", sb_test_root());
     int rc = sb_scene_parse_string(text, path, &S->sc, err, sizeof err);
     CHECK_MSG(rc == 0, "%s", err);
-    if (rc) return -1;
-    if (mt->params) sb_paramset_add(&S->ctx.params, "method", mt->params);
-    S->mt = mt;
-    S->ms = calloc(1, mt->state_size);
-    sb_method_config cfg = { res, 1, &S->ctx.params, &S->ctx, 0 };
-    rc = mt->create(S->ms, &S->sc, &cfg);
-    CHECK_MSG(rc == 0, "%s: %s", mt->name, S->ctx.err);
-    return rc ? -1 : 0;
+    return rc ? -1 : sb_method_fixture_create(T, S, mt, res);
 }
 
-static void close_method(setup *S)
-{
-    if (S->ms && S->mt) S->mt->destroy(S->ms);
-    free(S->ms);
-    sb_scene_free(&S->sc);
-    sb_context_free(&S->ctx);
-}
+static void close_method(setup *S) { sb_method_fixture_free(S); }
 
 /* the contact term alone: f, g, H at x on the method's pattern, against
  * central differences along a random direction */

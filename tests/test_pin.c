@@ -21,6 +21,7 @@
 #include "fd_check.h"
 #include "run_json.h"
 #include "sb_test.h"
+#include "method_fixture.h"
 
 extern const sb_method_type sb_method_bhem, sb_method_linear_fem;
 
@@ -30,38 +31,19 @@ static double rnd(unsigned *s)
     return ((*s >> 8) & 0xffff) / 65535.0 - 0.5;
 }
 
-typedef struct setup {
-    sb_context ctx;
-    sb_scene sc;
-    const sb_method_type *mt;
-    void *ms;
-} setup;
+typedef sb_method_fixture setup;
 
 static int open_method(sb_test_state *T, setup *S, const char *file, const sb_method_type *mt)
 {
-    memset(S, 0, sizeof *S);
-    sb_context_init(&S->ctx);
+    sb_method_fixture_init(S);
     char path[1024], err[1024];
     snprintf(path, sizeof path, "%s/tests/scenes/pin/%s", sb_test_root(), file);
     int rc = sb_scene_load(path, &S->sc, err, sizeof err);
     CHECK_MSG(rc == 0, "%s", err);
-    if (rc) return -1;
-    if (mt->params) sb_paramset_add(&S->ctx.params, "method", mt->params);
-    S->mt = mt;
-    S->ms = calloc(1, mt->state_size);
-    sb_method_config cfg = { 4, 1, &S->ctx.params, &S->ctx, 0 };
-    rc = mt->create(S->ms, &S->sc, &cfg);
-    CHECK_MSG(rc == 0, "%s: %s", mt->name, S->ctx.err);
-    return rc ? -1 : 0;
+    return rc ? -1 : sb_method_fixture_create(T, S, mt, 4);
 }
 
-static void close_method(setup *S)
-{
-    if (S->ms && S->mt) S->mt->destroy(S->ms);
-    free(S->ms);
-    sb_scene_free(&S->sc);
-    sb_context_free(&S->ctx);
-}
+static void close_method(setup *S) { sb_method_fixture_free(S); }
 
 /* k/2 |x(st(f)) - p(f)|^2 over the held components of pin b, from eval_points;
  * |x(st(f)) - p(f)| in *dist */
