@@ -1,6 +1,7 @@
 """bench/h5ddl.py — read a record's attributes and datasets through h5dump
 (hdf5-tools), for the bench report scripts (bench/scaling/report.py,
-bench/linear_solvers/report.py): no h5py needed."""
+bench/linear_solvers/report.py, bench/sqrt3/distance.py, dress_series.py): no
+h5py needed."""
 import re
 import subprocess
 
@@ -35,4 +36,29 @@ def parse_ddl(txt):
                     vals.append(tok[1:-1])
                 elif NUM.match(tok):
                     vals.append(float(tok))
+    return out
+
+
+def h5_text(path, *args):
+    """h5dump's text of the objects named by args (-d, -g, -A ...); fails loudly"""
+    return subprocess.run(["h5dump", "-m", "%.17g", "-w", "0"] + list(args) + [path], check=True,
+                          capture_output=True, text=True).stdout
+
+
+def numbers(text):
+    """the numbers of the first DATA block (the dataset's; attributes follow it)"""
+    out = []
+    m = re.search(r"DATA \{(.*?)\}", text, re.S)
+    for line in (m.group(1).splitlines() if m else []):
+        if ":" in line:
+            out += [float(v) for v in line.split(":", 1)[1].replace(",", " ").split()]
+    return out
+
+
+def samples(path):
+    """{step: [x0, y0, z0, x1, ...]} from /steps/sample_pos"""
+    text = h5_text(path, "-g", "/steps/sample_pos")
+    out = {}
+    for m in re.finditer(r'DATASET "(\d+)" \{(.*?)\n      \}\n   \}', text, re.S):
+        out[int(m.group(1))] = numbers(m.group(2) + "}")
     return out

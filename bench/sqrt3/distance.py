@@ -12,7 +12,10 @@ adaptation interval) and the last, to keep the file small.  CSV on stdout.
     python3 bench/sqrt3/distance.py results/sqrt3 --full cs-full --diag 0.848528 \
         adaptive=cs-adaptive loose=cs-adaptive-loose > results/sqrt3/series_cloth_sphere.csv
 """
-import math, os, re, subprocess, sys
+import math, os, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from h5ddl import h5_text as h5, numbers, samples  # noqa: E402  (bench/h5ddl.py)
 
 DIR = sys.argv[1] if len(sys.argv) > 1 else "results/sqrt3"
 DIAG = math.hypot(1.0, 1.5)          # the curtain is 1 m x 1.5 m (bench/scenes/curtain.json)
@@ -36,32 +39,8 @@ if _rest:
             PAIRS.append((tag, short))
 
 
-def h5(path, *args):
-    return subprocess.run(["h5dump", "-m", "%.17g", "-w", "0"] + list(args) + [path], check=True,
-                          capture_output=True, text=True).stdout
-
-
-def numbers(text):
-    """the numbers of the first DATA block (the dataset's; attributes follow it)"""
-    out = []
-    m = re.search(r"DATA \{(.*?)\}", text, re.S)
-    for line in (m.group(1).splitlines() if m else []):
-        if ":" in line:
-            out += [float(v) for v in line.split(":", 1)[1].replace(",", " ").split()]
-    return out
-
-
 def series(path, name):
     return numbers(h5(path, "-d", name))
-
-
-def samples(path):
-    """{step: [x0, y0, z0, x1, ...]} from /steps/sample_pos"""
-    text = h5(path, "-g", "/steps/sample_pos")
-    out = {}
-    for m in re.finditer(r'DATASET "(\d+)" \{(.*?)\n      \}\n   \}', text, re.S):
-        out[int(m.group(1))] = numbers(m.group(2) + "}")
-    return out
 
 
 def main():

@@ -18,34 +18,14 @@ zones, unresolved steps) of both records with their step counts, so that the
 report has them also for runs without a summary.
 """
 import json
-import math, re, subprocess, sys
+import math, re, sys
+import os
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from h5ddl import h5_text as h5, numbers, samples  # noqa: E402  (bench/h5ddl.py)
 
 DIAG = 1.2
 COLS = ("triangles", "seconds", "seconds_contact", "seconds_adapt", "seconds_record", "seconds_checkpoint")
-
-
-def h5(path, *args):
-    return subprocess.run(["h5dump", "-m", "%.17g", "-w", "0"] + list(args) + [path], check=True,
-                          capture_output=True, text=True).stdout
-
-
-def numbers(text):
-    """the numbers of the first DATA block (the dataset's; attributes follow it)"""
-    out = []
-    m = re.search(r"DATA \{(.*?)\}", text, re.S)
-    for line in (m.group(1).splitlines() if m else []):
-        if ":" in line:
-            out += [float(v) for v in line.split(":", 1)[1].replace(",", " ").split()]
-    return out
-
-
-def samples(path):
-    """{step: [x0, y0, z0, x1, ...]} from /steps/sample_pos"""
-    text = h5(path, "-g", "/steps/sample_pos")
-    out = {}
-    for m in re.finditer(r'DATASET "(\d+)" \{(.*?)\n      \}\n   \}', text, re.S):
-        out[int(m.group(1))] = numbers(m.group(2) + "}")
-    return out
 
 
 def contact(path):
