@@ -15,7 +15,9 @@
 #include "sb_method.h"
 #include "sb_scene.h"
 #include "sb_shell.h"
+#include "sb_material_state.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
@@ -94,6 +96,53 @@ SB_TEST(stvk_never_softens)
     const double A[3] = { 0.1, 0, 0 }, B[3] = { NAN, 0, 0 };
     CHECK(sb_shell_section_stability(&m, A, B, &lm, &ls) == SB_NONFINITE);
     CHECK(sb_shell_section_stability(NULL, A, B, &lm, &ls) == SB_ERR_INPUT);
+}
+
+/* issue 42: a material state reuses StVK's strain-independent tangent
+ * eigenvalues (computed at its first point) and gives, bit for bit, what
+ * evaluating every point gives; denim is evaluated at every point */
+SB_TEST(material_state_reuses_only_a_constant_tangent)
+{
+    sb_material_spec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.kind = SB_MAT_STVK;
+    spec.young = 1e6;
+    spec.poisson = 0.3;
+    spec.thickness = 1e-3;
+    spec.density = 1.0;
+    sb_material stvk, denim;
+    CHECK(sb_material_init(&stvk, &spec, 0) == SB_OK);
+    sb_material_spec_denim(&spec);
+    CHECK(sb_material_init(&denim, &spec, 0) == SB_OK);
+    const sb_material *mats[2] = { &stvk, &denim };
+    for (int which = 0; which < 2; which++) {
+        const sb_material *m = mats[which];
+        sb_material_state ms;
+        sb_material_state_init(&ms);
+        double min_lm = INFINITY;
+        long soft = 0;
+        unsigned long s = 11;
+        for (int i = 0; i < 300; i++) {
+            double A[3], B[3], lm, ls;
+            for (int k = 0; k < 3; k++) {
+                s = s * 6364136223846793005UL + 1442695040888963407UL;
+                A[k] = ((double)(s >> 11) / 9007199254740992.0 - 0.5) * 0.12;
+                B[k] = A[k] * 11.0 * (k + 1);
+            }
+            CHECK(sb_shell_section_stability(m, A, B, &lm, &ls) == SB_OK);
+            min_lm = fmin(min_lm, lm);
+            soft += lm < -1e-9;
+            CHECK(sb_material_state_add_strains(&ms, m, 0.5, A, B) == SB_OK);
+        }
+        CHECK_MSG(ms.min_rel_eig == min_lm, "material %d: state %.17g, per point %.17g", which, ms.min_rel_eig, min_lm);
+        CHECK_EQ_INT((int)ms.soft_membrane, (int)soft);
+        CHECK_EQ_INT((int)ms.points, 300);
+        CHECK(which == 0 ? ms.const_tangent_of == (const void *)m : ms.const_tangent_of == NULL);
+        if (which == 1) CHECK_MSG(soft > 0, "the denim sample should reach its softening strains");
+        const double A[3] = { 0.1, 0, 0 }, B[3] = { NAN, 0, 0 };
+        CHECK(sb_material_state_add_strains(&ms, m, 0.5, A, B) == SB_NONFINITE);   /* also from the cache */
+        CHECK_EQ_INT((int)ms.points, 300);
+    }
 }
 
 /* A flat 1 m plate stretched uniformly along the warp (x) direction to the
@@ -219,6 +268,7 @@ int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
         SB_CASE(denim_softening_interval), SB_CASE(stvk_never_softens), SB_CASE(stretched_plates),
+        SB_CASE(material_state_reuses_only_a_constant_tangent),
         SB_CASE(run_records_and_inspect_recomputes), SB_END,
     };
     return sb_test_main(argc, argv, cases);

@@ -161,6 +161,10 @@ struct sb_material_state;
 void sb_material_state_init(struct sb_material_state *ms);
 int sb_material_state_add(struct sb_material_state *ms, const sb_material *m, const sb_shell_ref *r,
                           const sb_shell_basis *b, const double *q, sb_shell_work *w);
+/* The same from a point's strains (A, B) and reference area dA (methods
+ * with strains of their own, e.g. linear_fem's triangles). */
+int sb_material_state_add_strains(struct sb_material_state *ms, const sb_material *m, double dA, const double A[3],
+                                  const double B[3]);
 
 /* External potential of one quadrature point: gravity (dead, density * g)
  * and pressure p along the normal.  follower = 0: dead load on the reference

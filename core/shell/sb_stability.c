@@ -59,24 +59,49 @@ void sb_material_state_init(sb_material_state *ms)
     ms->min_rel_eig = INFINITY;
 }
 
-int sb_material_state_add(sb_material_state *ms, const sb_material *m, const sb_shell_ref *r,
-                          const sb_shell_basis *b, const double *q, sb_shell_work *w)
+int sb_material_state_add_strains(sb_material_state *ms, const sb_material *m, double dA, const double A[3],
+                                  const double B[3])
 {
-    double A[3], B[3], lm, ls;
-    int rc = sb_shell_strains(r, b, q, w, A, B);
-    if (!rc) rc = sb_shell_section_stability(m, A, B, &lm, &ls);
-    if (rc) return rc;
+    double lm, ls;
+    int rc;
+    if (m->kind == SB_MAT_STVK && ms->const_tangent_of == (const void *)m) {
+        /* StVK: psi is quadratic in E (sb_material.c stvk_psi, BHEM paper
+         * Eq. 8), so the section tangent C does not depend on (A, B) and its
+         * eigenvalues are those of the first point, bit for bit (issue 42:
+         * two LAPACK eigenproblems per point were half of a 1e6-dof plate
+         * run's harness time); the strains are still checked finite */
+        for (int i = 0; i < 3; i++)
+            if (!isfinite(A[i]) || !isfinite(B[i])) return SB_NONFINITE;
+        lm = ms->const_tangent_lm;
+        ls = ms->const_tangent_ls;
+    } else {
+        rc = sb_shell_section_stability(m, A, B, &lm, &ls);
+        if (rc) return rc;
+        if (m->kind == SB_MAT_STVK) {
+            ms->const_tangent_of = m;
+            ms->const_tangent_lm = lm;
+            ms->const_tangent_ls = ls;
+        }
+    }
     /* ASSUMPTION: a relative eigenvalue below -1e-9 is negative (round-off
      * of a 3 x 3 or 6 x 6 dsyev is near 1e-15 relative) */
     const double tol = -1e-9;
     ms->points++;
-    ms->area += r->dA;
+    ms->area += dA;
     if (lm < tol) {
         ms->soft_membrane++;
-        ms->soft_area += r->dA;
+        ms->soft_area += dA;
     }
     ms->soft_section += ls < tol;
     if (lm < ms->min_rel_eig) ms->min_rel_eig = lm;
     for (int i = 0; i < 3; i++) ms->max_strain[i] = fmax(ms->max_strain[i], fabs(A[i]));
     return SB_OK;
+}
+
+int sb_material_state_add(sb_material_state *ms, const sb_material *m, const sb_shell_ref *r,
+                          const sb_shell_basis *b, const double *q, sb_shell_work *w)
+{
+    double A[3], B[3];
+    int rc = sb_shell_strains(r, b, q, w, A, B);
+    return rc ? rc : sb_material_state_add_strains(ms, m, r->dA, A, B);
 }

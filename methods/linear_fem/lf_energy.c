@@ -65,22 +65,11 @@ int lf_material_state(lf_state *S, int level, const double *x, sb_material_state
     sb_material_state_init(ms);
     int status = SB_OK;
     for (int t = 0; t < L->nt; t++) {
-        double A[3], B[3], lm, ls;
+        double A[3], B[3];
         lf_gather(S, L, t, x, S->qe);
         int rc = lf_tri_strains(S, L, t, S->qe, A, B);
-        if (!rc) rc = sb_shell_section_stability(&S->mat, A, B, &lm, &ls);
-        if (rc) { status = SB_NONFINITE; continue; }
-        /* same accounting as sb_material_state_add (sb_stability.c) */
-        const double dA = L->tri[t].ref.dA, tol = -1e-9;
-        ms->points++;
-        ms->area += dA;
-        if (lm < tol) {
-            ms->soft_membrane++;
-            ms->soft_area += dA;
-        }
-        ms->soft_section += ls < tol;
-        if (lm < ms->min_rel_eig) ms->min_rel_eig = lm;
-        for (int i = 0; i < 3; i++) ms->max_strain[i] = fmax(ms->max_strain[i], fabs(A[i]));
+        if (!rc) rc = sb_material_state_add_strains(ms, &S->mat, L->tri[t].ref.dA, A, B);
+        if (rc) status = SB_NONFINITE;
     }
     return status;
 }
