@@ -71,6 +71,15 @@ static const bad bads[] = {
       "s.json:7:56: at /rules/0/skip: say why the runs are skipped" },
     { HEAD UNIQUE MS "  \"res\": [4],\n  \"rules\": [{\"solver\": \"tr\", \"levels\": 3, \"res\": [4]}]\n}",
       "s.json:7:40: at /rules/0/levels: no solver of this study runs on 3 levels" },
+    /* a solver entry's "linear" (issue 38: Krylov paths as configurations of their own) */
+    { HEAD UNIQUE "  \"methods\": [\"bhem\"],\n  \"solvers\": [{\"solver\": \"lsnewton\", \"linear\": \"pcg-gmres\"}],\n  \"res\": [4]\n}",
+      "s.json:5:48: at /solvers/0/linear: unknown linear solver \"pcg-gmres\"" },
+    { HEAD UNIQUE "  \"methods\": [\"bhem\"],\n  \"solvers\": [{\"solver\": \"lsnewton\", \"levels\": 2, \"linear\": \"pcg-mg\"}, "
+      "{\"solver\": \"lsnewton\", \"levels\": 2, \"linear\": \"pcg-mg\"}],\n  \"res\": [4]\n}",
+      "s.json:5:83: at /solvers/1/solver: solver \"lsnewton\" with 2 levels and linear solver pcg-mg is listed twice" },
+    { HEAD UNIQUE "  \"methods\": [\"bhem\"],\n  \"solvers\": [{\"solver\": \"lsnewton\", \"linear\": \"pcg-mg\", "
+      "\"set\": {\"solver.linear\": \"cholmod\"}}],\n  \"res\": [4]\n}",
+      "s.json:5:48: at /solvers/0/linear: given twice" },
 };
 
 SB_TEST(study_file_errors_name_file_line_and_column)

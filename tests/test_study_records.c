@@ -149,12 +149,60 @@ SB_TEST(misplaced_records_refused_by_sweep_and_flagged_by_report)
     free(st);
 }
 
+/* issue 38: a solver entry's "linear" is a configuration of its own (own
+ * label, own record), and a record made with another linear solver in its
+ * place is not its run */
+SB_TEST(a_linear_solver_entry_is_its_own_configuration)
+{
+    char path[400], err[2048];
+    snprintf(path, sizeof path, "%s/linear.json", tmpdir);
+    FILE *f = fopen(path, "w");
+    fprintf(f, "{\"study\": \"linear\", \"records\": \"%s/lin\",\n"
+               " \"scenes\": [\"plate_clamped\"], \"methods\": [\"bhem\"],\n"
+               " \"solvers\": [{\"solver\": \"lsnewton\", \"levels\": 2},\n"
+               "             {\"solver\": \"lsnewton\", \"levels\": 2, \"linear\": \"pcg-mg\"}], \"res\": [4]}\n", tmpdir);
+    fclose(f);
+    sb_study *st = calloc(1, sizeof *st);
+    int rc = sb_study_load(path, NULL, st, err, sizeof err);
+    CHECK_MSG(rc == 0, "%s", err);
+    if (rc) { free(st); return; }
+    sb_plan p;
+    CHECK(sb_study_plan(st, &p, err, sizeof err) == 0);
+    const sb_plan_run *a = NULL, *b = NULL;
+    for (int k = 0; k < p.n; k++)
+        if (p.runs[k].state == SB_PLAN_RUN) *(st->solvers[p.runs[k].solver].linear[0] ? &b : &a) = &p.runs[k];
+    CHECK(a && b);
+    if (!a || !b) { sb_plan_free(&p); sb_study_free(st); free(st); return; }
+    char la[256], lb[256];
+    sb_plan_config_label(st, a, la, sizeof la);
+    sb_plan_config_label(st, b, lb, sizeof lb);
+    CHECK_MSG(!strcmp(la, "bhem/lsnewton L2") && !strcmp(lb, "bhem/lsnewton+pcg-mg L2"), "labels %s, %s", la, lb);
+    CHECK_MSG(strstr(b->out, "bhem-lsnewton+pcg-mg-l2-r4.h5") && strcmp(a->out, b->out), "paths %s, %s", a->out, b->out);
+    char *said = NULL;
+    CHECK_EQ_INT(sweep(st, &said), 0);
+    free(said);
+    sb_record_setup su;
+    CHECK_MSG(sb_record_read_identity(b->out, &su, err, sizeof err) == 0, "%s", err);
+    CHECK_MSG(!strcmp(su.linear, "pcg-mg"), "the pcg-mg entry's record has solver.linear \"%s\"", su.linear);
+    sb_record_setup_free(&su);
+    /* the direct solve's record in the Krylov entry's place */
+    CHECK(copy_file(a->out, b->out) == 0);
+    rc = sweep(st, &said);
+    CHECK_MSG(rc == 2 && said && strstr(said, "its linear solver is cholmod, the plan's pcg-mg"), "sweep: exit %d, %s", rc,
+              said ? said : "");
+    free(said);
+    sb_plan_free(&p);
+    sb_study_free(st);
+    free(st);
+}
+
 int main(int argc, char **argv)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/sb_study_records_XXXXXX");
     if (!mkdtemp(tmpdir)) return 3;
     if (chdir(sb_test_root()) != 0) return 3;
-    static const sb_test_case cases[] = { SB_CASE(misplaced_records_refused_by_sweep_and_flagged_by_report), SB_END };
+    static const sb_test_case cases[] = { SB_CASE(misplaced_records_refused_by_sweep_and_flagged_by_report),
+                                          SB_CASE(a_linear_solver_entry_is_its_own_configuration), SB_END };
     int rc = sb_test_main(argc, argv, cases);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);

@@ -320,6 +320,7 @@ typedef struct sb_record_setup {
     int res_t;                 /* 0 in records without --res NxM */
     int n_sets;
     char sets[SB_RECORD_MAX_SETS][320];
+    char linear[32];           /* solver.linear when the record has one ("" otherwise: cholmod) */
     int n_x;
     double *x;                 /* owned */
 } sb_record_setup;

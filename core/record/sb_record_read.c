@@ -262,11 +262,16 @@ typedef struct param_walk {
     int rc;
 } param_walk;
 
-/* one /params attribute "method.KEY" as the assignment "method.KEY=VALUE" */
+/* one /params attribute "method.KEY" as the assignment "method.KEY=VALUE";
+ * solver.linear into s->linear (a study's configurations differ by it) */
 static herr_t collect_param(hid_t loc, const char *name, const H5A_info_t *info, void *data)
 {
     (void)info;
     param_walk *w = data;
+    if (!strcmp(name, "solver.linear")) {
+        w->rc = sb_h5r_attr_str(w->r, loc, name, w->s->linear, sizeof w->s->linear);
+        return w->rc ? -1 : 0;
+    }
     if (strncmp(name, "method.", 7) != 0 || w->s->n_sets >= SB_RECORD_MAX_SETS) return 0;
     char value[256];
     hid_t a = H5Aopen(loc, name, H5P_DEFAULT);

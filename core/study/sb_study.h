@@ -66,6 +66,8 @@ typedef struct sb_study_solver {
     char name[SB_NAME_LEN];
     const sb_solver_type *type;
     int levels;
+    char linear[SB_NAME_LEN];   /* "linear": solver.linear of this entry ("" none: the
+                                   study's, default cholmod); part of its label and records' names */
     sb_study_sets sets;
 } sb_study_solver;
 

@@ -7,6 +7,7 @@
  * sb_study_check.c. */
 #include "sb_output.h"
 #include "sb_study_parse.h"
+#include "sb_krylov.h"   /* sb_linear_names */
 
 #include <errno.h>
 #include <math.h>
@@ -230,7 +231,7 @@ static int parse_methods(sbj_ctx *c, const json_t *root, sb_study *st)
 
 static int parse_solver(sbj_ctx *c, const json_t *o, sb_study *st, const char *name)
 {
-    static const char *const keys[] = { "solver", "levels", "set", NULL };
+    static const char *const keys[] = { "solver", "levels", "linear", "set", NULL };
     static const char *const pre[] = { "solver.", "run.", NULL };
     if (st->n_solvers >= SB_STUDY_MAX_SOLVERS) return sbj_fail(c, NULL, 0, "too many solvers (at most %d)", SB_STUDY_MAX_SOLVERS);
     sb_study_solver *s = &st->solvers[st->n_solvers];
@@ -241,6 +242,12 @@ static int parse_solver(sbj_ctx *c, const json_t *o, sb_study *st, const char *n
         if (!json_is_object(o)) return sbj_fail(c, NULL, 0, "a solver entry must be a name or an object, got %s", sbj_type_name(o));
         if ((r = sbj_check_keys(c, o, keys)) || (r = sbj_get_string(c, o, "solver", 1, s->name, sizeof s->name, NULL))) return r;
         if ((r = sbj_get_int(c, o, "levels", 0, 1, SB_MAX_LEVELS, &levels))) return r;
+        if ((r = sbj_get_string(c, o, "linear", 0, s->linear, sizeof s->linear, NULL))) return r;
+        if (s->linear[0]) {
+            int known = 0;
+            for (int k = 0; sb_linear_names[k]; k++) known |= !strcmp(sb_linear_names[k], s->linear);
+            if (!known) return sbj_fail(c, "linear", 0, "unknown linear solver \"%s\" (cholmod, pcg-jacobi, pcg-mg, pcg-amg)", s->linear);
+        }
     } else {
         snprintf(s->name, sizeof s->name, "%s", name);
     }
@@ -251,10 +258,19 @@ static int parse_solver(sbj_ctx *c, const json_t *o, sb_study *st, const char *n
     if (hier && levels < 2) return sbj_fail(c, "levels", 0, "solver %s needs at least 2 levels", s->name);
     s->levels = (int)levels;
     for (int k = 0; k < st->n_solvers; k++)
-        if (st->solvers[k].type == s->type && st->solvers[k].levels == s->levels)
-            return sbj_fail(c, o ? "solver" : NULL, 0, "solver \"%s\" with %d level%s is listed twice", s->name, s->levels,
-                            s->levels > 1 ? "s" : "");
+        if (st->solvers[k].type == s->type && st->solvers[k].levels == s->levels && !strcmp(st->solvers[k].linear, s->linear))
+            return sbj_fail(c, o ? "solver" : NULL, 0, "solver \"%s\" with %d level%s%s%s is listed twice", s->name, s->levels,
+                            s->levels > 1 ? "s" : "", s->linear[0] ? " and linear solver " : "", s->linear);
     if (o && (r = sbs_parse_sets(c, o, "set", pre, &s->sets))) return r;
+    if (s->linear[0]) {
+        for (int k = 0; k < s->sets.n; k++)
+            if (!strncmp(s->sets.kv[k], "solver.linear=", 14))
+                return sbj_fail(c, "linear", 0, "given twice: as \"linear\" and in \"set\" (keep \"linear\")");
+        if (s->sets.n >= SB_STUDY_MAX_SETS) return sbj_fail(c, "linear", 0, "too many parameters for one solver entry");
+        char kv[SB_STUDY_SET_LEN];
+        snprintf(kv, sizeof kv, "solver.linear=%s", s->linear);
+        memcpy(s->sets.kv[s->sets.n++], kv, sizeof kv);
+    }
     st->n_solvers++;
     return SB_OK;
 }

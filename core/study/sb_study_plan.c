@@ -50,7 +50,8 @@ static int variant_value(const sb_study *st, int v, int q)
 void sb_plan_config_label(const sb_study *st, const sb_plan_run *r, char *buf, size_t len)
 {
     const sb_study_solver *so = &st->solvers[r->solver];
-    size_t u = (size_t)snprintf(buf, len, "%s/%s", st->methods[r->method].name, so->name);
+    size_t u = (size_t)snprintf(buf, len, "%s/%s%s%s", st->methods[r->method].name, so->name, so->linear[0] ? "+" : "",
+                                so->linear);
     if (so->levels > 1 && u < len) u += (size_t)snprintf(buf + u, len - u, " L%d", so->levels);
     for (int q = 0; q < st->n_vary && u < len; q++) {
         const char *k = strchr(st->vary_key[q], '.');
@@ -85,7 +86,7 @@ int sb_plan_finish_run(const sb_study *st, sb_plan_run *r, char *err, size_t err
 {
     const sb_study_scene *sc = &st->scenes[r->scene];
     const sb_study_solver *so = &st->solvers[r->solver];
-    char vpart[256] = "", spart[64] = "", dpart[64] = "", lpart[16] = "";
+    char vpart[256] = "", spart[64] = "", dpart[64] = "", lpart[16] = "", linpart[2 * SB_NAME_LEN] = "";
     for (int q = 0; q < st->n_vary; q++) {
         char kv[2 * SB_NAME_LEN], safe[2 * SB_NAME_LEN];
         const char *k = strchr(st->vary_key[q], '.');
@@ -96,8 +97,13 @@ int sb_plan_finish_run(const sb_study *st, sb_plan_run *r, char *err, size_t err
     if (r->start > 0) snprintf(spart, sizeof spart, "-s%ld", sc->seeds[r->start - 1]);
     if (r->dt > 0) snprintf(dpart, sizeof dpart, "-dt%.6g", r->dt);
     if (so->levels > 1) snprintf(lpart, sizeof lpart, "-l%d", so->levels);
-    if (snprintf(r->out, sizeof r->out, "%s/%s/%s-%s%s%s-r%d%s%s.h5", st->records, sc->name, st->methods[r->method].name,
-                 so->name, lpart, vpart, r->res, spart, dpart) >= (int)sizeof r->out) {
+    if (so->linear[0]) {
+        char safe[SB_NAME_LEN];
+        safe_name(so->linear, safe, sizeof safe);
+        snprintf(linpart, sizeof linpart, "+%s", safe);   /* METHOD-lsnewton+pcg-mg-l2-r8.h5 */
+    }
+    if (snprintf(r->out, sizeof r->out, "%s/%s/%s-%s%s%s%s-r%d%s%s.h5", st->records, sc->name, st->methods[r->method].name,
+                 so->name, linpart, lpart, vpart, r->res, spart, dpart) >= (int)sizeof r->out) {
         snprintf(err, errlen, "record path too long under %s", st->records);
         return SB_ERR_INPUT;
     }

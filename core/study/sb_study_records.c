@@ -42,6 +42,15 @@ int sb_study_record_check(const sb_study *st, const sb_plan_run *r, char *why, s
     } else if (su.levels != r->levels) {
         snprintf(what, sizeof what, "it has %d level%s, the plan's run %d", su.levels, su.levels == 1 ? "" : "s",
                  r->levels);
+    } else {
+        /* the linear solver, where the plan names one (a solver entry's
+         * "linear", a "set" or "vary"): the last assignment wins */
+        const char *planned = NULL;
+        for (int k = 0; k < r->n_sets; k++)
+            if (!strncmp(r->sets[k], "solver.linear=", 14)) planned = r->sets[k] + 14;
+        const char *got = su.linear[0] ? su.linear : "cholmod";
+        if (planned && strcmp(planned, got))
+            snprintf(what, sizeof what, "its linear solver is %s, the plan's %s", got, planned);
     }
     sb_record_setup_free(&su);
     if (!what[0]) return SB_OK;
