@@ -211,3 +211,12 @@ void sb_krylov_describe(const sb_krylov *k, char *buf, size_t len)
     if (k->type->describe && k->pstate) k->type->describe(k->pstate, pd, sizeof pd);
     snprintf(buf, len, "linear solve: %s (CG preconditioned by %s)", k->type->name, pd);
 }
+
+int sb_krylov_solve_to(sb_krylov *k, sb_problem *p, const double *g, double rtol, int max_iter, double *s)
+{
+    int rc = sb_krylov_setup(k, p);
+    if (rc) return rc;
+    sb_krylov_result res;
+    rc = sb_krylov_solve(k, p, g, INFINITY, rtol, max_iter, s, &res);
+    return rc ? rc : res.status == SB_KRYLOV_CONVERGED ? SB_OK : SB_NOT_POSDEF;
+}

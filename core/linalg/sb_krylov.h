@@ -54,6 +54,9 @@ void sb_krylov_unshift(sb_krylov *k, sb_problem *p);
 int  sb_krylov_solve(sb_krylov *k, sb_problem *p, const double *g, double delta, double rtol, int max_iter,
                      double *s, sb_krylov_result *res);
 void sb_krylov_describe(const sb_krylov *k, char *buf, size_t len);
+/* Set up and solve s = -H^{-1} g to rtol without a radius: SB_OK only when
+ * CG reached rtol (capped or negative curvature: SB_NOT_POSDEF). */
+int  sb_krylov_solve_to(sb_krylov *k, sb_problem *p, const double *g, double rtol, int max_iter, double *s);
 
 /* Eisenstat & Walker (1996), choice 2, with their safeguards:
  *   eta_k = gamma (||g_k|| / ||g_{k-1}||)^alpha,  gamma = 0.9, alpha = 2,

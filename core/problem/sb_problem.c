@@ -611,7 +611,7 @@ static void eliminate_hessian(const level_data *L, sb_matrix *H)
  * of Phi at x_n: the linear elastic response of the free dofs to the
  * boundary increment.  It is used only when its energy is finite and not
  * above that of the plain start. */
-int sb_problem_lift(sb_problem *p, const double *x_n, double *x0)
+int sb_problem_lift(sb_problem *p, const double *x_n, double *x0, sb_linear_solve_fn solve, void *state)
 {
     const int F = p->nl - 1;
     level_data *L = &p->lv[F];
@@ -636,9 +636,20 @@ int sb_problem_lift(sb_problem *p, const double *x_n, double *x0)
     sb_matrix_symv(&L->H, d, r);                  /* K d: K_fc dx_c on free rows */
     for (int i = 0; i < n; i++) r[i] = L->fixed[i] ? 0.0 : -r[i];
     eliminate_hessian(L, &L->H);
-    rc = sb_problem_factor(p, F, 0.0);
-    if (rc != SB_OK) goto out;                    /* indefinite at x_n: keep the plain start */
-    if (sb_problem_solve(p, F, r, xl) != SB_OK) goto out;
+    rc = SB_ERR_UNSUPPORTED;
+    if (solve) {
+        /* the run's own linear solver (issue 38: a Krylov path never
+         * factors the finest Hessian, also not here): xl = -H^{-1} (-r) */
+        for (int i = 0; i < n; i++) r[i] = -r[i];
+        rc = solve(state, p, r, xl);
+        if (rc != SB_OK && rc != SB_ERR_UNSUPPORTED) goto out;   /* indefinite, capped: keep the plain start */
+        if (rc == SB_ERR_UNSUPPORTED) for (int i = 0; i < n; i++) r[i] = -r[i];
+    }
+    if (rc == SB_ERR_UNSUPPORTED) {
+        rc = sb_problem_factor(p, F, 0.0);
+        if (rc != SB_OK) goto out;                /* indefinite at x_n: keep the plain start */
+        if (sb_problem_solve(p, F, r, xl) != SB_OK) goto out;
+    }
     for (int i = 0; i < n; i++) xl[i] = L->fixed[i] ? x0[i] : x_n[i] + xl[i];
     double f0, fl;
     int r0 = eval_impl(p, F, x0, &f0, NULL, NULL, 1);

@@ -50,7 +50,13 @@ int  sb_problem_begin_step(sb_problem *p, const sb_step_info *si,
 /* Optional predictor for moving boundaries: replace the elimination start x0
  * (x_n with jumped constrained values) by the linear elastic lifting of the
  * boundary increment when that is admissible and not worse (sb_problem.c). */
-int  sb_problem_lift(sb_problem *p, const double *x_n, double *x0);
+/* A linear solve with the finest level's Hessian as the problem holds it
+ * (assembled, constrained): s = -H^{-1} g by a solver's own linear path
+ * (sb_solver_type.linear_solve); SB_OK, SB_ERR_UNSUPPORTED (no path of its
+ * own: CHOLMOD is used) or another status (then nothing is used). */
+typedef int (*sb_linear_solve_fn)(void *state, sb_problem *p, const double *g, double *s);
+/* solve NULL: CHOLMOD (sb_problem_factor / sb_problem_solve) */
+int  sb_problem_lift(sb_problem *p, const double *x_n, double *x0, sb_linear_solve_fn solve, void *state);
 
 /* The force scale of the current step (run.stop=scaled, docs/trust.md):
  * ||grad E|| over the free dofs of the method's energy alone (elastic +

@@ -398,7 +398,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         /* lifting of boundary motion; not for the single-step solver, which is
          * by definition one Newton step from x_n */
         if (!swept && sb_param_int(ps, "run.lifting") && !(R->stype->flags & SB_SOLVER_SINGLE_STEP) &&
-            (rc = sb_problem_lift(R->prob, R->xn, R->x)) < 0) {
+            (rc = sb_problem_lift(R->prob, R->xn, R->x, R->stype->linear_solve, R->ss)) < 0) {
             fprintf(err, "shellbench: step %d: %s\n", step, R->ctx.err);
             return SB_EXIT_INTERNAL;
         }

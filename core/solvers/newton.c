@@ -165,6 +165,16 @@ static void newton_describe(const void *st, char *buf, size_t len)
     else if (len) buf[0] = 0;
 }
 
+/* the lifting's solve (sb_solver_type.linear_solve) on the Krylov paths,
+ * to 1e-8 (a start judged by its energy; a capped or indefinite solve
+ * leaves the plain start); the direct path says SB_ERR_UNSUPPORTED and the
+ * lifting factors with CHOLMOD as before */
+static int newton_linear_solve(void *st, sb_problem *p, const double *g, double *s)
+{
+    newton_state *ns = st;
+    return ns->krylov ? sb_krylov_solve_to(&ns->kr, p, g, 1e-8, ns->cg_max_iter, s) : SB_ERR_UNSUPPORTED;
+}
+
 static void newton_free(void *st)
 {
     newton_state *s = st;
@@ -418,15 +428,17 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
 const sb_solver_type sb_solver_lsnewton = {
     "lsnewton", "Newton with backtracking Armijo line search; shifted Hessian when indefinite",
     sizeof(newton_state), lsnewton_params, 0, lsnewton_alloc, newton_set, newton_iterate, newton_free, newton_describe,
+    newton_linear_solve,
 };
 
 const sb_solver_type sb_solver_damped = {
     "damped", "Newton with constant step 0.3 and no globalization (may diverge: recorded)",
     sizeof(newton_state), damped_params, 0, damped_alloc, newton_set, newton_iterate, newton_free, newton_describe,
+    newton_linear_solve,
 };
 
 const sb_solver_type sb_solver_linearized = {
     "linearized", "one Newton step per time step from x_n (Baraff–Witkin linearized implicit Euler)",
     sizeof(newton_state), linearized_params, SB_SOLVER_SINGLE_STEP, linearized_alloc, newton_set, newton_iterate, newton_free,
-    linearized_describe,
+    linearized_describe, NULL,   /* no lifting: one Newton step from x_n */
 };

@@ -939,4 +939,5 @@ const sb_solver_type sb_solver_rmtr = {
     "rmtr", "recursive multilevel trust region V-cycles, RMTR paper Alg. 4.2 + 4.3 (needs a hierarchy)",
     sizeof(rmtr_state), rmtr_params, SB_SOLVER_TRUST_REGION | SB_SOLVER_NEEDS_HIERARCHY,
     rmtr_alloc, rmtr_set, rmtr_iterate, rmtr_free, rmtr_describe,
+    NULL,   /* the lifting factors with CHOLMOD (its coarsest level does too) */
 };

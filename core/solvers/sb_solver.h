@@ -58,6 +58,10 @@ typedef struct sb_solver_type {
     void (*free)(void *state);
     /* optional: one line on the configuration actually used (after alloc) */
     void (*describe)(const void *state, char *buf, size_t len);
+    /* optional: s = -H^{-1} g with the finest Hessian as the problem holds
+     * it, by the solver's own linear path (after alloc); the lifting of
+     * boundary motion solves with it (sb_problem_lift; NULL: CHOLMOD) */
+    int (*linear_solve)(void *state, sb_problem *p, const double *g, double *s);
 } sb_solver_type;
 
 const sb_solver_type *sb_solver_find(const char *name);

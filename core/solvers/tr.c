@@ -88,6 +88,16 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     return rc;
 }
 
+/* the lifting's solve (sb_solver_type.linear_solve): on the Krylov paths
+ * PCG to 1e-8 without a radius (a start judged by its energy; capped or
+ * indefinite: the plain start); the direct path says SB_ERR_UNSUPPORTED and
+ * the lifting factors with CHOLMOD */
+static int tr_linear_solve(void *st, sb_problem *p, const double *g, double *s)
+{
+    tr_state *t = st;
+    return t->krylov ? sb_krylov_solve_to(&t->kr, p, g, 1e-8, t->cg_max, s) : SB_ERR_UNSUPPORTED;
+}
+
 static void tr_free(void *st)
 {
     tr_state *t = st;
@@ -235,4 +245,5 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
 const sb_solver_type sb_solver_tr = {
     "tr", "single-level trust region, RMTR paper Alg. 4.1 + 4.3 (dogleg or Steihaug–Toint CG)",
     sizeof(tr_state), tr_params, SB_SOLVER_TRUST_REGION, tr_alloc, tr_set, tr_iterate, tr_free, tr_describe,
+    tr_linear_solve,
 };
