@@ -539,6 +539,37 @@ SB_TEST(rmtr_nested_start)
     direct_close(&D);
 }
 
+/* issue 42: a coarse top level of the nested start at its round-off limit
+ * counts as solved.  The simply supported plate at res 256 on 6 levels spent
+ * its whole iteration cap on level 1 (||g|| at the penalty's round-off floor,
+ * above nested_gtol).  Here an unreachable nested_gtol stands in for that
+ * floor: before, the 200-iteration cap ended the step on level 1 (not
+ * converged); now level 1 ends after run.stall_iter round-off cycles and the
+ * finest level converges to the plain run's probe. */
+SB_TEST(nested_start_leaves_a_stalled_coarse_level)
+{
+    char scene[1024];
+    snprintf(scene, sizeof scene, "%s/bench/scenes/plate_simply_supported.json", sb_test_root());
+    const char *sets[] = { "solver.nested_gtol=1e-300", "run.max_iter=200" };
+    double w[2] = { 0, 0 };
+    for (int k = 0; k < 2; k++) {
+        sb_run_request req;
+        sb_test_request(&req, scene, "rmtr", "rmtr", 16);
+        req.levels = 3;
+        req.n_sets = k ? 2 : 1;
+        req.sets = k ? sets : sets + 1;
+        int ec;
+        json_t *r = sb_test_run_json(&req, &ec);
+        CHECK_MSG(r && ec == 0, "%s: exit %d", k ? "unreachable nested_gtol" : "default", ec);
+        if (!r) continue;
+        const int its = (int)json_integer_value(json_object_get(r, "iterations"));
+        CHECK_MSG(its < 60, "%d iterations (the level-1 stall must end after run.stall_iter = 10 cycles)", its);
+        w[k] = probe_z(r, "center");
+        json_decref(r);
+    }
+    CHECK_MSG(fabs(w[1] - w[0]) <= 1e-6 * fabs(w[0]), "centre deflection %.10g against %.10g", w[1], w[0]);
+}
+
 /* method.penalty_h (finest h or each level's own h in the coarse penalties)
  * changes only the coarse energies f^l.  With Galerkin coarse models (the
  * default) no f^l enters a V-cycle, so without the nested start the two
@@ -654,7 +685,7 @@ int main(int argc, char **argv)
         SB_CASE(stalled_at_limiting_accuracy), SB_CASE(galerkin_coarse_hessian),
         SB_CASE(rmtr_galerkin_converges), SB_CASE(rmtr_corrected_models),
         SB_CASE(rmtr_fewer_work_units_than_tr_drooping), SB_CASE(stcg_relative_stopping_rule), SB_CASE(rmtr_own_coarse_radius),
-        SB_CASE(rmtr_nested_start), SB_CASE(rmtr_penalty_h_only_reaches_the_nested_start), SB_END,
+        SB_CASE(rmtr_nested_start), SB_CASE(nested_start_leaves_a_stalled_coarse_level), SB_CASE(rmtr_penalty_h_only_reaches_the_nested_start), SB_END,
     };
     return sb_test_main(argc, argv, cases);
 }
