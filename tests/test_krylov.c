@@ -357,6 +357,64 @@ SB_TEST(every_path_reaches_the_probe_values_of_cholmod)
     }
 }
 
+/* issue 38: pcg-mg's lean Galerkin product (A + A^T from the stored upper
+ * triangle, sb_galerkin_create_lean) equals the indexed one (the rmtr
+ * solver's) to round-off on every level of the three hierarchies, with all
+ * dofs free and with a mask of fixed dofs */
+SB_TEST(lean_galerkin_product_equals_the_indexed_one)
+{
+    struct { const char *scene, *method; int res; } c[] = {
+        { "trampoline", "bhem", 8 }, { "plate_clamped", "linear_fem", 8 }, { "trampoline", "rmtr", 16 } };
+    for (int k = 0; k < 3; k++) {
+        fix f;
+        int rc = fix_open(&f, c[k].scene, c[k].method, c[k].res, 3);
+        CHECK_MSG(rc == 0, "%s %s: %s", c[k].scene, c[k].method, f.ctx.err);
+        if (rc) { fix_close(&f); continue; }
+        CHECK(f.mt->prolong_matrix != NULL);
+        sb_matrix Hf = *sb_problem_hessian(f.p, f.F);   /* the assembled finest Hessian, not owned */
+        sb_matrix owned = { 0 };
+        for (int lc = f.F - 1; lc >= 0 && f.mt->prolong_matrix; lc--) {
+            const sb_pattern *cp = sb_problem_hessian(f.p, lc)->pat;
+            sb_csr S;
+            CHECK_EQ_INT(f.mt->prolong_matrix(f.ms, lc, &S), 0);
+            unsigned char *ff = calloc((size_t)S.nr, 1), *fc = calloc((size_t)S.nc, 1);
+            for (int i = 0; i < S.nr; i += 7) ff[i] = 1;
+            for (int i = 0; i < S.nc; i += 5) fc[i] = 1;
+            sb_matrix next = { 0 };
+            for (int masked = 0; masked < 2; masked++) {
+                sb_galerkin *gi = NULL, *gl = NULL;
+                CHECK_EQ_INT(sb_galerkin_create(&S, Hf.pat, cp, masked ? ff : NULL, masked ? fc : NULL, &gi), 0);
+                CHECK_EQ_INT(sb_galerkin_create_lean(&S, Hf.pat, cp, masked ? ff : NULL, masked ? fc : NULL, &gl), 0);
+                sb_matrix a, b;
+                sb_matrix_init(&a, cp);
+                sb_matrix_init(&b, cp);
+                CHECK_EQ_INT(sb_galerkin_product(gi, &Hf, &a), 0);
+                CHECK_EQ_INT(sb_galerkin_product(gl, &Hf, &b), 0);
+                double big = 0.0, diff = 0.0;
+                for (long q = 0; q < cp->nnz; q++) {
+                    big = fmax(big, fabs(a.val[q]));
+                    diff = fmax(diff, fabs(a.val[q] - b.val[q]));
+                }
+                CHECK_MSG(big > 0.0 && diff <= 1e-13 * big, "%s level %d%s: lean and indexed differ by %.3g of %.3g",
+                          c[k].method, lc, masked ? " (masked)" : "", diff, big);
+                if (!masked) next = a;   /* the next level's fine Hessian */
+                else sb_matrix_free(&a);
+                sb_matrix_free(&b);
+                sb_galerkin_free(gi);
+                sb_galerkin_free(gl);
+            }
+            free(ff);
+            free(fc);
+            sb_csr_free(&S);
+            sb_matrix_free(&owned);
+            owned = next;
+            Hf = owned;
+        }
+        sb_matrix_free(&owned);
+        fix_close(&f);
+    }
+}
+
 /* the lifting's solve by the run's Krylov path (sb_solver_type.linear_solve) */
 static int krylov_lift(void *st, sb_problem *p, const double *g, double *s)
 {
@@ -595,7 +653,7 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = { SB_CASE(preconditioners_are_symmetric_positive_definite),
                                           SB_CASE(bhem_prolong_matrix_equals_probing),
                                           SB_CASE(pcg_mg_iterations_do_not_grow_with_size),
-                                          SB_CASE(every_path_reaches_the_probe_values_of_cholmod), SB_CASE(lifting_solves_with_the_run_s_linear_solver),
+                                          SB_CASE(every_path_reaches_the_probe_values_of_cholmod), SB_CASE(lifting_solves_with_the_run_s_linear_solver), SB_CASE(lean_galerkin_product_equals_the_indexed_one),
                                           SB_CASE(linearized_paths_match_cholmod),
                                           SB_CASE(history_records_forcing_terms),
                                           SB_CASE(a_capped_solve_is_a_recorded_outcome),

@@ -49,6 +49,8 @@ struct sb_galerkin {
     int *lrow;         /*   row i > j of each entry */
     int *loff;         /*   its offset in column i: position colptr[i] + loff */
     const sb_pattern *coarse;
+    int lean;          /* sb_galerkin_create_lean: A + A^T, no lower index */
+    int *cpos;         /*   lean: position of row J in the current coarse column (-1 none), nc */
     const unsigned char *fixed_f, *fixed_c;   /* the caller's arrays, read at every product */
     double *t, *u;     /* dense accumulators: nf, nc */
     int *tlist, *ulist;
@@ -60,7 +62,7 @@ void sb_galerkin_free(sb_galerkin *G)
     if (!G) return;
     sb_csr_free(&G->S);
     sb_csr_free(&G->St);
-    free(G->lrp); free(G->lrow); free(G->loff);
+    free(G->lrp); free(G->lrow); free(G->loff); free(G->cpos);
     free(G->t); free(G->u); free(G->tlist); free(G->ulist);
     free(G->tmark); free(G->umark); free(G->inpat);
     free(G);
@@ -140,9 +142,25 @@ static int lower_columns(sb_galerkin *G, const sb_pattern *P)
 }
 
 static int product_column(sb_galerkin *G, int K, const double *hv, double *hc);
+static int product_column_lean(sb_galerkin *G, int K, const double *hv, double *hc);
+
+static int create(const sb_csr *S, const sb_pattern *fine, const sb_pattern *coarse, const unsigned char *fixed_f,
+                  const unsigned char *fixed_c, int lean, sb_galerkin **out);
 
 int sb_galerkin_create(const sb_csr *S, const sb_pattern *fine, const sb_pattern *coarse,
                        const unsigned char *fixed_f, const unsigned char *fixed_c, sb_galerkin **out)
+{
+    return create(S, fine, coarse, fixed_f, fixed_c, 0, out);
+}
+
+int sb_galerkin_create_lean(const sb_csr *S, const sb_pattern *fine, const sb_pattern *coarse,
+                            const unsigned char *fixed_f, const unsigned char *fixed_c, sb_galerkin **out)
+{
+    return create(S, fine, coarse, fixed_f, fixed_c, 1, out);
+}
+
+static int create(const sb_csr *S, const sb_pattern *fine, const sb_pattern *coarse, const unsigned char *fixed_f,
+                  const unsigned char *fixed_c, int lean, sb_galerkin **out)
 {
     *out = NULL;
     if (S->nr != fine->n || S->nc != coarse->n) return SB_ERR_INPUT;
@@ -156,7 +174,13 @@ int sb_galerkin_create(const sb_csr *S, const sb_pattern *fine, const sb_pattern
     int rc = copy_nonzeros(S, &G->S);
     if (!rc) rc = transpose(&G->S, &G->St);
     G->fine = fine;
-    if (!rc) rc = lower_columns(G, fine);
+    G->lean = lean;
+    if (!rc && !lean) rc = lower_columns(G, fine);
+    if (!rc && lean) {
+        G->cpos = malloc((size_t)(G->nc > 0 ? G->nc : 1) * sizeof *G->cpos);
+        if (!G->cpos) rc = SB_ERR_NOMEM;
+        else for (int J = 0; J < G->nc; J++) G->cpos[J] = -1;
+    }
     if (!rc) {
         G->t = calloc((size_t)G->nf, sizeof *G->t);
         G->u = calloc((size_t)G->nc, sizeof *G->u);
@@ -171,7 +195,7 @@ int sb_galerkin_create(const sb_csr *S, const sb_pattern *fine, const sb_pattern
     for (int K = 0; K < G->nc && !rc; K++) {
         const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
         G->fixed_f = G->fixed_c = NULL;
-        if (product_column(G, K, NULL, NULL)) rc = SB_ERR_UNSUPPORTED;
+        if (lean ? product_column_lean(G, K, NULL, NULL) : product_column(G, K, NULL, NULL)) rc = SB_ERR_UNSUPPORTED;
         G->fixed_f = ff;
         G->fixed_c = fc;
     }
@@ -249,11 +273,84 @@ static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
     return outside;
 }
 
+/* Lean column K: u = A(:, K) = S^T B S e_K over every coarse row J (B = U -
+ * D/2, read by the stored columns of Hf), added to Hc = A + A^T: u[J] to
+ * (J, K) for J < K, to (K, J) for J > K (row K of column J: a binary search
+ * in the sorted column), 2 u[K] to the diagonal.  hv == NULL: symbolic.
+ * Returns 1 when an entry falls outside Hc's pattern. */
+static int product_column_lean(sb_galerkin *G, int K, const double *hv, double *hc)
+{
+    const sb_pattern *C = G->coarse, *F = G->fine;
+    const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
+    int outside = 0;
+    /* t = B S e_K */
+    int nt = 0;
+    for (long q = G->St.rp[K]; q < G->St.rp[K + 1]; q++) {
+        const int j = G->St.ci[q];
+        const double s = G->St.v[q];
+        if (ff && ff[j]) continue;
+        const long end = F->colptr[j + 1] - 1;   /* the diagonal closes each column */
+        for (long r = F->colptr[j]; r <= end; r++) {
+            const int i = F->rowind[r];
+            if (!G->tmark[i]) {
+                G->tmark[i] = 1;
+                G->tlist[nt++] = i;
+            }
+            G->t[i] += hv ? (r == end ? 0.5 : 1.0) * hv[r] * s : 1.0;
+        }
+    }
+    /* u = S^T t, every row J */
+    int nu = 0;
+    for (int a = 0; a < nt; a++) {
+        const int i = G->tlist[a];
+        const double ti = G->t[i];
+        G->t[i] = 0.0;
+        G->tmark[i] = 0;
+        if (ff && ff[i]) continue;
+        for (long q = G->S.rp[i]; q < G->S.rp[i + 1]; q++) {
+            const int J = G->S.ci[q];
+            if (fc && fc[J]) continue;
+            if (!G->umark[J]) {
+                G->umark[J] = 1;
+                G->ulist[nu++] = J;
+            }
+            G->u[J] += hv ? G->S.v[q] * ti : 1.0;
+        }
+    }
+    for (long k = C->colptr[K]; k < C->colptr[K + 1]; k++) G->cpos[C->rowind[k]] = (int)(k - C->colptr[K]);
+    for (int a = 0; a < nu; a++) {
+        const int J = G->ulist[a];
+        const double v = G->u[J];
+        G->u[J] = 0.0;
+        G->umark[J] = 0;
+        long at = -1;
+        if (J <= K) {
+            if (G->cpos[J] >= 0) at = C->colptr[K] + G->cpos[J];
+        } else {
+            long lo = C->colptr[J], hi = C->colptr[J + 1] - 1;   /* row K in column J (sorted) */
+            while (lo <= hi) {
+                const long mid = lo + (hi - lo) / 2;
+                if (C->rowind[mid] < K) lo = mid + 1;
+                else if (C->rowind[mid] > K) hi = mid - 1;
+                else { at = mid; break; }
+            }
+        }
+        if (at < 0) {
+            if (v != 0.0) outside = 1;
+            continue;
+        }
+        if (hc) hc[at] += J == K ? 2.0 * v : v;
+    }
+    for (long k = C->colptr[K]; k < C->colptr[K + 1]; k++) G->cpos[C->rowind[k]] = -1;
+    return outside;
+}
+
 int sb_galerkin_product(sb_galerkin *G, const sb_matrix *Hf, sb_matrix *Hc)
 {
     int outside = 0;
     sb_matrix_zero(Hc);
     for (int K = 0; K < G->nc; K++)
-        if (!(G->fixed_c && G->fixed_c[K])) outside |= product_column(G, K, Hf->val, Hc->val);
+        if (!(G->fixed_c && G->fixed_c[K]))
+            outside |= G->lean ? product_column_lean(G, K, Hf->val, Hc->val) : product_column(G, K, Hf->val, Hc->val);
     return outside ? SB_ERR_UNSUPPORTED : SB_OK;
 }

@@ -95,7 +95,7 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
     /* the symbolic Galerkin products, once per run; a hierarchy whose
      * products do not fit the coarse patterns is refused here */
     for (int lc = m->nl - 2; lc >= 0; lc--) {
-        int rc = sb_problem_galerkin_prepare(p, lc);
+        int rc = sb_problem_galerkin_prepare_lean(p, lc);
         if (rc) {
             mg_free(m);
             char msg[sizeof ctx->err];

@@ -1019,7 +1019,12 @@ static int probe_prolongation(sb_problem *p, int lc, sb_csr *S)
     return rc;
 }
 
-int sb_problem_galerkin_prepare(sb_problem *p, int lc)
+static int galerkin_prepare(sb_problem *p, int lc, int lean);
+
+int sb_problem_galerkin_prepare(sb_problem *p, int lc) { return galerkin_prepare(p, lc, 0); }
+int sb_problem_galerkin_prepare_lean(sb_problem *p, int lc) { return galerkin_prepare(p, lc, 1); }
+
+static int galerkin_prepare(sb_problem *p, int lc, int lean)
 {
     if (lc < 0 || lc + 1 >= p->nl || !sb_problem_has_hierarchy(p))
         return sb_error(p->ctx, SB_ERR_INTERNAL, "Galerkin Hessian requested on level %d of %d", lc, p->nl);
@@ -1033,7 +1038,7 @@ int sb_problem_galerkin_prepare(sb_problem *p, int lc)
         return sb_error(p->ctx, SB_ERR_INTERNAL, "method %s: prolongation matrix of level %d has the wrong size",
                         p->mt->name, lc);
     }
-    rc = sb_galerkin_create(&S, F->pat, C->pat, F->fixed, C->fixed, &C->gal);
+    rc = (lean ? sb_galerkin_create_lean : sb_galerkin_create)(&S, F->pat, C->pat, F->fixed, C->fixed, &C->gal);
     sb_csr_free(&S);
     if (rc == SB_ERR_UNSUPPORTED)
         return sb_error(p->ctx, rc, "method %s: the Galerkin product I^T H I of level %d does not fit the level's "

@@ -109,6 +109,10 @@ int  sb_problem_galerkin_hessian(sb_problem *p, int lc);
  * first call; SB_ERR_UNSUPPORTED (with a message) when I^T H I does not fit
  * the coarse level's sparsity pattern. */
 int  sb_problem_galerkin_prepare(sb_problem *p, int lc);
+/* The same in the lean form (sb_galerkin_create_lean: no index of the fine
+ * pattern's lower part; other round-off): pcg-mg's.  Whichever form a level
+ * was prepared in first is kept (the rmtr solver prepares the indexed one). */
+int  sb_problem_galerkin_prepare_lean(sb_problem *p, int lc);
 
 /* Contact (docs/contact.md).  The step filter: the largest alpha in [0, 1]
  * such that x + alpha d keeps every contact sample point of the level
