@@ -70,15 +70,21 @@ SB_TEST(denim_softening_interval)
     }
 }
 
+/* a StVK sheet: E = 1 MPa, nu = 0.3, 1 mm */
+static void stvk_spec(sb_material_spec *spec)
+{
+    memset(spec, 0, sizeof *spec);
+    spec->kind = SB_MAT_STVK;
+    spec->young = 1e6;
+    spec->poisson = 0.3;
+    spec->thickness = 1e-3;
+    spec->density = 1.0;
+}
+
 SB_TEST(stvk_never_softens)
 {
     sb_material_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.kind = SB_MAT_STVK;
-    spec.young = 1e6;
-    spec.poisson = 0.3;
-    spec.thickness = 1e-3;
-    spec.density = 1.0;
+    stvk_spec(&spec);
     sb_material m;
     CHECK(sb_material_init(&m, &spec, 0) == SB_OK);
     unsigned long s = 7;
@@ -104,12 +110,7 @@ SB_TEST(stvk_never_softens)
 SB_TEST(material_state_reuses_only_a_constant_tangent)
 {
     sb_material_spec spec;
-    memset(&spec, 0, sizeof spec);
-    spec.kind = SB_MAT_STVK;
-    spec.young = 1e6;
-    spec.poisson = 0.3;
-    spec.thickness = 1e-3;
-    spec.density = 1.0;
+    stvk_spec(&spec);
     sb_material stvk, denim;
     CHECK(sb_material_init(&stvk, &spec, 0) == SB_OK);
     sb_material_spec_denim(&spec);

@@ -207,30 +207,31 @@ static int create(const sb_csr *S, const sb_pattern *fine, const sb_pattern *coa
     return SB_OK;
 }
 
-/* Column K of S^T Hf S (rows J <= K) into Hc's pattern column; hv == NULL:
- * symbolic (every stored entry of Hf and S counts as nonzero).  Returns 1
- * when the column has a nonzero outside the pattern. */
-static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
+/* t = Hf S e_K on the free fine dofs (the list of its rows in G->tlist, the
+ * count returned): the stored upper part of each column j of Hf that S e_K
+ * touches, and (indexed form) its lower part from the transposed index; the
+ * lean form reads the upper part only, with the diagonal halved (B = U -
+ * D/2).  hv == NULL: symbolic (every stored entry counts 1). */
+static int gather_t(sb_galerkin *G, int K, const double *hv)
 {
-    const sb_pattern *C = G->coarse, *F = G->fine;
-    const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
-    int outside = 0;
-    /* t = Hf S e_K */
+    const sb_pattern *F = G->fine;
+    const unsigned char *ff = G->fixed_f;
     int nt = 0;
     for (long q = G->St.rp[K]; q < G->St.rp[K + 1]; q++) {
         const int j = G->St.ci[q];
         const double s = G->St.v[q];
         if (ff && ff[j]) continue;
-        /* column j of Hf: rows i <= j from the upper triangle, rows i > j
-         * from the lower index */
-        for (long r = F->colptr[j]; r < F->colptr[j + 1]; r++) {
+        const long end = F->colptr[j + 1] - 1;   /* the diagonal closes each column */
+        for (long r = F->colptr[j]; r <= end; r++) {
             const int i = F->rowind[r];
             if (!G->tmark[i]) {
                 G->tmark[i] = 1;
                 G->tlist[nt++] = i;
             }
-            G->t[i] += hv ? hv[r] * s : 1.0;
+            const double w = G->lean && r == end ? 0.5 : 1.0;   /* 1.0 * h is h exactly */
+            G->t[i] += hv ? w * hv[r] * s : 1.0;
         }
+        if (G->lean) continue;
         for (long r = G->lrp[j]; r < G->lrp[j + 1]; r++) {
             const int i = G->lrow[r];
             if (!G->tmark[i]) {
@@ -240,7 +241,14 @@ static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
             G->t[i] += hv ? hv[F->colptr[i] + G->loff[r]] * s : 1.0;
         }
     }
-    /* u = S^T t, rows J <= K (upper triangle) */
+    return nt;
+}
+
+/* u = S^T t on the free coarse dofs, rows J <= K only when upper (the list in
+ * G->ulist, the count returned); t is cleared on the way. */
+static int scatter_u(sb_galerkin *G, int K, int nt, const double *hv, int upper)
+{
+    const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
     int nu = 0;
     for (int a = 0; a < nt; a++) {
         const int i = G->tlist[a];
@@ -250,7 +258,7 @@ static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
         if (ff && ff[i]) continue;
         for (long q = G->S.rp[i]; q < G->S.rp[i + 1]; q++) {
             const int J = G->S.ci[q];
-            if (J > K || (fc && fc[J])) continue;
+            if ((upper && J > K) || (fc && fc[J])) continue;
             if (!G->umark[J]) {
                 G->umark[J] = 1;
                 G->ulist[nu++] = J;
@@ -258,6 +266,17 @@ static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
             G->u[J] += hv ? G->S.v[q] * ti : 1.0;
         }
     }
+    return nu;
+}
+
+/* Column K of S^T Hf S (rows J <= K) into Hc's pattern column; hv == NULL:
+ * symbolic (every stored entry of Hf and S counts as nonzero).  Returns 1
+ * when the column has a nonzero outside the pattern. */
+static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
+{
+    const sb_pattern *C = G->coarse;
+    int outside = 0;
+    const int nu = scatter_u(G, K, gather_t(G, K, hv), hv, 1);
     for (long k = C->colptr[K]; k < C->colptr[K + 1]; k++) {
         const int J = C->rowind[k];
         if (hc) hc[k] = G->u[J];
@@ -280,43 +299,9 @@ static int product_column(sb_galerkin *G, int K, const double *hv, double *hc)
  * Returns 1 when an entry falls outside Hc's pattern. */
 static int product_column_lean(sb_galerkin *G, int K, const double *hv, double *hc)
 {
-    const sb_pattern *C = G->coarse, *F = G->fine;
-    const unsigned char *ff = G->fixed_f, *fc = G->fixed_c;
+    const sb_pattern *C = G->coarse;
     int outside = 0;
-    /* t = B S e_K */
-    int nt = 0;
-    for (long q = G->St.rp[K]; q < G->St.rp[K + 1]; q++) {
-        const int j = G->St.ci[q];
-        const double s = G->St.v[q];
-        if (ff && ff[j]) continue;
-        const long end = F->colptr[j + 1] - 1;   /* the diagonal closes each column */
-        for (long r = F->colptr[j]; r <= end; r++) {
-            const int i = F->rowind[r];
-            if (!G->tmark[i]) {
-                G->tmark[i] = 1;
-                G->tlist[nt++] = i;
-            }
-            G->t[i] += hv ? (r == end ? 0.5 : 1.0) * hv[r] * s : 1.0;
-        }
-    }
-    /* u = S^T t, every row J */
-    int nu = 0;
-    for (int a = 0; a < nt; a++) {
-        const int i = G->tlist[a];
-        const double ti = G->t[i];
-        G->t[i] = 0.0;
-        G->tmark[i] = 0;
-        if (ff && ff[i]) continue;
-        for (long q = G->S.rp[i]; q < G->S.rp[i + 1]; q++) {
-            const int J = G->S.ci[q];
-            if (fc && fc[J]) continue;
-            if (!G->umark[J]) {
-                G->umark[J] = 1;
-                G->ulist[nu++] = J;
-            }
-            G->u[J] += hv ? G->S.v[q] * ti : 1.0;
-        }
-    }
+    const int nu = scatter_u(G, K, gather_t(G, K, hv), hv, 0);   /* u = A(:, K), every row J */
     for (long k = C->colptr[K]; k < C->colptr[K + 1]; k++) G->cpos[C->rowind[k]] = (int)(k - C->colptr[K]);
     for (int a = 0; a < nu; a++) {
         const int J = G->ulist[a];
