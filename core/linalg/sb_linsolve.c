@@ -10,6 +10,40 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* CHOLMOD without its own threads (issue 42).  Debian's CHOLMOD 3 (SuiteSparse
+ * 5) runs loops of its supernodal factorization (clearing its maps, zeroing
+ * and assembling supernodes) as OpenMP regions with a compiled-in
+ * num_threads(CHOLMOD_OMP_NUM_THREADS) = 4, whatever OMP_NUM_THREADS says.  On
+ * the 2-core machine, with one BLAS thread doing the dense work and other
+ * work beside it, half the factorization's time went into waking and waiting
+ * for those threads (futex calls in the profile): a 199,692-dof bhem plate
+ * factored in 15-17 s with them and in 8 s without.  The loops touch
+ * disjoint entries, so the factor is the same bit for bit.  Inside every
+ * CHOLMOD call the OpenMP regions are made inactive (max-active-levels 0),
+ * and restored after, so run.threads still threads the assembly. */
+static int cholmod_threads_off(void)
+{
+#ifdef _OPENMP
+    const int m = omp_get_max_active_levels();
+    omp_set_max_active_levels(0);
+    return m;
+#else
+    return 0;
+#endif
+}
+
+static void cholmod_threads_on(int m)
+{
+#ifdef _OPENMP
+    omp_set_max_active_levels(m);
+#else
+    (void)m;
+#endif
+}
 
 struct sb_linsolve {
     sb_context *ctx;
@@ -59,7 +93,9 @@ int sb_linsolve_create(sb_context *ctx, int level, sb_matrix *H, sb_linsolve **o
         cm->zrelax[0] = 0.9, cm->zrelax[1] = 0.2, cm->zrelax[2] = 0.1;
     }
     double t0 = sb_stats_begin(&ctx->stats);
+    int omp_levels = cholmod_threads_off();
     ls->L = cholmod_analyze(ls->A, cm);       /* fill-reducing ordering, symbolic, once */
+    cholmod_threads_on(omp_levels);
     sb_stats_event(&ctx->stats, level, SB_EV_ANALYZE, t0);
     if (!ls->L || cm->status < CHOLMOD_OK) {
         sb_linsolve_free(ls);
@@ -99,7 +135,9 @@ int sb_linsolve_factor(sb_linsolve *ls, double shift)
     cholmod_common *cm = ls->ctx->cholmod;
     double beta[2] = { shift, 0.0 };
     double t0 = sb_stats_begin(&ls->ctx->stats);
+    const int omp_levels = cholmod_threads_off();
     int ok = cholmod_factorize_p(ls->A, beta, NULL, 0, ls->L, cm);
+    cholmod_threads_on(omp_levels);
     /* status must be read right here: later calls reset it (DESIGN.md) */
     int status = cm->status;
     sb_stats_event(&ls->ctx->stats, ls->level, SB_EV_FACTORIZE, t0);
@@ -133,7 +171,9 @@ int sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x)
     size_t n = ls->A->nrow;
     double t0 = sb_stats_begin(&ls->ctx->stats);
     memcpy(ls->B->x, b, n * sizeof(double));
+    const int omp_levels = cholmod_threads_off();
     int ok = cholmod_solve2(CHOLMOD_A, ls->L, ls->B, NULL, &ls->X, NULL, &ls->Y, &ls->E, cm);
+    cholmod_threads_on(omp_levels);
     sb_stats_event(&ls->ctx->stats, ls->level, SB_EV_SOLVE, t0);
     if (!ok || !ls->X) return sb_error(ls->ctx, SB_ERR_INTERNAL, "CHOLMOD solve failed (status %d)", cm->status);
     memcpy(x, ls->X->x, n * sizeof(double));
