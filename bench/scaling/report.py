@@ -550,8 +550,8 @@ def main():
     out += ["CHOLMOD's achieved rate = `chol_flops_sum` / inclusive `factorize` seconds (all levels), the largest "
             "runs of each method (lsnewton; its factorizations dominate):", "",
             "| scene | method/solver | dofs | factorizations' flops | factorize s | indefinite factorizations | GFLOP/s "
-            "| share of DGEMM (1 core) |",
-            "|---|---|--:|--:|--:|--:|--:|--:|"]
+            "| share of DGEMM (1 core) | build |",
+            "|---|---|--:|--:|--:|--:|--:|--:|---|"]
     clean = []
     for s in scenes:
         for r in sorted((r for r in rows if r["scene"] == s and r["solver"] == "lsnewton"),
@@ -565,16 +565,21 @@ def main():
             if npd == 0:
                 clean.append(g)
             le = "≤ " if npd > 0 else ""
-            out.append("| %s | %s | %d | %.3g | %.2f | %d | %s%.2f | %s |" % (
+            out.append("| %s | %s | %d | %.3g | %.2f | %d | %s%.2f | %s | %s |" % (
                 s, r["config"], r["n_dofs"], r["chol_flops_sum"], r["incl_factorize"], npd, le, g,
-                (le + "%.0f %%" % (100 * g / g1)) if g1 else "—"))
+                (le + "%.0f %%" % (100 * g / g1)) if g1 else "—", r["build_id"]))
     out += ["", "A factorization that meets an indefinite matrix (lsnewton's shifted retries on the nonconvex "
             "drape, contact) stops early but `chol_flops_sum` counts the analysis's full flops for it, so rates "
             "of runs with indefinite factorizations are upper bounds (≤).  The others: %s GFLOP/s, %s of the "
-            "one-core DGEMM rate.  At ≤ 1.7e4 dofs a 2-D mesh's supernodes are small (the top separator has "
-            "~√n nodes), so CHOLMOD spends much of its time in small dense blocks and sparse bookkeeping; the "
-            "issue's goal (half the dense rate at ≥ 1e5 dofs) is judged at the sizes not run here.  Wall seconds "
-            "under load 5–7 understate the rates." % (
+            "one-core DGEMM rate.  %s  Wall seconds "
+            "under load 5–7 understate the rates.  Records of builds before 1900898 ran CHOLMOD's supernodal loops "
+            "with its compiled-in 4 OpenMP threads on the 2-core machine (about half of their factorize seconds "
+            "were thread waits: docs/scaling.md); later builds run CHOLMOD on one thread." % (
+                "The issue's goal (half the dense rate at ≥ 1e5 dofs) is judged per run in \"The issue's goals at "
+                "≥ 1e5 dofs\" above." if LARGE else
+                "At ≤ 1.7e4 dofs a 2-D mesh's supernodes are small (the top separator has ~√n nodes), so CHOLMOD "
+                "spends much of its time in small dense blocks and sparse bookkeeping; the issue's goal (half the "
+                "dense rate at ≥ 1e5 dofs) is judged at the sizes of results/scaling_large/report.md.",
                 ("%.1f–%.1f" % (min(clean), max(clean))) if clean else "—",
                 ("%.0f–%.0f %%" % (100 * min(clean) / g1, 100 * max(clean) / g1)) if clean and g1 else "—"), ""]
     # --- exponents

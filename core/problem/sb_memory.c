@@ -29,6 +29,28 @@ static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *
     return b;
 }
 
+/* CHOLMOD's factor of level l (nnz upper entries of its matrix): the int
+ * pattern copy of A, the supernodal factor's values (sb_linsolve_fill: the
+ * zeros supernodes store, measured; 1.3 with CHOLMOD's defaults), its
+ * indices and workspaces; nnz(L) = 0.6 nnz(A) log2(nodes) (nested-
+ * dissection growth), at most dense. */
+static double factor_bytes(const sb_method_size *sz, int l, double nnz, int supernodes, double *lnz_out)
+{
+    const double n = sz->nodes[l] * sz->bs, nodes = sz->nodes[l];
+    double lnz = 0.6 * nnz * (nodes > 2 ? log2(nodes) : 1.0);
+    if (lnz > 0.5 * n * (n + 1)) lnz = 0.5 * n * (n + 1);
+    *lnz_out = lnz;
+    return 4.0 * (nnz + n) + sb_linsolve_fill(supernodes) * 8.0 * lnz + 8.0 * 8.0 * n;
+}
+
+int sb_memory_scene_lifts(const sb_scene *scene, const sb_paramset *ps)
+{
+    if (!scene || (ps && !sb_param_int_or(ps, "run.lifting", 1))) return 0;
+    for (int i = 0; i < scene->n_bcs; i++)
+        if (scene->bcs[i].kind == SB_BC_MOVING) return 1;
+    return 0;
+}
+
 void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb_memory_estimate *est)
 {
     const int F = sz->levels > 0 ? sz->levels - 1 : 0;
@@ -63,15 +85,14 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
             est->matrices += sz->elements[l] * (0.5 * m * (m + 1.0) * 8.0 + m * 4.0 + 17.0);
         }
     est->dofs = sz->nodes[F] * sz->bs;
-    const double n = sz->nodes[C] * sz->bs, nodes = sz->nodes[C];
-    /* nested-dissection growth of the Cholesky factor, at most dense */
-    double lnz = 0.6 * nnz_c * (nodes > 2 ? log2(nodes) : 1.0);
-    if (lnz > 0.5 * n * (n + 1)) lnz = 0.5 * n * (n + 1);
-    est->factor_nnz = lnz;
-    /* CHOLMOD: the int pattern copy of A, the supernodal factor's values
-     * (sb_linsolve_fill: the zeros supernodes store, measured; 1.3 with
-     * CHOLMOD's defaults), its indices and workspaces */
-    est->factor = 4.0 * (nnz_c + n) + sb_linsolve_fill(r->supernodes) * 8.0 * lnz + 8.0 * 8.0 * n;
+    est->factor = factor_bytes(sz, C, nnz_c, r->supernodes, &est->factor_nnz);
+    if (r->multilevel && r->lifts && C != F) {
+        /* the lifting's CHOLMOD factor of the finest level, kept for the run
+         * (issue 42: a bhem drape run with the rmtr solver at 311,052 dofs
+         * peaked at 1.5 times its estimate without it) */
+        double lnz_f;
+        est->factor += factor_bytes(sz, F, est->nnz, r->supernodes, &lnz_f);
+    }
     /* the run's and the solver's vectors on the finest level (x, x_n, v,
      * reference, resume point, gradient, trial point, steps ...) */
     est->vectors = 24.0 * 8.0 * est->dofs;
@@ -143,7 +164,9 @@ int sb_memory_check_method(const sb_method_type *mt, const sb_scene *scene, cons
                  cfg->ctx && cfg->ctx->err[0] ? cfg->ctx->err : "the discretization cannot be built at this size");
         return SB_ERR_INPUT;
     }
-    sb_memory_estimate_run(&sz, r, &est);
+    sb_memory_run rl = *r;
+    if (!rl.lifts) rl.lifts = sb_memory_scene_lifts(scene, cfg->params);
+    sb_memory_estimate_run(&sz, &rl, &est);
     *bytes = est.bytes;
     return sb_memory_check(&sz, &est, limit_bytes, what, err, errlen);
 }

@@ -28,6 +28,9 @@ typedef struct sb_memory_run {
     int sample_n;                       /* sample grid per side */
     int multilevel;                     /* the solver factors only the coarsest level (rmtr) */
     int supernodes;                     /* run.supernodes (0: CHOLMOD's defaults) */
+    int lifts;                          /* moving boundaries lifted by a CHOLMOD solve on the finest level
+                                           (sb_problem_lift): a multilevel solver holds that factor too;
+                                           sb_memory_check_method sets it from the scene */
 } sb_memory_run;
 
 /* The estimate of a discretization of size sz run as r.  The Cholesky
@@ -57,5 +60,11 @@ int    sb_memory_check_method(const sb_method_type *mt, const sb_scene *scene, c
                               char *err, size_t errlen);
 /* "1.2 GB", "340 MB", "12 kB" (decimal units) */
 void   sb_memory_format(double bytes, char *buf, size_t len);
+
+/* 1 when a run of the scene lifts boundary motion (a moving boundary part and
+ * run.lifting on, the default): sb_memory_run.lifts */
+struct sb_scene;
+struct sb_paramset;
+int sb_memory_scene_lifts(const struct sb_scene *scene, const struct sb_paramset *ps);
 
 #endif
