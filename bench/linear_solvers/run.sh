@@ -1,6 +1,7 @@
 #!/bin/bash
 # bench/linear_solvers/run.sh [N [FILTER]] — makes up to N (default all) of
-# the runs of bench/studies/linear_solvers_large.json that have no record
+# the runs of bench/studies/linear_solvers_large.json (SB_STUDY: another
+# study of the same records, e.g. linear_solvers_1e6.json) that have no record
 # yet, one at a time, each as its own `shellbench run` process (the study's
 # plan, its resolutions and record paths from `sweep --plan`; the same
 # parameters the sweep would set: run.max_iter=30 and solver.linear), and
@@ -17,7 +18,7 @@
 # recorded; `sweep` resumes around it).
 set -u
 cd "$(dirname "$0")/../.."
-STUDY=bench/studies/linear_solvers_large.json
+STUDY=${SB_STUDY:-bench/studies/linear_solvers_large.json}   # or linear_solvers_1e6.json (the same records directory)
 N=${1:-1000}
 FILTER=${2:-.}
 BIN=${SB_BIN:-build/shellbench}
