@@ -575,13 +575,13 @@ def main():
             "under load 5–7 understate the rates.  Records of builds before 1900898 ran CHOLMOD's supernodal loops "
             "with its compiled-in 4 OpenMP threads on the 2-core machine (about half of their factorize seconds "
             "were thread waits: docs/scaling.md); later builds run CHOLMOD on one thread." % (
+                ("%.1f–%.1f" % (min(clean), max(clean))) if clean else "—",
+                ("%.0f–%.0f %%" % (100 * min(clean) / g1, 100 * max(clean) / g1)) if clean and g1 else "—",
                 "The issue's goal (half the dense rate at ≥ 1e5 dofs) is judged per run in \"The issue's goals at "
                 "≥ 1e5 dofs\" above." if LARGE else
                 "At ≤ 1.7e4 dofs a 2-D mesh's supernodes are small (the top separator has ~√n nodes), so CHOLMOD "
                 "spends much of its time in small dense blocks and sparse bookkeeping; the issue's goal (half the "
-                "dense rate at ≥ 1e5 dofs) is judged at the sizes of results/scaling_large/report.md.",
-                ("%.1f–%.1f" % (min(clean), max(clean))) if clean else "—",
-                ("%.0f–%.0f %%" % (100 * min(clean) / g1, 100 * max(clean) / g1)) if clean and g1 else "—"), ""]
+                "dense rate at ≥ 1e5 dofs) is judged at the sizes of results/scaling_large/report.md."), ""]
     # --- exponents
     out += ["## Fitted exponents", "",
             "y = c n^p by least squares in log-log over the largest (up to four) sizes of each configuration, y "
