@@ -216,6 +216,20 @@ int sb_problem_rebuild(sb_problem *p)
     return rc;
 }
 
+/* The mass matrix of level l (dynamic scenes), built once at its first use. */
+static int level_mass(sb_problem *p, int l)
+{
+    level_data *L = &p->lv[l];
+    if (L->M.val) return SB_OK;
+    int rc = sb_matrix_init(&L->M, L->pat);
+    if (rc) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (mass matrix, level %d)", l);
+    if ((rc = p->mt->mass(p->ms, l, &L->M))) {
+        sb_matrix_free(&L->M);
+        return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "method %s: mass matrix of level %d failed", p->mt->name, l);
+    }
+    return SB_OK;
+}
+
 /* dofs, pattern, work arrays and (dynamic) mass of level l */
 static int level_setup(sb_problem *p, int l)
 {
@@ -254,11 +268,12 @@ static int level_setup(sb_problem *p, int l)
                               scene->name, mt->name);
                 goto fail;
             }
-            if ((rc = sb_matrix_init(&L->M, L->pat))) goto nomem;
-            if ((rc = mt->mass(ms, l, &L->M))) {
-                sb_error(ctx, rc, "method %s: mass matrix of level %d failed", mt->name, l);
-                goto fail;
-            }
+            /* the finest level's mass now; a coarser level's at its first use
+             * (level_mass): only the rmtr solver's coarse energies and the
+             * damping read it, and lsnewton, tr or damped with pcg-mg (whose
+             * coarse Hessians are Galerkin products) never do (issue 38: a
+             * third of the finest mass matrix's memory) */
+            if (l == p->nl - 1 && (rc = level_mass(p, l))) goto fail;
             if (p->damping && (rc = sb_matrix_init(&L->D, L->pat))) goto nomem;
         }
     }
@@ -470,8 +485,7 @@ static int self_repattern(sb_problem *p, int l)
     p->ctx->stats.matrix_nnz[l] = pat->nnz;
     if ((rc = sb_matrix_init(&L->H, pat))) return rc;
     if (p->dynamic) {
-        if ((rc = sb_matrix_init(&L->M, pat))) return rc;
-        if ((rc = p->mt->mass(p->ms, l, &L->M))) return rc;
+        if ((rc = level_mass(p, l))) return rc;
         if (p->damping && (rc = sb_matrix_init(&L->D, pat))) return rc;
     }
     if (L->bc && (rc = build_constraints(p, L))) return rc;
@@ -563,7 +577,10 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
             if (rc) return rc;
             sb_scal((int)L->pat->nnz, p->ray_b, L->D.val);
         }
-        if (p->ray_a != 0.0) sb_matrix_axpy(&L->D, p->ray_a, &L->M);
+        if (p->ray_a != 0.0) {
+            if ((rc = level_mass(p, l))) return rc;
+            sb_matrix_axpy(&L->D, p->ray_a, &L->M);
+        }
     }
     return SB_OK;
 }
@@ -688,6 +705,10 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
                             "method's sparsity pattern", p->mt->name, level);
     }
     if (p->dynamic) {
+        if (!L->M.val) {
+            const int mrc = level_mass(p, level);
+            if (mrc) return mrc;
+        }
         /* inertia: 1/(2 dt^2) (x - xhat)^T M (x - xhat)  (DESIGN.md) */
         const double idt2 = 1.0 / (p->dt * p->dt);
         double *d = L->tmp;
