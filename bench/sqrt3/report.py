@@ -264,7 +264,8 @@ def curtain_paper():
            "paper's 22,140 = 27 x 820 (the scene's hooks every 1/8 m need a multiple of 8 columns; 16 x 25 would give "
            "21,512).  Same scene, limits (2, 20 /m), solver and settings as above; `bash bench/sqrt3/run.sh "
            "build/shellbench paper` runs both in pieces of 1000 steps (`--stop-after-steps`, `--resume`).  Each ran "
-           "once, side by side, on the shared machine under a load of 20-45 on 2 cores: wall-clock ratios are indicative, "
+           "once, one after the other (2026-12-06, a build with CHOLMOD on one thread, docs/performance.md), on the "
+           "shared machine under a load of 3-4 on 2 cores from other jobs: wall-clock ratios are indicative, "
            "factorization flops are not affected.", ""]
     if not a and not f:
         return out + ["Not run."]
@@ -399,7 +400,8 @@ def breakdown():
            "the rest (step bookkeeping, the step judgement, sample grid).  Ratio = full / adaptive.  Mesh ratio = "
            "mean vertices full / adaptive (from the series; triangles where recorded).  Each pair's two runs come from one "
            "build: the CHOLMOD pairs on the 8 x 12 and 8 x 6 bases are the committed runs of an earlier build (load "
-           "about 10), the PCG pair and the paper-size pair were run for issue 40 under a load of 20-45 on 2 cores, "
+           "about 10), the PCG pair for issue 40 under a load of 20-45 on 2 cores, the paper-size pair on 2026-12-06 at "
+           "load 3-4 (CHOLMOD on one thread), "
            "so compare ratios within a pair, not milliseconds across pairs.", "",
            "| pair | component | adaptive ms/step | full ms/step | ratio |", "|---|---|---|---|---|"]
     notes = []
