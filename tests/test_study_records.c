@@ -81,19 +81,31 @@ static const sb_plan_run *find(const sb_study *st, const sb_plan *p, const char 
     return NULL;
 }
 
-SB_TEST(misplaced_records_refused_by_sweep_and_flagged_by_report)
+/* the study of FILE under tmpdir from fmt (its one %s: tmpdir), loaded;
+ * NULL (a failed check) when it does not load */
+static sb_study *study_from(sb_test_state *T, const char *file, const char *fmt)
 {
     char path[400], err[2048];
-    snprintf(path, sizeof path, "%s/study.json", tmpdir);
+    snprintf(path, sizeof path, "%s/%s", tmpdir, file);
     FILE *f = fopen(path, "w");
-    fprintf(f, "{\"study\": \"misplaced\", \"records\": \"%s/rec\",\n"
-               " \"scenes\": [\"plate_clamped\", \"plate_simply_supported\"],\n"
-               " \"methods\": [\"bhem\"], \"solvers\": [\"lsnewton\"], \"res\": [2, 4]}\n", tmpdir);
+    if (!f) return NULL;
+    fprintf(f, fmt, tmpdir);
     fclose(f);
     sb_study *st = calloc(1, sizeof *st);
     int rc = sb_study_load(path, NULL, st, err, sizeof err);
     CHECK_MSG(rc == 0, "%s", err);
-    if (rc) { free(st); return; }
+    if (rc) { free(st); return NULL; }
+    return st;
+}
+
+SB_TEST(misplaced_records_refused_by_sweep_and_flagged_by_report)
+{
+    char err[2048];
+    int rc;
+    sb_study *st = study_from(T, "study.json", "{\"study\": \"misplaced\", \"records\": \"%s/rec\",\n"
+                              " \"scenes\": [\"plate_clamped\", \"plate_simply_supported\"],\n"
+                              " \"methods\": [\"bhem\"], \"solvers\": [\"lsnewton\"], \"res\": [2, 4]}\n");
+    if (!st) return;
     char *said = NULL;
     CHECK_EQ_INT(sweep(st, &said), 0);
     free(said);
@@ -154,18 +166,14 @@ SB_TEST(misplaced_records_refused_by_sweep_and_flagged_by_report)
  * place is not its run */
 SB_TEST(a_linear_solver_entry_is_its_own_configuration)
 {
-    char path[400], err[2048];
-    snprintf(path, sizeof path, "%s/linear.json", tmpdir);
-    FILE *f = fopen(path, "w");
-    fprintf(f, "{\"study\": \"linear\", \"records\": \"%s/lin\",\n"
-               " \"scenes\": [\"plate_clamped\"], \"methods\": [\"bhem\"],\n"
-               " \"solvers\": [{\"solver\": \"lsnewton\", \"levels\": 2},\n"
-               "             {\"solver\": \"lsnewton\", \"levels\": 2, \"linear\": \"pcg-mg\"}], \"res\": [4]}\n", tmpdir);
-    fclose(f);
-    sb_study *st = calloc(1, sizeof *st);
-    int rc = sb_study_load(path, NULL, st, err, sizeof err);
-    CHECK_MSG(rc == 0, "%s", err);
-    if (rc) { free(st); return; }
+    char err[2048];
+    int rc;
+    sb_study *st = study_from(T, "linear.json", "{\"study\": \"linear\", \"records\": \"%s/lin\",\n"
+                              " \"scenes\": [\"plate_clamped\"], \"methods\": [\"bhem\"],\n"
+                              " \"solvers\": [{\"solver\": \"lsnewton\", \"levels\": 2},\n"
+                              "             {\"solver\": \"lsnewton\", \"levels\": 2, \"linear\": \"pcg-mg\"}], "
+                              "\"res\": [4]}\n");
+    if (!st) return;
     sb_plan p;
     CHECK(sb_study_plan(st, &p, err, sizeof err) == 0);
     const sb_plan_run *a = NULL, *b = NULL;
