@@ -81,6 +81,17 @@ static void stvk_spec(sb_material_spec *spec)
     spec->density = 1.0;
 }
 
+/* membrane strains uniform in [-span/2, span/2) (an LCG from *s), bending
+ * strains B_k = bend (k + 1) A_k */
+static void random_strains(unsigned long *s, double span, double bend, double A[3], double B[3])
+{
+    for (int k = 0; k < 3; k++) {
+        *s = *s * 6364136223846793005UL + 1442695040888963407UL;
+        A[k] = ((double)(*s >> 11) / 9007199254740992.0 - 0.5) * span;
+        B[k] = A[k] * bend * (k + 1);
+    }
+}
+
 SB_TEST(stvk_never_softens)
 {
     sb_material_spec spec;
@@ -90,11 +101,7 @@ SB_TEST(stvk_never_softens)
     unsigned long s = 7;
     for (int i = 0; i < 200; i++) {
         double A[3], B[3], lm, ls;
-        for (int k = 0; k < 3; k++) {
-            s = s * 6364136223846793005UL + 1442695040888963407UL;
-            A[k] = ((double)(s >> 11) / 9007199254740992.0 - 0.5) * 0.6;
-            B[k] = A[k] * 37.0 * (k + 1);
-        }
+        random_strains(&s, 0.6, 37.0, A, B);
         CHECK(sb_shell_section_stability(&m, A, B, &lm, &ls) == SB_OK);
         CHECK_MSG(lm > 0 && ls > 0, "StVK at A = (%g, %g, %g): %g, %g", A[0], A[1], A[2], lm, ls);
     }
@@ -125,11 +132,7 @@ SB_TEST(material_state_reuses_only_a_constant_tangent)
         unsigned long s = 11;
         for (int i = 0; i < 300; i++) {
             double A[3], B[3], lm, ls;
-            for (int k = 0; k < 3; k++) {
-                s = s * 6364136223846793005UL + 1442695040888963407UL;
-                A[k] = ((double)(s >> 11) / 9007199254740992.0 - 0.5) * 0.12;
-                B[k] = A[k] * 11.0 * (k + 1);
-            }
+            random_strains(&s, 0.12, 11.0, A, B);
             CHECK(sb_shell_section_stability(m, A, B, &lm, &ls) == SB_OK);
             min_lm = fmin(min_lm, lm);
             soft += lm < -1e-9;
