@@ -651,21 +651,18 @@ int sb_problem_lift(sb_problem *p, const double *x_n, double *x0, sb_linear_solv
     rc = eval_impl(p, F, x_n, &f, NULL, &L->H, 0);
     if (rc != SB_OK) goto out;                    /* no lifting from a bad x_n */
     sb_matrix_symv(&L->H, d, r);                  /* K d: K_fc dx_c on free rows */
-    for (int i = 0; i < n; i++) r[i] = L->fixed[i] ? 0.0 : -r[i];
+    for (int i = 0; i < n; i++) r[i] = L->fixed[i] ? 0.0 : r[i];   /* g = K_fc dx_c, free rows */
     eliminate_hessian(L, &L->H);
-    rc = SB_ERR_UNSUPPORTED;
-    if (solve) {
-        /* the run's own linear solver (issue 38: a Krylov path never
-         * factors the finest Hessian, also not here): xl = -H^{-1} (-r) */
-        for (int i = 0; i < n; i++) r[i] = -r[i];
-        rc = solve(state, p, r, xl);
-        if (rc != SB_OK && rc != SB_ERR_UNSUPPORTED) goto out;   /* indefinite, capped: keep the plain start */
-        if (rc == SB_ERR_UNSUPPORTED) for (int i = 0; i < n; i++) r[i] = -r[i];
-    }
+    /* the run's own linear solver where it has one (issue 38: a Krylov path
+     * never factors the finest Hessian, also not here): xl = -H^{-1} g */
+    rc = solve ? solve(state, p, r, xl) : SB_ERR_UNSUPPORTED;
     if (rc == SB_ERR_UNSUPPORTED) {
+        for (int i = 0; i < n; i++) r[i] = -r[i];
         rc = sb_problem_factor(p, F, 0.0);
         if (rc != SB_OK) goto out;                /* indefinite at x_n: keep the plain start */
         if (sb_problem_solve(p, F, r, xl) != SB_OK) goto out;
+    } else if (rc != SB_OK) {
+        goto out;                                 /* indefinite, capped: keep the plain start */
     }
     for (int i = 0; i < n; i++) xl[i] = L->fixed[i] ? x0[i] : x_n[i] + xl[i];
     double f0, fl;
