@@ -19,9 +19,11 @@ Figures (docs/recorded_figures.md, format 3):
     samples = probes, sample grid and the step's physical-state judgement,
     setup = from process start to the first step);
   * peak memory: /stats peak_rss (VmHWM of the run's process at its end);
-  * CHOLMOD's achieved rate: chol_flops_sum over the inclusive factorize
-    seconds (/stats/events_seconds), summed over levels, against the DGEMM
-    rate of build/bench/bench_dgemm in DIR/dgemm.txt;
+  * CHOLMOD's achieved rate: chol_flops_sum over the process CPU seconds
+    inside the factorizations (/stats/chol_factorize_cpu, format 4), or for
+    older records over the inclusive factorize wall seconds
+    (/stats/events_seconds), summed over levels, against the DGEMM rate of
+    build/bench/bench_dgemm in DIR/dgemm.txt;
   * fitted exponents: y = c n^p by least squares in log-log over the largest
     (up to four) sizes of a configuration, with the 95 % interval
     p +- t_{0.975, m-2} * s / sqrt(Sxx), s^2 = RSS / (m - 2), Sxx = sum (ln n_i -
@@ -59,7 +61,7 @@ ROOT_ATTRS = ("scene_name", "method", "solver", "levels", "res", "n_dofs", "stat
 STATS_ATTRS = ("seconds_total", "seconds_unattributed", "peak_rss", "peak_rss_start", "peak_rss_setup", "peak_rss_analyzed",
                "memory_estimate", "work_assembly", "not_posdef")
 DATASETS = ("/stats/events_self_seconds", "/stats/events_seconds", "/stats/events_count", "/stats/chol_factor_entries",
-            "/stats/chol_nnz_l", "/stats/chol_flops_sum", "/stats/n_dofs",
+            "/stats/chol_nnz_l", "/stats/chol_flops_sum", "/stats/chol_factorize_cpu", "/stats/n_dofs",
             "/history/steps/iterations", "/history/iterations/linear_iters", "/history/iterations/level",
             "/history/iterations/iter")
 
@@ -97,6 +99,9 @@ def read_record(path):
     row["chol_entries"] = sum(v.get("/stats/chol_factor_entries", []))
     row["chol_nnz_l"] = sum(v.get("/stats/chol_nnz_l", []))
     row["chol_flops_finest"] = fl[-1] if fl else 0.0
+    # format 4: process CPU seconds inside the factorizations (NaN before)
+    fc = v.get("/stats/chol_factorize_cpu")
+    row["cpu_factorize"] = sum(fc) if fc else float("nan")
     row["iterations"] = sum(v.get("/history/steps/iterations", []))
     lv, li = v.get("/history/iterations/level", []), v.get("/history/iterations/linear_iters", [])
     row["linear_iters"] = sum(li)
@@ -108,6 +113,21 @@ def read_record(path):
     row["iters_finest"] = sum(1 for k, l in enumerate(lv) if l == top and (k >= len(it) or it[k] > 0))
     row["file"] = os.path.relpath(path, DIR)
     return row
+
+
+def fact_rate(r):
+    """CHOLMOD's achieved GFLOP/s and its basis: per CPU second of the process
+    inside the factorizations (format 4, unchanged by other processes taking
+    turns on the cores), else per wall second (older records: other work on
+    the machine lowers it)"""
+    cpu = fnum(r.get("cpu_factorize"))
+    if r["chol_flops_sum"] <= 0:
+        return float("nan"), "—"
+    if math.isfinite(cpu) and cpu > 0:
+        return r["chol_flops_sum"] / cpu / 1e9, "CPU"
+    if r["incl_factorize"] > 0:
+        return r["chol_flops_sum"] / r["incl_factorize"] / 1e9, "wall"
+    return float("nan"), "—"
 
 
 def fnum(x):
@@ -326,11 +346,11 @@ def goals(rows, g1):
                                                        fmt(worst[0]), worst[1]))
     lab = lambda r: "%s %s %d" % (r["scene"], r["config"], r["n_dofs"])
     # factorization rate: runs without indefinite factorizations, of the solvers that factorize the finest level
-    fr = [(r["chol_flops_sum"] / r["incl_factorize"] / 1e9 / g1 if g1 else float("nan"), lab(r)) for r in big
+    fr = [(fact_rate(r)[0] / g1 if g1 else float("nan"), lab(r) + " " + fact_rate(r)[1]) for r in big
           if r["incl_factorize"] > 1.0 and r["chol_flops_sum"] > 0 and not (r.get("not_posdef", 0) > 0)
           and r["solver"] in ("lsnewton", "tr")]
     line("CHOLMOD's numeric factorization ≥ 1/2 the one-core DGEMM rate (lsnewton, tr; no indefinite "
-         "factorization)", fr, lambda v: v >= 0.5, lambda v: "%.0f %%" % (100 * v))
+         "factorization; per CPU second, or per wall second for records before format 4)", fr, lambda v: v >= 0.5, lambda v: "%.0f %%" % (100 * v))
     hs = [(r["harness"] / r["seconds_total"], lab(r)) for r in big if r["seconds_total"] > 0]
     line("harness overhead (record, samples, checkpoint, progress, error) ≤ 3 % of the run", hs,
          lambda v: v <= 0.03, lambda v: "%.1f %%" % (100 * v))
@@ -396,16 +416,19 @@ def supernodes_section(g1):
            "factorizations of one pattern), built with CHOLMOD's memory on transparent huge pages "
            "(`core/linalg/sb_cholmod_alloc.c`, since e19d431; the study's records above from before it use 4 kB "
            "pages), with CHOLMOD's default relaxed amalgamation and with `run.supernodes=wide`.  Rate = "
-           "`chol_flops_sum` / inclusive `factorize` seconds; goal: half the one-core DGEMM rate (%s GFLOP/s)."
+           "`chol_flops_sum` / the factorizations' process CPU seconds (format 4; basis *wall*: inclusive "
+           "`factorize` wall seconds, older records); goal: half the one-core DGEMM rate (%s GFLOP/s)."
            % (os.path.relpath(d), "%.1f" % g1 if g1 else "—"), "",
-           "| method | dofs | supernodes | factorize s | GFLOP/s | share of DGEMM | stored entries / nnz(L) | peak | estimate / peak |",
-           "|---|--:|---|--:|--:|--:|--:|--:|--:|"]
+           "| method | dofs | supernodes | factorize s (wall) | GFLOP/s | basis | share of DGEMM | stored entries / nnz(L) "
+           "| peak | estimate / peak | build |",
+           "|---|--:|---|--:|--:|---|--:|--:|--:|--:|---|"]
     for r in sorted(rows, key=lambda r: (r["method"], r["n_dofs"], r["sn"])):
-        g = r["chol_flops_sum"] / r["incl_factorize"] / 1e9 if r["incl_factorize"] > 0 else float("nan")
-        out.append("| %s | %d | %s | %.1f | %.1f | %s | %.2f | %s | %.2f |" % (
-            r["method"], r["n_dofs"], r["sn"], r["incl_factorize"], g, "%.0f %%" % (100 * g / g1) if g1 else "—",
+        g, basis = fact_rate(r)
+        out.append("| %s | %d | %s | %.1f | %.1f | %s | %s | %.2f | %s | %.2f | %s |" % (
+            r["method"], r["n_dofs"], r["sn"], r["incl_factorize"], g, basis,
+            "%.0f %%" % (100 * g / g1) if g1 else "—",
             r["chol_entries"] / r["chol_nnz_l"] if r["chol_nnz_l"] > 0 else float("nan"), mb(r["peak_rss"]),
-            r["memory_estimate"] / r["peak_rss"] if r["peak_rss"] > 0 else float("nan")))
+            r["memory_estimate"] / r["peak_rss"] if r["peak_rss"] > 0 else float("nan"), r["build_id"]))
     out.append("")
     return out
 
@@ -547,11 +570,13 @@ def main():
                 "```"] + [l for l in first if l.strip()] + ["```", ""]
     else:
         out += ["DGEMM: not measured (no %s/dgemm.txt; `build/bench/bench_dgemm > %s/dgemm.txt`)." % (DIR, DIR), ""]
-    out += ["CHOLMOD's achieved rate = `chol_flops_sum` / inclusive `factorize` seconds (all levels), the largest "
-            "runs of each method (lsnewton; its factorizations dominate):", "",
-            "| scene | method/solver | dofs | factorizations' flops | factorize s | indefinite factorizations | GFLOP/s "
-            "| share of DGEMM (1 core) | build |",
-            "|---|---|--:|--:|--:|--:|--:|--:|---|"]
+    out += ["CHOLMOD's achieved rate = `chol_flops_sum` / the process's CPU seconds inside the numeric "
+            "factorizations (`chol_factorize_cpu`, records of format 4: other processes taking turns on the cores "
+            "do not lower it), or / their inclusive wall seconds `factorize` for older records (basis *wall*); all "
+            "levels, the largest runs of each method (lsnewton; its factorizations dominate):", "",
+            "| scene | method/solver | dofs | factorizations' flops | factorize s (wall) | CPU s | indefinite "
+            "factorizations | GFLOP/s | basis | share of DGEMM (1 core) | build |",
+            "|---|---|--:|--:|--:|--:|--:|--:|---|--:|---|"]
     clean = []
     for s in scenes:
         for r in sorted((r for r in rows if r["scene"] == s and r["solver"] == "lsnewton"),
@@ -559,20 +584,22 @@ def main():
             if r["incl_factorize"] <= 0 or r["chol_flops_sum"] <= 0 or r["n_dofs"] < max(
                     q["n_dofs"] for q in rows if q["scene"] == s and q["config"] == r["config"]):
                 continue
-            g = r["chol_flops_sum"] / r["incl_factorize"] / 1e9
+            g, basis = fact_rate(r)
             npd = r.get("not_posdef", 0)
             npd = npd if math.isfinite(npd) else 0
             if npd == 0:
                 clean.append(g)
             le = "≤ " if npd > 0 else ""
-            out.append("| %s | %s | %d | %.3g | %.2f | %d | %s%.2f | %s | %s |" % (
-                s, r["config"], r["n_dofs"], r["chol_flops_sum"], r["incl_factorize"], npd, le, g,
+            cpu = fnum(r.get("cpu_factorize"))
+            out.append("| %s | %s | %d | %.3g | %.2f | %s | %d | %s%.2f | %s | %s | %s |" % (
+                s, r["config"], r["n_dofs"], r["chol_flops_sum"], r["incl_factorize"],
+                "%.2f" % cpu if math.isfinite(cpu) else "—", npd, le, g, basis,
                 (le + "%.0f %%" % (100 * g / g1)) if g1 else "—", r["build_id"]))
     out += ["", "A factorization that meets an indefinite matrix (lsnewton's shifted retries on the nonconvex "
             "drape, contact) stops early but `chol_flops_sum` counts the analysis's full flops for it, so rates "
             "of runs with indefinite factorizations are upper bounds (≤).  The others: %s GFLOP/s, %s of the "
             "one-core DGEMM rate.  %s  Wall seconds "
-            "under load 5–7 understate the rates.  Records of builds before 1900898 ran CHOLMOD's supernodal loops "
+            "under load 5–7 understate the rates (basis *wall*).  Records of builds before 1900898 ran CHOLMOD's supernodal loops "
             "with its compiled-in 4 OpenMP threads on the 2-core machine (about half of their factorize seconds "
             "were thread waits: docs/scaling.md); later builds run CHOLMOD on one thread." % (
                 ("%.1f–%.1f" % (min(clean), max(clean))) if clean else "—",

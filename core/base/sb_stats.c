@@ -28,6 +28,13 @@ double sb_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+double sb_cpu_now(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0) return 0.0;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 void sb_stats_init(sb_stats *s) { memset(s, 0, sizeof *s); }
 
 void sb_stats_free(sb_stats *s)

@@ -119,6 +119,11 @@ typedef struct sb_stats {
     double chol_flops_sum[SB_MAX_LEVELS];
     double chol_nnz_l_sum[SB_MAX_LEVELS];
     double chol_factor_entries[SB_MAX_LEVELS];
+    /* process CPU seconds inside the level's numeric factorizations
+     * (CLOCK_PROCESS_CPUTIME_ID, every thread of the process): with
+     * chol_flops_sum the achieved rate per CPU second, which other processes
+     * on the machine do not change the way they change wall seconds (format 4) */
+    double chol_factorize_cpu[SB_MAX_LEVELS];
     /* memory (issue 42), bytes: the run.max_memory estimate, the process's
      * peak resident size after set-up and at the end (VmHWM) */
     double mem_estimate, peak_rss_setup, peak_rss;
@@ -148,6 +153,8 @@ sb_event_stat sb_stats_event_total(const sb_stats *s, sb_event e);
 
 /* Monotonic clock in seconds (CLOCK_MONOTONIC). */
 double sb_now(void);
+/* CPU seconds of the whole process, every thread (CLOCK_PROCESS_CPUTIME_ID). */
+double sb_cpu_now(void);
 
 /* Timer helper used by the core wrappers:
  *   double t0 = sb_stats_begin(s); ...; sb_stats_event(s, level, SB_EV_X, t0);

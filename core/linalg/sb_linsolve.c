@@ -135,9 +135,11 @@ int sb_linsolve_factor(sb_linsolve *ls, double shift)
     cholmod_common *cm = ls->ctx->cholmod;
     double beta[2] = { shift, 0.0 };
     double t0 = sb_stats_begin(&ls->ctx->stats);
+    const double cpu0 = sb_cpu_now();
     const int omp_levels = cholmod_threads_off();
     int ok = cholmod_factorize_p(ls->A, beta, NULL, 0, ls->L, cm);
     cholmod_threads_on(omp_levels);
+    const double cpu = sb_cpu_now() - cpu0;
     /* status must be read right here: later calls reset it (DESIGN.md) */
     int status = cm->status;
     sb_stats_event(&ls->ctx->stats, ls->level, SB_EV_FACTORIZE, t0);
@@ -148,6 +150,7 @@ int sb_linsolve_factor(sb_linsolve *ls, double shift)
         sb_stats *st = &ls->ctx->stats;
         st->chol_flops_sum[ls->level] += ls->flops;
         st->chol_nnz_l_sum[ls->level] += ls->lnz;
+        st->chol_factorize_cpu[ls->level] += cpu;
         st->chol_factor_entries[ls->level] = (double)(ls->L->is_super ? ls->L->xsize : ls->L->nzmax);
     }
     if (status == CHOLMOD_NOT_POSDEF) {
