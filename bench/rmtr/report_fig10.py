@@ -21,45 +21,62 @@ PAPER = {"tr": "converges for every dt <= 1 s (all scenes)", "rmtr L2": "converg
          "linearized": "needs smaller dt; drape: about 10 million more steps than TR"}
 
 
-PROBES = "probes_rmtr.csv"   # results/dt_stability_large/probes_rmtr.csv: every probe of the rmtr searches
+PROBES = "probes.csv"   # results/dt_stability_large/probes.csv: every probe of every search (all methods)
+METHODS = ["rmtr", "bhem", "linear_fem"]
 
 
 def make_probes(results_root, binary="build/shellbench"):
-    """(re)write results/dt_stability_large/probes_rmtr.csv from the records there (`shellbench report --format
-    csv`): one row per probe of the subdivision method's searches, so the largest converging dt can be read
-    without every probe's digest in git (results/ size limit, issue 43)"""
+    """(re)write results/dt_stability_large/probes.csv from the records there (`shellbench report --format
+    csv`): one row per probe of every method's searches, so the largest converging dt can be read without every
+    probe's digest in git (results/ size limit, issue 43)"""
     d = os.path.join(results_root, "dt_stability_large")
-    files = sorted(glob.glob(os.path.join(d, "*", "rmtr-*-dt*.h5")))
+    files = sorted(glob.glob(os.path.join(d, "*", "*-dt*.h5")))
     out = subprocess.run([binary, "report", "--format", "csv"] + files, capture_output=True, text=True).stdout
     rows = []
     for r in csv.DictReader(io.StringIO(out)):
-        m = re.search(r"/([a-z_]+)/rmtr-(tr|rmtr-l2|lsnewton|damped|linearized)-r(\d+)-dt([0-9.e+-]+)\.h5$", r["file"])
+        m = re.search(r"/([a-z_]+)/(rmtr|bhem|linear_fem)-(tr|rmtr-l2|lsnewton|damped|linearized)-r(\d+)-dt([0-9.e+-]+)"
+                      r"\.h5$", r["file"])
         if not m:
             continue
-        rows.append((m.group(1), m.group(2).replace("rmtr-l2", "rmtr L2"), r["dofs"], m.group(4), r["status_code"],
-                     r["reason"], r["steps"], r["iterations"], r["seconds"]))
-    rows.sort(key=lambda x: (SCENES.index(x[0]) if x[0] in SCENES else 9, SOLVERS.index(x[1]), float(x[3])))
+        rows.append((m.group(1), m.group(2), m.group(3).replace("rmtr-l2", "rmtr L2"), r["dofs"], m.group(5),
+                     r["status_code"], r["reason"], r["steps"], r["iterations"], r["seconds"]))
+    rows.sort(key=lambda x: (SCENES.index(x[0]) if x[0] in SCENES else 9, METHODS.index(x[1]), SOLVERS.index(x[2]),
+                             float(x[4])))
+    # the study's verdict per probe: a linearized probe converges only when every step's one Newton step met the
+    # stopping test (sb_study_dt.c), which its record status does not say; the searches are bisections, so
+    # its probes up to the report's largest converging dt are the converging ones
+    rep = read(os.path.join(d, "report.md"))
+    def study_ok(x):
+        if x[5] != "0":
+            return "0"
+        if x[2] != "linearized":
+            return "1"
+        cell = rep.get((x[0], x[1], x[2]), ("", ""))[1]
+        best = 1.0 if cell.startswith("≥ 1") else float(cell.split()[0]) if cell[:1].isdigit() else None
+        return "1" if best is not None and float(x[4]) <= best * (1 + 1e-9) else "0"
     with open(os.path.join(d, PROBES), "w") as f:
-        f.write("scene,solver,dofs,dt,status_code,reason,steps,iterations,seconds\n")
+        f.write("scene,method,solver,dofs,dt,status_code,reason,steps,iterations,seconds,study_converged\n")
         for x in rows:
-            f.write(",".join(x) + "\n")
+            f.write(",".join(x + (study_ok(x),)) + "\n")
     return len(rows)
 
 
-def read_probes(results_root):
+def read_probes(results_root, method="rmtr"):
     """{(scene, solver): (dofs, largest converging dt or None, smallest failing dt above it or None, probes,
-    reason at the smallest failing dt)} from probes_rmtr.csv"""
+    reason at the smallest failing dt)} of one method's searches, from probes.csv"""
     path = os.path.join(results_root, "dt_stability_large", PROBES)
     if not os.path.exists(path):
         return {}
     by = {}
     for r in csv.DictReader(open(path)):
-        by.setdefault((r["scene"], r["solver"]), []).append(r)
+        if r["method"] == method:
+            by.setdefault((r["scene"], r["solver"]), []).append(r)
     out = {}
     for k, ps in by.items():
-        conv = [float(p["dt"]) for p in ps if p["status_code"] == "0"]
+        ok = lambda p: p.get("study_converged", p["status_code"] == "0" and "1") == "1"
+        conv = [float(p["dt"]) for p in ps if ok(p)]
         best = max(conv) if conv else None
-        fails = [p for p in ps if p["status_code"] != "0" and (best is None or float(p["dt"]) > best)]
+        fails = [p for p in ps if not ok(p) and (best is None or float(p["dt"]) > best)]
         fmin = min(fails, key=lambda p: float(p["dt"])) if fails else None
         out[k] = (ps[0]["dofs"], best, float(fmin["dt"]) if fmin else None, len(ps), fmin["reason"] if fmin else "")
     return out
@@ -132,8 +149,21 @@ def section(results_root):
     L.append("\nOf the %d subdivision rows: %d agree with the paper's statement, %d differ, %d not finished." % (
         sum(counts.values()), counts["agrees"], counts["differs"], counts["not finished"]))
     if others:
-        L.append("The other methods at about 1,000 dofs (bhem 972, linear_fem 963 dofs), where finished: " + "; ".join(
-            "%s %s/%s %s" % (NAMES.get(k[0], k[0]), k[1], k[2], v[1]) for k, v in sorted(others)) + ".")
+        L += ["\nThe same searches for the other discretizations (the suite's extension of Fig. 10; same study, same "
+              "probes and caps): the largest converging dt (s) per scene and solver, the dofs in brackets.\n",
+              "| scene | solver | rmtr (subdivision) | bhem | linear_fem |", "|---|---|---|---|---|"]
+        short = lambda c: "≥ 1" if c.startswith("≥ 1") else c.split(" (fails")[0] if c[:1].isdigit() else c
+        for sc in SCENES:
+            for so in SOLVERS:
+                cells = []
+                for me in METHODS:
+                    b = big.get((sc, me, so))
+                    cells.append("%s (%s)" % (short(b[1]), b[0]) if b and b[0] not in ("", "—") else
+                                 "refused" if b else "—")
+                L.append("| %s | %s | %s |" % (NAMES[sc], so, " | ".join(cells)))
+        agree_o = sum(1 for k, v in others if k[1] != "rmtr" and verdict(v[1], k[2]).startswith("agrees"))
+        L.append("\nbhem and linear_fem: %d of %d finished searches agree with the paper's statement as the "
+                 "subdivision rows are judged above." % (agree_o, len(others)))
     if pend:
         L.append("%d bhem / linear_fem searches are not finished or not run (the study's full plan; CPU budget)." % pend)
     L.append("Full per-probe tables and pictures: results/dt_stability_large/report.md, made by `shellbench report"
@@ -141,7 +171,7 @@ def section(results_root):
              " records by `python3 bench/rmtr/report_fig10.py --probes`).  Committed digests: the largest converging"
              " probe of each search; the other bisection probes' digests are not committed (results/ size limit), so"
              " `shellbench report --study` over the committed records alone would show those searches as unfinished."
-             % (sum(v[3] for v in read_probes(results_root).values()) or "its", PROBES))
+             % (sum(sum(v[3] for v in read_probes(results_root, m).values()) for m in METHODS) or "its", PROBES))
     return "\n".join(L) + "\n"
 
 
@@ -182,7 +212,7 @@ def summary_cell(results_root):
 
 
 if __name__ == "__main__":
-    # python3 bench/rmtr/report_fig10.py --probes: rewrite probes_rmtr.csv from the records present (run it
+    # python3 bench/rmtr/report_fig10.py --probes: rewrite probes.csv from the records present (run it
     # while every probe's record is there: it lists only what it finds)
     if sys.argv[1:] == ["--probes"]:
         print("%d probes" % make_probes("results", os.environ.get("SB_BIN", "build/shellbench")))
