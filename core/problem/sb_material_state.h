@@ -17,10 +17,12 @@ typedef struct sb_material_state {
     double soft_area;           /* reference area of the soft_membrane points (m^2) */
     double max_strain[3];       /* max |E11|, |E22|, |E12|, local frame, midsurface */
     double min_rel_eig;         /* smallest relative eigenvalue of a membrane tangent */
-    /* not recorded: the eigenvalues of a law whose tangent is the same at
-     * every strain (StVK), computed at its first point (sb_stability.c) */
+    /* not recorded: the membrane eigenvalue and the section's softness of a
+     * law whose tangent is the same at every strain (StVK), computed at its
+     * first point (sb_stability.c) */
     const void *const_tangent_of;
-    double const_tangent_lm, const_tangent_ls;
+    double const_tangent_lm;
+    int const_tangent_soft;
 } sb_material_state;
 
 #endif

@@ -31,13 +31,36 @@ static int rel_min_eig(int n, const double *S, double *out)
     return SB_OK;
 }
 
-int sb_shell_section_stability(const sb_material *m, const double A[3], const double B[3],
-                               double *rel_min_membrane, double *rel_min_section)
+/* 1 when the symmetric n x n matrix S (n <= 6) has a Cholesky factor with
+ * positive pivots.  A Cholesky factorization that succeeds in floating
+ * point is that of S + E with |E| ~ n eps |S| (Higham, Accuracy and
+ * Stability of Numerical Algorithms, Thm. 10.3), so S's smallest eigenvalue
+ * is then above about -n eps max|lambda|: far above the -1e-9 relative
+ * threshold of the material state below. */
+static int cholesky_positive(int n, const double *S)
 {
-    if (!m || !A || !B || !rel_min_membrane || !rel_min_section || !(m->thickness > 0)) return SB_ERR_INPUT;
+    double a[36];
+    memcpy(a, S, (size_t)n * n * sizeof *a);
+    for (int j = 0; j < n; j++) {
+        double d = a[n * j + j];
+        for (int k = 0; k < j; k++) d -= a[n * j + k] * a[n * j + k];
+        if (!(d > 0)) return 0;
+        d = sqrt(d);
+        a[n * j + j] = d;
+        for (int i = j + 1; i < n; i++) {
+            double v = a[n * i + j];
+            for (int k = 0; k < j; k++) v -= a[n * i + k] * a[n * j + k];
+            a[n * i + j] = v / d;
+        }
+    }
+    return 1;
+}
+
+/* The section tangent, scaled (below), and its membrane block. */
+static int section_tangents(const sb_material *m, const double A[3], const double B[3], double C[36], double CAA[9])
+{
     for (int i = 0; i < 3; i++)
         if (!isfinite(A[i]) || !isfinite(B[i])) return SB_NONFINITE;
-    double C[36], CAA[9];
     sb_shell_section(m, A, B, NULL, NULL, C);
     for (int i = 0; i < 36; i++)
         if (!isfinite(C[i])) return SB_NONFINITE;
@@ -48,8 +71,40 @@ int sb_shell_section_stability(const sb_material *m, const double A[3], const do
     const double s = sqrt(3.0) / m->thickness;
     for (int i = 0; i < 6; i++)
         for (int j = 0; j < 6; j++) C[6 * i + j] *= (i >= 3 ? s : 1.0) * (j >= 3 ? s : 1.0);
-    int rc = rel_min_eig(3, CAA, rel_min_membrane);
+    return SB_OK;
+}
+
+int sb_shell_section_stability(const sb_material *m, const double A[3], const double B[3],
+                               double *rel_min_membrane, double *rel_min_section)
+{
+    if (!m || !A || !B || !rel_min_membrane || !rel_min_section || !(m->thickness > 0)) return SB_ERR_INPUT;
+    double C[36], CAA[9];
+    int rc = section_tangents(m, A, B, C, CAA);
+    if (!rc) rc = rel_min_eig(3, CAA, rel_min_membrane);
     if (!rc) rc = rel_min_eig(6, C, rel_min_section);
+    return rc;
+}
+
+/* As sb_shell_section_stability, for the material state: the membrane's
+ * relative eigenvalue exactly, and for the section only whether it is soft
+ * (relative eigenvalue below tol).  A section tangent that Cholesky proves
+ * positive definite skips its 6 x 6 eigenproblem (issue 42: the eigenproblem
+ * was half of the per-step physical-state judgement on the denim
+ * trampoline); the decision is dsyev's wherever that matters, near zero. */
+static int section_soft(const sb_material *m, const double A[3], const double B[3], double tol, double *lm,
+                        int *section_is_soft)
+{
+    if (!(m->thickness > 0)) return SB_ERR_INPUT;
+    double C[36], CAA[9], ls;
+    int rc = section_tangents(m, A, B, C, CAA);
+    if (!rc) rc = rel_min_eig(3, CAA, lm);
+    if (rc) return rc;
+    if (cholesky_positive(6, C)) {
+        *section_is_soft = 0;
+        return SB_OK;
+    }
+    rc = rel_min_eig(6, C, &ls);
+    *section_is_soft = !rc && ls < tol;
     return rc;
 }
 
@@ -62,8 +117,11 @@ void sb_material_state_init(sb_material_state *ms)
 int sb_material_state_add_strains(sb_material_state *ms, const sb_material *m, double dA, const double A[3],
                                   const double B[3])
 {
-    double lm, ls;
-    int rc;
+    /* ASSUMPTION: a relative eigenvalue below -1e-9 is negative (round-off
+     * of a 3 x 3 or 6 x 6 dsyev is near 1e-15 relative) */
+    const double tol = -1e-9;
+    double lm;
+    int rc, ss;
     if (m->kind == SB_MAT_STVK && ms->const_tangent_of == (const void *)m) {
         /* StVK: psi is quadratic in E (sb_material.c stvk_psi, BHEM paper
          * Eq. 8), so the section tangent C does not depend on (A, B) and its
@@ -73,26 +131,23 @@ int sb_material_state_add_strains(sb_material_state *ms, const sb_material *m, d
         for (int i = 0; i < 3; i++)
             if (!isfinite(A[i]) || !isfinite(B[i])) return SB_NONFINITE;
         lm = ms->const_tangent_lm;
-        ls = ms->const_tangent_ls;
+        ss = ms->const_tangent_soft;
     } else {
-        rc = sb_shell_section_stability(m, A, B, &lm, &ls);
+        rc = section_soft(m, A, B, tol, &lm, &ss);
         if (rc) return rc;
         if (m->kind == SB_MAT_STVK) {
             ms->const_tangent_of = m;
             ms->const_tangent_lm = lm;
-            ms->const_tangent_ls = ls;
+            ms->const_tangent_soft = ss;
         }
     }
-    /* ASSUMPTION: a relative eigenvalue below -1e-9 is negative (round-off
-     * of a 3 x 3 or 6 x 6 dsyev is near 1e-15 relative) */
-    const double tol = -1e-9;
     ms->points++;
     ms->area += dA;
     if (lm < tol) {
         ms->soft_membrane++;
         ms->soft_area += dA;
     }
-    ms->soft_section += ls < tol;
+    ms->soft_section += ss;
     if (lm < ms->min_rel_eig) ms->min_rel_eig = lm;
     for (int i = 0; i < 3; i++) ms->max_strain[i] = fmax(ms->max_strain[i], fabs(A[i]));
     return SB_OK;
