@@ -184,6 +184,33 @@ int sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x)
 }
 
 double sb_linsolve_flops(const sb_linsolve *ls) { return ls->flops; }
+
+const void *sb_linsolve_factor_of(const sb_linsolve *ls) { return ls ? ls->L : NULL; }
+
+int sb_linsolve_supernodes(const sb_linsolve *ls, sb_supernode_bins *b)
+{
+    memset(b, 0, sizeof *b);
+    const cholmod_factor *L = ls->L;
+    if (!L || !L->is_super) return SB_ERR_INPUT;
+    const int *super = L->super, *pi = L->pi;
+    b->n_super = (long)L->nsuper;
+    for (size_t s = 0; s < L->nsuper; s++) {
+        const double k = (double)(super[s + 1] - super[s]), m = (double)(pi[s + 1] - pi[s]), r = m - k;
+        /* dense Cholesky of the m x k panel and the rank-k update it sends up */
+        const double fl = k * k * k / 3.0 + r * k * k + r * r * k;
+        int bin = 0;
+        for (long w = (long)k; w > 1 && bin < SB_SN_BINS - 1; w >>= 1) bin++;
+        b->supernodes[bin]++;
+        b->columns[bin] += (long)k;
+        b->flops[bin] += fl;
+        b->mean_k[bin] += fl * k;
+        b->mean_m[bin] += fl * m;
+        b->flops_total += fl;
+    }
+    for (int i = 0; i < SB_SN_BINS; i++)
+        if (b->flops[i] > 0) b->mean_k[i] /= b->flops[i], b->mean_m[i] /= b->flops[i];
+    return SB_OK;
+}
 double sb_linsolve_nnz_l(const sb_linsolve *ls) { return ls->lnz; }
 
 double sb_linsolve_fill(int supernodes)

@@ -30,4 +30,23 @@ int  sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x);
 double sb_linsolve_flops(const sb_linsolve *ls);
 double sb_linsolve_nnz_l(const sb_linsolve *ls);
 
+/* The supernodes of the analysis (issue 42: what bounds the factorization's
+ * rate), binned by their column count k: bin b holds 2^b <= k < 2^(b+1)
+ * (the last bin everything wider).  Per bin: supernodes, columns, the
+ * dense flops of their factorization (potrf k^3/3 + trsm (m-k) k^2 + the
+ * update (m-k)^2 k they send to their ancestors, m = the supernode's rows
+ * with its diagonal block) and the flop-weighted mean k and m.  Returns
+ * SB_OK, or SB_ERR_INPUT when the factor is not supernodal. */
+#define SB_SN_BINS 12
+typedef struct sb_supernode_bins {
+    long supernodes[SB_SN_BINS], columns[SB_SN_BINS];
+    double flops[SB_SN_BINS];
+    double mean_k[SB_SN_BINS], mean_m[SB_SN_BINS];   /* flop-weighted */
+    long n_super;
+    double flops_total;
+} sb_supernode_bins;
+int sb_linsolve_supernodes(const sb_linsolve *ls, sb_supernode_bins *b);
+/* The CHOLMOD factor itself (a cholmod_factor *; benches only). */
+const void *sb_linsolve_factor_of(const sb_linsolve *ls);
+
 #endif

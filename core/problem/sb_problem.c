@@ -921,6 +921,11 @@ int sb_problem_factor(sb_problem *p, int level, double shift)
     return sb_linsolve_factor(L->lin, shift);
 }
 
+const sb_linsolve *sb_problem_linsolve(const sb_problem *p, int level)
+{
+    return level >= 0 && level < p->nl ? p->lv[level].lin : NULL;
+}
+
 int sb_problem_solve(sb_problem *p, int level, const double *b, double *x)
 {
     level_data *L = &p->lv[level];

@@ -80,6 +80,9 @@ sb_matrix *sb_problem_hessian(sb_problem *p, int level);
 /* Factor the level's Hessian (as last assembled) + shift I.  SB_NOT_POSDEF is an outcome. */
 int  sb_problem_factor(sb_problem *p, int level, double shift);
 int  sb_problem_solve(sb_problem *p, int level, const double *b, double *x);
+/* The level's direct solver (NULL before its first factorization): its
+ * analysis's figures (sb_linsolve_supernodes) for benches. */
+const sb_linsolve *sb_problem_linsolve(const sb_problem *p, int level);
 /* y = H x with the level's Hessian as last assembled. */
 void sb_problem_hess_mult(sb_problem *p, int level, const double *x, double *y);
 /* d = diag(H) of the last assembly on the level */
