@@ -34,6 +34,7 @@
  * so other processes on the machine change the figures little. */
 #define _POSIX_C_SOURCE 200809L
 #include "sb_context.h"
+#include "sb_run_state.h"
 #include "sb_scene.h"
 #include "sb_solver.h"
 
@@ -42,6 +43,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 
 void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
@@ -159,10 +161,7 @@ int main(int argc, char **argv)
     if (!x || !x0 || !v0 || !g || !d) return 3;
     mt->initial(ms, F, x);
     sb_step_info si;
-    memset(&si, 0, sizeof si);
-    si.step = 1; si.n_steps = sc.time.steps; si.dt = sc.time.dt; si.t = sc.time.dt;
-    for (int i = 0; i < sc.n_loads; i++) si.load_factor[i] = sb_load_factor(&sc, &sc.loads[i], 1);
-    for (int i = 0; i < sc.n_bcs; i++) si.motion_factor[i] = sb_bc_motion_factor(&sc, &sc.bcs[i], 1);
+    sb_run_step_info(&sc, 1, &si);   /* the scene's first step, as a run makes it */
     sb_problem_begin_step(p, &si, x, v0, x0);
     double f;
     if (sb_problem_eval(p, F, x0, &f, g, sb_problem_hessian(p, F))) {
@@ -187,11 +186,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_supernodes: no positive definite shift found (%s)\n", ctx.err);
         return 3;
     }
-    double best = INFINITY;
+    /* the repeats: CPU seconds, and the kernel's share of them (the page
+     * faults of CHOLMOD's per-call temporaries: the permuted copy of A and
+     * the update workspace are allocated and freed in every call) */
+    double best = INFINITY, best_sys = 0.0;
     for (int k = 0; k < reps; k++) {
+        struct rusage u0, u1;
+        getrusage(RUSAGE_SELF, &u0);
         double c0 = ctx.stats.chol_factorize_cpu[F];
         if (sb_problem_factor(p, F, shift) != SB_OK) return 3;
-        best = fmin(best, ctx.stats.chol_factorize_cpu[F] - c0);
+        getrusage(RUSAGE_SELF, &u1);
+        const double c = ctx.stats.chol_factorize_cpu[F] - c0;
+        if (c < best) {
+            best = c;
+            best_sys = (double)(u1.ru_stime.tv_sec - u0.ru_stime.tv_sec) +
+                       1e-6 * (double)(u1.ru_stime.tv_usec - u0.ru_stime.tv_usec);
+        }
     }
     sb_supernode_bins b;
     if (sb_linsolve_supernodes(sb_problem_linsolve(p, F), &b)) {
@@ -253,6 +263,7 @@ int main(int argc, char **argv)
     printf("summary,factorize_cpu_s,%.4f\nsummary,achieved_gflops,%.3f\nsummary,ceiling_gflops,%.3f\n"
            "summary,achieved_over_ceiling,%.3f\nsummary,shift,%g\n", best, achieved, ceiling, achieved / ceiling, shift);
     printf("summary,first_factorize_cpu_s,%.4f\nsummary,first_gflops,%.3f\n", c_first, cm_flops / c_first / 1e9);
+    printf("summary,factorize_system_s,%.4f\n", best_sys);
     free(x); free(x0); free(v0); free(g); free(d);
     sb_problem_free(p);
     mt->destroy(ms);
