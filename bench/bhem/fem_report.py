@@ -209,8 +209,8 @@ PLANNED = [("w_bhem_e_r30", "BHEM(e) 30²"), ("w_bhem_p_r30", "BHEM(p) 30²"), (
 
 def not_run(d, prefix):
     miss = [what for tag, what in PLANNED if tag.startswith(prefix) and not os.path.exists(os.path.join(d, tag + ".stats.json"))]
-    return ("Planned by fem_compare.sh but not run (the session's CPU ran out: near its end a run got about 1 %% of a "
-            "core on the shared machine; `bash bench/bhem/fem_compare.sh build/shellbench %s` resumes%s): %s.\n"
+    return ("Planned by fem_compare.sh but not run (CPU budget; `bash bench/bhem/fem_compare.sh build/shellbench %s` "
+            "resumes%s): %s.\n"
             % ("wrinkle" if prefix == "w_" else "drape",
                ", `large --max-runs 1` does one large run per call" if prefix == "w_" else "", ", ".join(miss))
             if miss else "")
