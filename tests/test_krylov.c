@@ -100,14 +100,9 @@ static double rnd(unsigned long long *z)
     return 2.0 * ((double)(w >> 11) * 0x1.0p-53) - 1.0;
 }
 
-static void check_spd(sb_test_state *T, const char *what, const sb_precond_type *pt, fix *f)
+/* <Px, y> = <x, Py> and <Px, x> > 0 on random vectors, for a set-up state */
+static void check_apply_spd(sb_test_state *T, const char *what, const sb_precond_type *pt, void *st, fix *f, int rc)
 {
-    sb_precond_opts o = { 1, 0.5 };
-    void *st = calloc(1, pt->state_size);
-    int rc = pt->alloc(st, f->p, f->F, &o);
-    CHECK_MSG(rc == 0, "%s %s: alloc: %s", what, pt->name, f->ctx.err);
-    if (!rc) rc = pt->setup(st, f->p);
-    CHECK_MSG(rc == 0, "%s %s: setup %d: %s", what, pt->name, rc, f->ctx.err);
     const int n = f->n;
     double *x = malloc(n * sizeof(double)), *y = malloc(n * sizeof(double));
     double *Px = malloc(n * sizeof(double)), *Py = malloc(n * sizeof(double));
@@ -128,9 +123,20 @@ static void check_spd(sb_test_state *T, const char *what, const sb_precond_type 
     }
     printf("    %-28s %-10s n=%6d  max |<Px,y>-<x,Py>|/scale %.2e, min <Px,x>/(|Px||x|) %.3f\n", what, pt->name, n, worst,
            minq);
+    free(x); free(y); free(Px); free(Py);
+}
+
+static void check_spd(sb_test_state *T, const char *what, const sb_precond_type *pt, fix *f)
+{
+    sb_precond_opts o = { .mg_sweeps = 1, .mg_lag = 1, .amg_strength = 0.5 };
+    void *st = calloc(1, pt->state_size);
+    int rc = pt->alloc(st, f->p, f->F, &o);
+    CHECK_MSG(rc == 0, "%s %s: alloc: %s", what, pt->name, f->ctx.err);
+    if (!rc) rc = pt->setup(st, f->p);
+    CHECK_MSG(rc == 0, "%s %s: setup %d: %s", what, pt->name, rc, f->ctx.err);
+    check_apply_spd(T, what, pt, st, f, rc);
     pt->free(st);
     free(st);
-    free(x); free(y); free(Px); free(Py);
 }
 
 SB_TEST(preconditioners_are_symmetric_positive_definite)
@@ -170,7 +176,7 @@ static int mg_iters(sb_test_state *T, const char *method, int res, int levels, i
     int it = -1;
     if (!rc) {
         sb_krylov k;
-        sb_precond_opts o = { sweeps, 0.5 };
+        sb_precond_opts o = { .mg_sweeps = sweeps, .mg_lag = 1, .amg_strength = 0.5 };
         rc = sb_krylov_alloc(&k, f.p, f.F, &sb_precond_mg, &o);
         if (!rc) rc = sb_krylov_setup(&k, f.p);
         double *d = malloc(f.n * sizeof(double));
@@ -441,7 +447,7 @@ SB_TEST(lifting_solves_with_the_run_s_linear_solver)
     const long fac1 = f.ctx.stats.ev[F][SB_EV_FACTORIZE].count;
     CHECK_MSG(fac1 == fac0 + 1, "the direct lifting factors the finest Hessian once (%ld -> %ld)", fac0, fac1);
     sb_krylov kr;
-    sb_precond_opts o = { 1, 0.5 };
+    sb_precond_opts o = { .mg_sweeps = 1, .mg_lag = 1, .amg_strength = 0.5 };
     CHECK_EQ_INT(sb_krylov_alloc(&kr, f.p, F, sb_linear_precond(SB_LINEAR_PCG_MG), &o), 0);
     const long cg0 = f.ctx.stats.ev[F][SB_EV_CG_ITER].count;
     CHECK_EQ_INT(sb_problem_lift(f.p, f.xn, b, krylov_lift, &kr), 0);
@@ -636,6 +642,71 @@ static int refused(sb_test_state *T, const char *method, const char *solver, int
     return ec;
 }
 
+/* solver.mg_lag = 3: the coarse levels are rebuilt at the first setup of a
+ * step and every third one after (Galerkin products counted), the V-cycle
+ * with kept coarse levels and a new finest Hessian is still symmetric and
+ * positive definite, and runs with it reach cholmod's probe values */
+SB_TEST(lagged_coarse_levels_keep_the_preconditioner_spd)
+{
+    fix f;
+    int rc = fix_open(&f, "trampoline", "bhem", 4, 3);
+    CHECK(rc == 0);
+    if (!rc) {
+        sb_precond_opts o = { .mg_sweeps = 1, .mg_lag = 3, .amg_strength = 0.5 };
+        void *st = calloc(1, sb_precond_mg.state_size);
+        rc = sb_precond_mg.alloc(st, f.p, f.F, &o);
+        long built[5];
+        unsigned long long z = 99;
+        for (int k = 0; k < 5 && !rc; k++) {
+            if (k > 0) {   /* a new finest Hessian, away from the last one */
+                for (int i = 0; i < f.n; i++) f.x[i] += 1e-3 * rnd(&z);
+                double fv;
+                rc = sb_problem_eval(f.p, f.F, f.x, &fv, f.g, sb_problem_hessian(f.p, f.F));
+            }
+            if (!rc) rc = sb_precond_mg.setup(st, f.p);
+            built[k] = sb_stats_event_total(&f.ctx.stats, SB_EV_GALERKIN).count;
+            char what[64];
+            snprintf(what, sizeof what, "trampoline bhem L3 lag 3, setup %d", k + 1);
+            check_apply_spd(T, what, &sb_precond_mg, st, &f, rc);
+        }
+        CHECK_MSG(rc == 0, "setup: %s", f.ctx.err);
+        /* two Galerkin products (levels 1 and 0) per rebuild: setups 1 and 4 */
+        CHECK_MSG(built[0] == 2 && built[1] == 2 && built[2] == 2 && built[3] == 4 && built[4] == 4,
+                  "Galerkin products after each setup: %ld %ld %ld %ld %ld", built[0], built[1], built[2], built[3],
+                  built[4]);
+        sb_precond_mg.free(st);
+        free(st);
+    }
+    fix_close(&f);
+    /* whole runs: the probes of cholmod's run */
+    struct { const char *scene, *solver; int res; } sc[] = {
+        { "plate_clamped", "lsnewton", 8 }, { "trampoline", "lsnewton", 4 }, { "trampoline", "tr", 4 } };
+    for (int s = 0; s < 3; s++) {
+        int ec;
+        json_t *ref = run(sc[s].scene, "bhem", "lsnewton", sc[s].res, 2, "cholmod", &ec);
+        sb_run_request req;
+        sb_test_request(&req, sc[s].scene, "bhem", sc[s].solver, sc[s].res);
+        req.levels = 2;
+        req.summary_json = 1;
+        const char *sets[2] = { "solver.linear=pcg-mg", "solver.mg_lag=3" };
+        req.sets = sets;
+        req.n_sets = 2;
+        json_t *js = sb_test_run_json(&req, &ec);
+        CHECK_MSG(ref && js && ec == 0, "%s %s lag 3: exit %d", sc[s].scene, sc[s].solver, ec);
+        double d0[30], tol[10], d[30], t2[10];
+        const int k0 = ref ? probes_of(ref, d0, tol, 10) : 0, k = js ? probes_of(js, d, t2, 10) : -1;
+        CHECK_EQ_INT(k, k0);
+        for (int i = 0; i < k && i < k0; i++) {
+            double mag = fmax(fmax(fabs(d0[3 * i]), fabs(d0[3 * i + 1])), fabs(d0[3 * i + 2]));
+            for (int c = 0; c < 3; c++)
+                CHECK_MSG(fabs(d[3 * i + c] - d0[3 * i + c]) / fmax(mag, 1e-300) <= tol[i],
+                          "%s %s lag 3: probe %d component %d", sc[s].scene, sc[s].solver, i, c);
+        }
+        json_decref(ref);
+        json_decref(js);
+    }
+}
+
 SB_TEST(bad_requests_are_refused_with_a_sentence)
 {
     refused(T, "bhem", "lsnewton", 4, 1, "solver.linear=pcg-mg", "solver.linear=pcg-mg needs at least 2 levels");
@@ -658,6 +729,7 @@ int main(int argc, char **argv)
                                           SB_CASE(history_records_forcing_terms),
                                           SB_CASE(a_capped_solve_is_a_recorded_outcome),
                                           SB_CASE(indefinite_hessians_per_path),
+                                          SB_CASE(lagged_coarse_levels_keep_the_preconditioner_spd),
                                           SB_CASE(bad_requests_are_refused_with_a_sentence), SB_END };
     return sb_test_main(argc, argv, cases);
 }

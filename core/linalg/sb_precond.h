@@ -22,6 +22,7 @@
 
 typedef struct sb_precond_opts {
     int mg_sweeps;          /* pcg-mg: smoothing sweeps before and after the coarse correction */
+    int mg_lag;             /* pcg-mg: coarse levels rebuilt every mg_lag-th setup and at each step's first (0, 1: every setup) */
     double amg_strength;    /* pcg-amg: BoomerAMG strength threshold */
 } sb_precond_opts;
 

@@ -11,7 +11,20 @@
  *                     before the coarse correction, backward sweeps after
  *                     (the adjoint), mg_sweeps of each;
  *   coarsest level    CHOLMOD (analyzed once, factored once per Newton
- *                     iteration).
+ *                     iteration);
+ *   lagging           solver.mg_lag = k > 1: the coarse levels (Galerkin
+ *                     products, their block inverses, the coarsest
+ *                     factorization) are rebuilt at every step's first
+ *                     Newton iteration and every k-th one after, kept in
+ *                     between, while the finest level's smoother always
+ *                     uses the current Hessian (PETSc's
+ *                     -snes_lag_preconditioner, applied to the coarse
+ *                     levels only).  The V-cycle stays symmetric and
+ *                     positive definite: a symmetric V-cycle whose coarse
+ *                     correction is any SPD operator and whose smoother
+ *                     satisfies R^{-1} + R^{-T} - H > 0 is SPD (Vassilevski
+ *                     2008, §5.1), and the kept coarse V-cycle is SPD for
+ *                     the kept (SPD or shifted) coarse operators.
  *
  * Symmetry and definiteness: with pre-smoother R and post-smoother R^T the
  * V-cycle is a symmetric operator B; B is positive definite when the coarse
@@ -47,6 +60,7 @@ typedef struct mg_level {
 
 typedef struct mg_state {
     int nl, sweeps;
+    int lag, since, step;       /* solver.mg_lag; setups since the coarse levels were built, and in which step */
     double coarse_shift;        /* shift of the coarsest factorization (0 unless indefinite) */
     mg_level lv[SB_MAX_LEVELS];
 } mg_state;
@@ -75,6 +89,9 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
                         "method's hierarchy), but --levels is %d", level + 1);
     m->nl = level + 1;
     m->sweeps = o && o->mg_sweeps > 0 ? o->mg_sweeps : 1;
+    m->lag = o && o->mg_lag > 1 ? o->mg_lag : 1;
+    m->since = 0;
+    m->step = -1;
     for (int l = 0; l < m->nl; l++) {
         mg_level *L = &m->lv[l];
         L->n = sb_problem_n(p, l);
@@ -106,22 +123,33 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
     return SB_OK;
 }
 
+/* the smoother's inverted node blocks of level l, from its Hessian as it is */
+static void mg_block_inverses(mg_level *L, sb_problem *p, int l)
+{
+    if (L->bs == 1) sb_problem_hess_diag(p, l, L->binv);
+    else {
+        memset(L->binv, 0, (size_t)L->n * L->bs * sizeof(double));
+        sb_problem_hess_block_diag(p, l, L->binv);
+    }
+    for (int b0 = 0; b0 < L->n; b0 += L->bs) sb_block_inverse_spd(L->bs, L->binv + (size_t)b0 * L->bs);
+}
+
 static int mg_setup(void *st, sb_problem *p)
 {
     mg_state *m = st;
+    const int F = m->nl - 1, step = sb_problem_step(p);
+    mg_block_inverses(&m->lv[F], p, F);          /* the finest level: always the current Hessian */
+    if (m->lag > 1 && m->step == step && m->since > 0 && m->since < m->lag) {
+        m->since++;                              /* the coarse levels as built (solver.mg_lag) */
+        return SB_OK;
+    }
+    m->since = 1;
+    m->step = step;
     for (int lc = m->nl - 2; lc >= 0; lc--) {
         int rc = sb_problem_galerkin_hessian(p, lc);
         if (rc) return rc;
     }
-    for (int l = 1; l < m->nl; l++) {
-        mg_level *L = &m->lv[l];
-        if (L->bs == 1) sb_problem_hess_diag(p, l, L->binv);
-        else {
-            memset(L->binv, 0, (size_t)L->n * L->bs * sizeof(double));
-            sb_problem_hess_block_diag(p, l, L->binv);
-        }
-        for (int b0 = 0; b0 < L->n; b0 += L->bs) sb_block_inverse_spd(L->bs, L->binv + (size_t)b0 * L->bs);
-    }
+    for (int l = 1; l < F; l++) mg_block_inverses(&m->lv[l], p, l);
     /* the coarsest level by CHOLMOD; a Galerkin operator of an indefinite
      * Hessian may be indefinite: then the shift of the direct path (1e-8
      * max|H| grown 10x, Nocedal & Wright Alg. 3.3) keeps the V-cycle SPD */
@@ -245,8 +273,11 @@ static int mg_apply(void *st, sb_problem *p, const double *r, double *z)
 static void mg_describe(const void *st, char *buf, size_t len)
 {
     const mg_state *m = st;
+    char lag[96] = "";
+    if (m->lag > 1) snprintf(lag, sizeof lag, ", coarse levels rebuilt every %d Newton iterations and each step", m->lag);
     snprintf(buf, len, "V-cycle over %d levels, Galerkin coarse operators, block Gauss-Seidel %d+%d sweeps "
-             "(forward/backward), CHOLMOD on the coarsest level (%d dofs)", m->nl, m->sweeps, m->sweeps, m->lv[0].n);
+             "(forward/backward), CHOLMOD on the coarsest level (%d dofs)%s", m->nl, m->sweeps, m->sweeps, m->lv[0].n,
+             lag);
 }
 
 const sb_precond_type sb_precond_mg = {

@@ -20,8 +20,11 @@
     { "cg_max_iter", SB_PARAM_INT, MAXIT_DEF, 1, 1000000000, NULL, "Krylov paths: CG iteration cap per linear solve" }, \
     { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,                                                                       \
       "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },               \
+    { "mg_lag", SB_PARAM_INT, 1, 1, 1000000, NULL, MG_LAG_HELP },                                                      \
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,                                                               \
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" }
+#define MG_LAG_HELP "pcg-mg: rebuild the coarse levels (Galerkin products, coarsest factorization) at each step's " \
+    "first Newton iteration and every mg_lag-th one after; 1: every iteration"
 #define LINEAR_HELP "linear solver of the Newton step: cholmod (sparse Cholesky), pcg-jacobi (CG, node-block Jacobi), " \
     "pcg-mg (CG, one V-cycle of the method's hierarchy), pcg-amg (CG, hypre BoomerAMG)"
 #define EW_HELP "Krylov paths: stop CG at ||H d + g|| <= cg_rtol ||g||; -1: Eisenstat-Walker forcing terms (choice 2)"
@@ -64,6 +67,7 @@ static const sb_param_def linearized_params[] = {
       "linear=pcg: preconditioner (none, jacobi, block = 3x3 node blocks, sgs, schwarz)" },
     { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,
       "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },
+    { "mg_lag", SB_PARAM_INT, 1, 1, 1000000, NULL, MG_LAG_HELP },
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
@@ -109,7 +113,8 @@ static int krylov_alloc(newton_state *s, sb_problem *p, const sb_paramset *ps)
     s->krylov = 1;
     s->cg_rtol = sb_param(ps, "solver.cg_rtol");
     s->cg_max_iter = sb_param_int(ps, "solver.cg_max_iter");
-    sb_precond_opts o = { sb_param_int(ps, "solver.mg_sweeps"), sb_param(ps, "solver.amg_strength") };
+    sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.mg_sweeps"), .mg_lag = sb_param_int(ps, "solver.mg_lag"),
+                          .amg_strength = sb_param(ps, "solver.amg_strength") };
     return sb_krylov_alloc(&s->kr, p, s->F, pt, &o);
 }
 

@@ -331,7 +331,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
          * alloc refuses a hierarchy without Galerkin products (with a sentence) */
         R->k_max = sb_param_int(ps, "solver.krylov_max_iter");
         R->k_rtol = sb_param(ps, "solver.krylov_rtol");
-        sb_precond_opts o = { sb_param_int(ps, "solver.krylov_sweeps"), 0.5 };
+        sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.krylov_sweeps"), .mg_lag = 1, .amg_strength = 0.5 };
         sb_context *kctx = sb_problem_context(p);
         for (int l = 0; l < R->L_fine; l++)
             if (sb_problem_galerkin_prepare(p, l))

@@ -34,6 +34,9 @@ static const sb_param_def tr_params[] = {
       "pcg-*: stop CG at ||H s + g|| <= cg_rtol ||g||; -1: Eisenstat-Walker forcing terms (choice 2)" },
     { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,
       "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },
+    { "mg_lag", SB_PARAM_INT, 1, 1, 1000000, NULL,
+      "pcg-mg: rebuild the coarse levels (Galerkin products, coarsest factorization) at each step's first TR "
+      "iteration and every mg_lag-th one after; 1: every iteration" },
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
@@ -82,7 +85,8 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     if (rc == SB_OK && pt) {
         t->krylov = 1;
         t->cg_rtol = sb_param(ps, "solver.cg_rtol");
-        sb_precond_opts o = { sb_param_int(ps, "solver.mg_sweeps"), sb_param(ps, "solver.amg_strength") };
+        sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.mg_sweeps"),
+                              .mg_lag = sb_param_int(ps, "solver.mg_lag"), .amg_strength = sb_param(ps, "solver.amg_strength") };
         rc = sb_krylov_alloc(&t->kr, p, t->F, pt, &o);
     }
     return rc;
