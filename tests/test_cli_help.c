@@ -6,6 +6,7 @@
 #define _XOPEN_SOURCE 700
 #include "cli_sh.h"
 #include "sb_method.h"
+#include "sb_record.h"
 #include "sb_solver.h"
 #include "sb_test.h"
 
@@ -24,7 +25,9 @@ SB_TEST(version_and_help)
 {
     const char *bin = sb_test_bin();
     CHECK_EQ_INT(sb_sh(out, sizeof out, err, sizeof err, "%s --version", bin), 0);
-    CHECK_MSG(strncmp(out, "shellbench ", 11) == 0 && strstr(out, "record format shellbench-run 3"), "%s", out);
+    char fmt[64];
+    snprintf(fmt, sizeof fmt, "record format %s %d", SB_RECORD_FORMAT_NAME, SB_RECORD_FORMAT_VERSION);
+    CHECK_MSG(strncmp(out, "shellbench ", 11) == 0 && strstr(out, fmt), "%s", out);
     const char *cmds[] = { "run", "sweep", "check", "report", "inspect", "list" };
     const char *opts[] = { "--res N", "--scenes", "/dev/stdin", "--plot", "material state", "params" };
     for (int i = 0; i < 6; i++) {
