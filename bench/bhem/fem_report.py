@@ -132,6 +132,13 @@ def finest(rows, method, pseudo=False):
     return max(rs, key=lambda r: r["run"]["dofs"]) if rs else None
 
 
+def nc(r):
+    """ " **not converged** (reason)" for a run that did not converge: its iterations and seconds are those to the
+    failure, not to a solution, so a comparison row says so"""
+    run = r["run"]
+    return "" if run.get("status") == "converged" else " **not converged** (%s)" % run.get("reason", "?")
+
+
 def paper_rows(W, D):
     """one row per claim of the paper: its number, ours, the ratio, the differences of setting"""
     out = ["| paper | claim (paper's number) | ours | ratio ours / paper | differences of setting |",
@@ -152,21 +159,34 @@ def paper_rows(W, D):
         out.append("| Fig. 14 | FEM: fewer iterations, much more time than BHEM | nearest in dofs (of the runs made), %s (%d dofs) against "
                    "%s (%d): %d against %d iterations, %.1f against %.1f CPU s (peak %.3f against %.3f mm) | "
                    "iterations %.2f×, time %.2f× (FEM / BHEM) | CPU seconds on a shared machine; no wall clock |" % (
-                       label(near), near["run"]["dofs"], label(be), be["run"]["dofs"], near["run"]["iterations"],
+                       label(near) + nc(near), near["run"]["dofs"], label(be) + nc(be), be["run"]["dofs"], near["run"]["iterations"],
                        be["run"]["iterations"], near["stats"]["cpu_seconds"], be["stats"]["cpu_seconds"], amp(near),
                        amp(be), near["run"]["iterations"] / be["run"]["iterations"],
                        near["stats"]["cpu_seconds"] / be["stats"]["cpu_seconds"]))
-    bp = finest(w, "bhem", pseudo=True)
-    be2 = [r for r in w if r["run"]["method"] == "bhem" and bp and r["run"]["res"] == bp["run"]["res"]
-           and "pseudo" not in r["run"]["method_info"]]
+    # exact against pseudo at the finest resolution where both converged (a stalled run's counts are to its failure)
+    pairs = []
+    for q in sorted((r for r in w if r["run"]["method"] == "bhem" and "pseudo" in r["run"]["method_info"]),
+                    key=lambda r: -r["run"]["dofs"]):
+        ex = [r for r in w if r["run"]["method"] == "bhem" and r["run"]["res"] == q["run"]["res"]
+              and "pseudo" not in r["run"]["method_info"]]
+        if ex:
+            pairs.append((ex[0], q))
+    both = [(e, q) for e, q in pairs if not nc(e) and not nc(q)]
+    failed = ["%d²: %s %d iterations, %s" % (q["run"]["res"], "pseudo" if nc(q) else "exact", (q if nc(q) else e)["run"]
+              ["iterations"], (q if nc(q) else e)["run"].get("reason", "?")) for e, q in pairs if nc(e) or nc(q)]
+    bp = (both[0] if both else pairs[0] if pairs else (None, None))[1]
+    be2 = [(both[0] if both else pairs[0])[0]] if pairs else []
     if bp and be2:
         e = be2[0]
         out.append("| Figs. 14, 16 | BHEM with the exact Hessian: more time, fewer iterations than with the pseudo "
-                   "Hessian | wrinkled sheet %d²: exact %d iterations, %.1f CPU s; pseudo %d iterations, %.1f CPU s | "
-                   "iterations %.2f×, time %.2f× (exact / pseudo) | — |" % (
-                       e["run"]["res"], e["run"]["iterations"], e["stats"]["cpu_seconds"], bp["run"]["iterations"],
-                       bp["stats"]["cpu_seconds"], e["run"]["iterations"] / bp["run"]["iterations"],
-                       e["stats"]["cpu_seconds"] / bp["stats"]["cpu_seconds"]))
+                   "Hessian | wrinkled sheet %d²: exact %d iterations, %.1f CPU s%s; pseudo %d iterations, %.1f CPU s%s | "
+                   "%s | %s |" % (
+                       e["run"]["res"], e["run"]["iterations"], e["stats"]["cpu_seconds"], nc(e), bp["run"]["iterations"],
+                       bp["stats"]["cpu_seconds"], nc(bp), "iterations %.2f×, time %.2f× (exact / pseudo)" % (
+                           e["run"]["iterations"] / bp["run"]["iterations"],
+                           e["stats"]["cpu_seconds"] / bp["stats"]["cpu_seconds"]) if not nc(e) and not nc(bp) else
+                       "— (a run that did not converge: its counts are to its failure)",
+                       "not converged: %s" % "; ".join(failed) if failed else "—"))
     d = list(D.values())
     bd = finest(d, "bhem")
     fems = [r for r in d if r["run"]["method"] == "linear_fem"]
@@ -176,13 +196,17 @@ def paper_rows(W, D):
         for fd, how in [(near, "nearest in dofs of the runs made")] + ([(big[0], "4k vertices, as the paper")] if big and big[0] is not near else []):
             out.append("| Fig. 16 | BHEM 30² (11.5k dofs) converges in much fewer iterations and less time than FEM at "
                        "4k vertices (12k dofs) | %s (%d dofs): %d iterations, %.1f CPU s; %s (%d dofs, %s): %d "
-                       "iterations, %.1f CPU s | iterations %.2f×, time %.2f× (FEM / BHEM) | corners pinned, not "
+                       "iterations, %.1f CPU s | %s | corners pinned, not "
                        "clamped (both methods); 1 m square, 0.1 m inward motion assumed; our FEM has 6 dofs per "
                        "vertex |" % (
-                           label(bd), bd["run"]["dofs"], bd["run"]["iterations"], bd["stats"]["cpu_seconds"], label(fd),
+                           label(bd) + nc(bd), bd["run"]["dofs"], bd["run"]["iterations"], bd["stats"]["cpu_seconds"],
+                           label(fd) + nc(fd),
                            fd["run"]["dofs"], how, fd["run"]["iterations"], fd["stats"]["cpu_seconds"],
-                           fd["run"]["iterations"] / bd["run"]["iterations"],
-                           fd["stats"]["cpu_seconds"] / bd["stats"]["cpu_seconds"]))
+                           "iterations %.2f×, time %.2f× (FEM / BHEM)" % (
+                               fd["run"]["iterations"] / bd["run"]["iterations"],
+                               fd["stats"]["cpu_seconds"] / bd["stats"]["cpu_seconds"])
+                           if not nc(fd) and not nc(bd) else "— (a run that did not converge: its counts are to its "
+                           "failure)"))
         cf = min((r for r in d if r["run"]["method"] == "linear_fem"), key=lambda r: r["run"]["dofs"])
         cb = min((r for r in d if r["run"]["method"] == "bhem"), key=lambda r: r["run"]["dofs"])
         mf, mb = drape_metrics(cf, bd) or {}, drape_metrics(cb, bd) or {}

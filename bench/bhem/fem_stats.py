@@ -30,7 +30,8 @@ def dset(path):
 it, sec = dset("/history/steps/iterations"), dset("/history/steps/seconds")
 res = {"steps": [[int(a), round(b, 4)] for a, b in zip(it, sec)]}
 try:
-    u, s = open(cpuf).read().split()[:2]
+    # /usr/bin/time -f '%U %S' writes "Command exited with non-zero status N" first for a failed run
+    u, s = open(cpuf).read().strip().splitlines()[-1].split()[:2]
     res["cpu_seconds"] = round(float(u) + float(s), 2)
 except (OSError, ValueError):
     res["cpu_seconds"] = None
