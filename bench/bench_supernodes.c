@@ -24,10 +24,10 @@
  *      best of REPS after the first; the first, in which CHOLMOD allocates
  *      and first touches the factor's values, is reported apart).
  *
- *   build/bench/bench_supernodes SCENE METHOD RES [KEY=VALUE ...] [reps=N] [bs=N] [panels=0]
+ *   build/bench/bench_supernodes SCENE METHOD RES [KEY=VALUE ...] [reps=N] [panels=0]
  *
- * bs: dofs per node for the split-node count when the method declares no
- * node block (linear_fem: 3, node-major).
+ * reps: factorizations timed after the first (best taken); panels=0: no
+ * dense panel rates (when profiling the factorizations alone).
  *
  * Output: CSV, one row per non-empty bin, then "summary," rows (key,value).
  * Process CPU time throughout (one BLAS thread: OPENBLAS_NUM_THREADS=1),
@@ -107,7 +107,7 @@ static double panel_rate(int k, int m)
 int main(int argc, char **argv)
 {
     if (argc < 4) {
-        fprintf(stderr, "usage: %s SCENE METHOD RES [KEY=VALUE ...] [reps=N]\n", argv[0]);
+        fprintf(stderr, "usage: %s SCENE METHOD RES [KEY=VALUE ...] [reps=N] [panels=0]\n", argv[0]);
         return 2;
     }
     const sb_method_type *mt = sb_method_find(argv[2]);
@@ -120,26 +120,22 @@ int main(int argc, char **argv)
     sb_context ctx;
     if (sb_context_init(&ctx)) return 3;
     sb_scene sc;
-    char path[1024], err[2048];
+    char path[1024], err[2048] = "";
     if (sb_scene_resolve(argv[1], path, sizeof path) || sb_scene_load(path, &sc, err, sizeof err)) {
-        fprintf(stderr, "bench_supernodes: cannot load scene %s\n", argv[1]);
+        fprintf(stderr, "bench_supernodes: cannot load scene %s%s%s\n", argv[1], err[0] ? ": " : "", err);
         return 2;
     }
     sb_paramset_add(&ctx.params, "run", sb_solve_params);
     sb_paramset_add(&ctx.params, "solver", st->params);
     sb_paramset_add(&ctx.params, "method", mt->params);
-    int reps = 2, bs_arg = 0, panels = 1;
+    int reps = 2, panels = 1;
     for (int a = 4; a < argc; a++) {
         if (!strncmp(argv[a], "reps=", 5)) {
             reps = atoi(argv[a] + 5);
             continue;
         }
-        if (!strncmp(argv[a], "panels=", 7)) {   /* panels=0: no dense panel rates (profiling the factorizations) */
+        if (!strncmp(argv[a], "panels=", 7)) {
             panels = atoi(argv[a] + 7);
-            continue;
-        }
-        if (!strncmp(argv[a], "bs=", 3)) {   /* dofs per node when the method declares none (node-major dofs) */
-            bs_arg = atoi(argv[a] + 3);
             continue;
         }
         if (sb_paramset_set(&ctx.params, argv[a], err, sizeof err)) {
@@ -209,31 +205,7 @@ int main(int argc, char **argv)
         return 3;
     }
     const double cm_flops = ctx.stats.chol_flops[F];
-    /* nodes whose dofs the ordering put into more than one supernode (the
-     * node's bs dofs share their sparsity, so a node-aware ordering keeps
-     * them in one) and the ordering CHOLMOD chose */
-    const cholmod_common *cm = ctx.cholmod;
-    const int bs = bs_arg > 0 ? bs_arg : sb_problem_block_size(p, F);
-    long split = 0, nodes = bs > 0 ? n / bs : 0;
-    {
-        const cholmod_factor *Lf = sb_linsolve_factor_of(sb_problem_linsolve(p, F));
-        int *sn_of = Lf && nodes > 0 ? malloc(sizeof(int) * (size_t)nodes) : NULL;
-        char *cut = sn_of ? calloc((size_t)nodes, 1) : NULL;
-        if (sn_of && cut && Lf->is_super) {
-            const int *super = Lf->super, *perm = Lf->Perm;
-            for (long i = 0; i < nodes; i++) sn_of[i] = -1;
-            for (size_t q = 0; q < Lf->nsuper; q++)
-                for (int j = super[q]; j < super[q + 1]; j++) {
-                    const long node = perm[j] / bs;
-                    if (node >= nodes) continue;
-                    if (sn_of[node] >= 0 && sn_of[node] != (int)q) cut[node] = 1;
-                    sn_of[node] = (int)q;
-                }
-            for (long i = 0; i < nodes; i++) split += cut[i];
-        }
-        free(sn_of);
-        free(cut);
-    }
+    const cholmod_common *cm = ctx.cholmod;   /* the ordering CHOLMOD chose */
     printf("k_lo,k_hi,supernodes,columns,flops_share,mean_k,mean_m,dense_gflops\n");
     double t_model = 0.0, narrow = 0.0;
     for (int i = 0; i < SB_SN_BINS; i++) {
@@ -254,7 +226,6 @@ int main(int argc, char **argv)
     printf("summary,supernodes,%ld\nsummary,nnz_l,%.0f\nsummary,cholmod_flops,%.6g\nsummary,panel_flops,%.6g\n",
            b.n_super, ctx.stats.chol_nnz_l[F], cm_flops, b.flops_total);
     printf("summary,flops_share_k_below_32,%.4f\n", narrow / b.flops_total);
-    printf("summary,block_size,%d\nsummary,nodes_split_over_supernodes,%ld\nsummary,nodes,%ld\n", bs, split, nodes);
     printf("summary,ordering,%s\n", cm->method[cm->selected].ordering == CHOLMOD_AMD ? "amd" :
            cm->method[cm->selected].ordering == CHOLMOD_METIS ? "metis" :
            cm->method[cm->selected].ordering == CHOLMOD_NESDIS ? "nesdis" :

@@ -185,8 +185,6 @@ int sb_linsolve_solve(sb_linsolve *ls, const double *b, double *x)
 
 double sb_linsolve_flops(const sb_linsolve *ls) { return ls->flops; }
 
-const void *sb_linsolve_factor_of(const sb_linsolve *ls) { return ls ? ls->L : NULL; }
-
 int sb_linsolve_supernodes(const sb_linsolve *ls, sb_supernode_bins *b)
 {
     memset(b, 0, sizeof *b);

@@ -46,7 +46,5 @@ typedef struct sb_supernode_bins {
     double flops_total;
 } sb_supernode_bins;
 int sb_linsolve_supernodes(const sb_linsolve *ls, sb_supernode_bins *b);
-/* The CHOLMOD factor itself (a cholmod_factor *; benches only). */
-const void *sb_linsolve_factor_of(const sb_linsolve *ls);
 
 #endif
