@@ -41,12 +41,16 @@ int  sb_galerkin_create(const sb_csr *S, const sb_pattern *fine, const sb_patter
  * off-diagonal entry, about a fifth of pcg-mg's peak at 1e6 dofs).  Equal
  * to sb_galerkin_create's product up to round-off (the sums run in another
  * order), so the rmtr solver's Galerkin models keep the indexed form that
- * its committed counts were made with. */
+ * its committed counts were made with.  Its numeric product runs by blocks
+ * of the coarse pattern's bs columns (one node's dofs), each fine column
+ * and each row of S read once per block (blocks of 4 or more columns;
+ * bhem's 12: its products 1.6 x faster, docs/solvers.md). */
 int  sb_galerkin_create_lean(const sb_csr *S, const sb_pattern *fine, const sb_pattern *coarse,
                              const unsigned char *fixed_f, const unsigned char *fixed_c, sb_galerkin **out);
 /* Hc = S^T Hf S on Hc's pattern (upper triangle); entries of fixed coarse
  * rows / columns are zero.  SB_ERR_UNSUPPORTED when a nonzero of the product
- * falls outside the coarse pattern (Hc then holds the in-pattern part). */
+ * falls outside the coarse pattern (Hc then holds the in-pattern part; the
+ * lean form has ruled that out at creation). */
 int  sb_galerkin_product(sb_galerkin *G, const sb_matrix *Hf, sb_matrix *Hc);
 void sb_galerkin_free(sb_galerkin *G);
 
