@@ -9,7 +9,7 @@
 # accuracy price (distance of the adaptive surface to the full one on an
 # 11 x 11 material grid, bench/sqrt3/dress_series.py).
 #
-#   bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|small-series|large-series|others|pictures]
+#   bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|small-series|large-series|others|floor|pictures]
 #
 #   small    (default) base mesh 6 x 28 cells (336 triangles), 6 generations
 #            (full resolution 27 x: about 9,000 triangles), the whole 2 s; the
@@ -27,6 +27,13 @@
 #            models, bhem and rmtr with the barrier; the impulse model is
 #            refused by bhem (self-contact) and rmtr (no response), recorded
 #            as such), OTHER_STEPS steps (default 100)
+#   floor    the accuracy floor: the small full-resolution run again with
+#            E_s perturbed by 2e-8 of itself (method.Es=5000.0001), and its
+#            distance to the unperturbed run (series_dress_floor.csv): how far
+#            two runs of the same mesh drift apart on this scene by round-off-
+#            sized causes alone (the walking skirt's contacts amplify them),
+#            the floor under the adaptive run's accuracy price; needs the
+#            small mode's dress-full record
 #   small-series, large-series  the series (and the small runs' pictures)
 #            from the records or, for runs stopped part-way, from their
 #            checkpoints, as far as they got (run them while none of those
@@ -192,9 +199,14 @@ others)
       2> "$OUT/runs/dress-$m-impulse.refused"
   done
   ;;
+floor)
+  one_run dress-full-perturbed dress "$OUT/records/dress-full-perturbed.h5" $A3 --res 6x28 --set method.adaptive=0 \
+    --set method.Es=5000.0001
+  series dress-full dress-full-perturbed "$OUT/series_dress_floor.csv"
+  ;;
 pictures)
   pictures
   ;;
-*) echo "usage: bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|small-series|large-series|others|pictures]" >&2; exit 2;;
+*) echo "usage: bash bench/sqrt3/dress.sh [SHELLBENCH] [small|large|small-series|large-series|others|floor|pictures]" >&2; exit 2;;
 esac
 python3 bench/sqrt3/report.py "$OUT" > results/sqrt3_report.md
