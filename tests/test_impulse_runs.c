@@ -297,6 +297,58 @@ SB_TEST(record_holds_the_counts)
     unlink(side);
 }
 
+/* A run stopped part-way and resumed counts the collision response over
+ * every step (the counts travel in the checkpoint's /resume/impulse_counts),
+ * equal to the uninterrupted run's, and the broad phase's queries are
+ * recorded (adaptive_sqrt3 with self-contact: the triangle pipeline) */
+SB_TEST(a_resumed_run_counts_every_step)
+{
+    static const char *const rtol[] = { "run.single_step_rtol=1e300" };
+    char path[1024], whole[1100], pieces[1100];
+    CHECK_EQ_INT(impulse_scene("drape_box", 12, 1, 0, path, sizeof path), 0);
+    snprintf(whole, sizeof whole, "%s.whole.h5", path);
+    snprintf(pieces, sizeof pieces, "%s.pieces.h5", path);
+    static const char *const keys[] = { "proximity_impulses", "ccd_tests", "ccd_hits", "ccd_iterations",
+                                        "impact_zones", "unresolved_steps", "counted_steps", "broad_queries",
+                                        "broad_candidates" };
+    sb_run_request req;
+    sb_test_request(&req, path, "adaptive_sqrt3", "linearized", 0);
+    req.sets = rtol;
+    req.n_sets = 1;
+    req.out = whole;
+    int code = -1;
+    json_t *j = sb_test_run_json(&req, &code);
+    CHECK_EQ_INT(code, 0);
+    json_decref(j);
+    req.out = pieces;
+    for (int stop = 5; stop <= 12; stop += 7) {   /* steps 1-5, then 6-12 resumed */
+        req.stop_after_steps = stop < 12 ? stop : 0;
+        req.resume = stop > 5;
+        j = sb_test_run_json(&req, &code);
+        CHECK_EQ_INT(code, stop < 12 ? SB_EXIT_STOPPED : 0);
+        json_decref(j);
+    }
+    for (int k = 0; k < 9; k++) {
+        const long a = read_attr_long(whole, "/final/contact", keys[k]), b = read_attr_long(pieces, "/final/contact", keys[k]);
+        CHECK_MSG(a == b && a >= 0, "/final/contact/%s: uninterrupted %ld, resumed %ld", keys[k], a, b);
+    }
+    CHECK_EQ_INT(read_attr_long(pieces, "/final/contact", "counted_steps"), 12);
+    CHECK(read_attr_long(whole, "/final/contact", "broad_candidates") > read_attr_long(whole, "/final/contact", "ccd_tests") / 100);
+    CHECK(read_attr_long(whole, "/final/contact", "broad_queries") > 0);
+    const char *outs[2] = { whole, pieces };
+    for (int k = 0; k < 2; k++) {
+        char side[1200];
+        unlink(outs[k]);
+        snprintf(side, sizeof side, "%.*s.xdmf", (int)(strlen(outs[k]) - 3), outs[k]);
+        unlink(side);
+        snprintf(side, sizeof side, "%.*s.steps.xdmf", (int)(strlen(outs[k]) - 3), outs[k]);
+        unlink(side);
+        snprintf(side, sizeof side, "%.*s.mesh.xdmf", (int)(strlen(outs[k]) - 3), outs[k]);
+        unlink(side);
+    }
+    unlink(path);
+}
+
 SB_TEST(refusals)
 {
     char path[1024];
@@ -330,6 +382,7 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = { SB_CASE(triangle_methods_keep_vertices_outside),
                                           SB_CASE(folding_strip_on_the_ground),
                                           SB_CASE(runs_record_the_response),
-                                          SB_CASE(record_holds_the_counts), SB_CASE(refusals), SB_END };
+                                          SB_CASE(record_holds_the_counts),
+                                          SB_CASE(a_resumed_run_counts_every_step), SB_CASE(refusals), SB_END };
     return sb_test_main(argc, argv, cases);
 }

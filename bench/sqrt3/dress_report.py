@@ -177,13 +177,16 @@ def collision_detail(size, info):
         if not c and summ:
             c = dict(summ.get("contact") or {}, steps=summ["steps"])
         if not c or not c.get("steps"):
-            out.append("| %s | %s | %s | | | | | | | |" % (size, name, status))
+            out.append("| %s | %s | %s | | | | | | | | | |" % (size, name, status))
             continue
-        s = c["steps"]
-        out.append("| %s | %s | %s | %d | %.2f | %s | %s | %s | %s | %s |" % (
-            size, name, status, s, c.get("ccd_iterations", 0) / s, "{:,}".format(c.get("impact_zones", 0)),
+        s = c.get("counted_steps") or c["steps"]
+        steps = "%d" % c["steps"] if s == c["steps"] else "%d (counts: the last %d)" % (c["steps"], s)
+        out.append("| %s | %s | %s | %s | %.2f | %s | %s | %s | %s | %s | %s | %s |" % (
+            size, name, status, steps, c.get("ccd_iterations", 0) / s, "{:,}".format(c.get("impact_zones", 0)),
             "{:,}".format(c.get("ccd_tests", 0)), "{:,}".format(c.get("ccd_hits", 0)),
-            "{:,}".format(c.get("proximity_impulses", 0)), c.get("unresolved_steps", "—")))
+            "{:,}".format(c.get("proximity_impulses", 0)), c.get("unresolved_steps", "—"),
+            "{:,.0f}".format(c["broad_queries"] / s) if c.get("broad_queries") else "—",
+            "%.1f" % (c["broad_candidates"] / c["broad_queries"]) if c.get("broad_queries") else "—"))
     return out
 
 
@@ -289,10 +292,14 @@ def dress_section(d):
     if detail:
         out += ["", "**Collision handling** (the paper explains its 8.7 x by more CCD passes and impact zones at full "
                 "resolution): per run, over the steps its record holds (a run stopped part-way: up to its last "
-                "checkpoint), CCD passes per step (at most 5, then impact zones), impact zones formed, CCD "
-                "tests after culling, collisions resolved by impulses, proximity impulses, steps left with a collision.",
+                "checkpoint; a run made in pieces by a build before 2026-12-06 counted the steps after its last "
+                "resume only, and the table says how many), CCD passes per step (at most 5, then impact zones), impact zones formed, CCD "
+                "tests after culling, collisions resolved by impulses, proximity impulses, steps left with a collision, "
+                "and the broad phase's spatial-hash queries per step with the primitives each returned (records of "
+                "builds since 2026-12-06).",
                 "", "| size | run | status | steps | CCD passes / step | impact zones | CCD tests | CCD hits | "
-                "proximity impulses | unresolved steps |", "|---|---|---|---|---|---|---|---|---|---|"]
+                "proximity impulses | unresolved steps | hash queries / step | candidates / query |",
+                "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for size, info in detail:
             if "default" not in size:
                 out += collision_detail(size, info)

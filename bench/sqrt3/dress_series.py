@@ -38,6 +38,12 @@ def contact(path):
         if "H5T_STD_I" in block and m:
             out[name] = int(m.group(1))
     out["steps"] = len(numbers(h5(path, "-d", "/history/steps/t")))
+    if "counted_steps" not in out:
+        # a record of a build before the counts travelled in checkpoints:
+        # a resumed run counted the steps after its last resume point only
+        m = re.search(r'"([0-9,]+)"', h5(path, "-a", "/resume_steps")) if "resume_steps" in h5(path, "-A", "-g", "/") else None
+        last = int(m.group(1).split(",")[-1]) if m and m.group(1) else 0
+        out["counted_steps"] = out["steps"] - last
     out["record"] = path
     return out
 

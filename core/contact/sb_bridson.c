@@ -515,6 +515,8 @@ static int sweep(sys *S, int mode)
         for (int b = 0; b < S->nobj; b++) {
             if (S->vobj[p] != 0 && b != 0) continue;
             if (sb_hash_query(&S->th[b], box, S->tstamp, ++S->mark, &S->cand)) return SB_ERR_NOMEM;
+            S->st->broad_queries++;
+            S->st->broad_candidates += S->cand.n;
             for (int k = 0; k < S->cand.n; k++) {
                 const int t = S->cand.v[k];
                 if (!tri_ok(S, p, t)) continue;
@@ -528,6 +530,8 @@ static int sweep(sys *S, int mode)
         if (S->eobj[e] != 0) continue;
         for (int b = 0; b < S->nobj; b++) {
             if (sb_hash_query(&S->eh[b], S->ebox + 6 * e, S->estamp, ++S->mark, &S->cand)) return SB_ERR_NOMEM;
+            S->st->broad_queries++;
+            S->st->broad_candidates += S->cand.n;
             for (int k = 0; k < S->cand.n; k++) {
                 const int f = S->cand.v[k];
                 if (!edge_ok(S, e, f)) continue;

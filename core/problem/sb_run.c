@@ -425,6 +425,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
             }
             if (rc == SB_NONFINITE) reason = SB_REASON_NONFINITE;
             rec->has_impulse = 1;
+            rec->impulse.counted_steps++;
             /* what the response left between its points (issue 37) */
             sb_contact_report cr;
             double spacing;

@@ -79,6 +79,8 @@ void sb_run_mark_boundary(run_state *R, int step)
     b->stats.steps = NULL;
     b->stats.cap_iters = b->stats.cap_steps = 0;
     b->seconds = sb_now() - R->t_start;
+    b->has_impulse = R->rec.has_impulse;
+    b->impulse = R->rec.impulse;
     /* an adaptive method's mesh at the boundary: the next step may adapt
      * before a checkpoint is written (checkpoints are also written mid-step) */
     sb_blob_free(&b->mesh);
@@ -187,6 +189,10 @@ int sb_run_resume(run_state *R, int quiet)
     }
     rec->steps_done = rp.step;
     rec->reason = rp.step > 0 ? rp.stats.steps[rp.step - 1].reason : SB_REASON_NONE;
+    if (rp.has_impulse) {   /* the counts go on from the boundary */
+        rec->has_impulse = 1;
+        rec->impulse = rp.impulse;
+    }
     char item[32];
     snprintf(item, sizeof item, "%d", rp.step);
     rec->resumed = log;

@@ -307,6 +307,9 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
             json_object_set_new(co, "ccd_iterations", json_integer(s->ccd_iterations));
             json_object_set_new(co, "impact_zones", json_integer(s->impact_zones));
             json_object_set_new(co, "unresolved_steps", json_integer(s->unresolved_steps));
+            json_object_set_new(co, "counted_steps", json_integer(s->counted_steps));
+            json_object_set_new(co, "broad_queries", json_integer(s->broad_queries));
+            json_object_set_new(co, "broad_candidates", json_integer(s->broad_candidates));
         }
         json_object_set_new(o, "contact", co);
     }

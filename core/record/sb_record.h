@@ -33,6 +33,11 @@ typedef struct sb_resume_point {
      * boundary (/resume/mesh_ints, /resume/mesh_doubles); has_mesh 0: none */
     int has_mesh;
     sb_blob mesh;
+    /* contact.model = "impulse": the response's counts at the boundary
+     * (/resume/impulse_counts), so that a resumed run's counts cover every
+     * step; has_impulse 0: none (or a checkpoint of an older build) */
+    int has_impulse;
+    sb_impulse_stats impulse;
     /* statistics at the boundary: event counts and seconds per level, work
      * units, not_posdef; history records of steps 1..step (n_iters, n_steps) */
     sb_stats stats;

@@ -59,6 +59,12 @@ int sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp)
     bad |= sb_h5w_dset_dbl(w, g, "chol_flops_sum", 1, d2, s->chol_flops_sum, "flop");
     bad |= sb_h5w_dset_dbl(w, g, "chol_nnz_l_sum", 1, d2, s->chol_nnz_l_sum, "entries");
     bad |= sb_h5w_dset_dbl(w, g, "chol_factorize_cpu", 1, d2, s->chol_factorize_cpu, "s");
+    if (rp->has_impulse) {
+        long a[SB_IMPULSE_N_COUNTS];
+        hsize_t dn = SB_IMPULSE_N_COUNTS;
+        sb_impulse_to_array(&rp->impulse, a);
+        bad |= sb_h5w_dset_long(w, g, "impulse_counts", 1, &dn, a, NULL);
+    }
     if (rp->has_mesh) {
         /* the adaptive method's discretization at the boundary (sb_method.h save_mesh) */
         hsize_t di = (hsize_t)rp->mesh.n_int, dd = (hsize_t)rp->mesh.n_dbl;
@@ -314,6 +320,19 @@ int sb_record_read_resume(const char *path, const sb_run *expect, sb_resume_poin
             rp->mesh.n_dbl = (int)dd;
             rp->has_mesh = 1;
         }
+    }
+    if (!rc && H5Lexists(f, "/resume/impulse_counts", H5P_DEFAULT) > 0) {
+        /* the impulse response's counts (older checkpoints: none, the
+           resumed run then counts its own steps only: counted_steps) */
+        hsize_t dn = 0;
+        long *a = NULL;
+        rc = sb_h5r_dset(&r, f, "/resume/impulse_counts", 1, H5T_NATIVE_LONG, sizeof(long), &dn, (void **)&a);
+        if (!rc && dn != SB_IMPULSE_N_COUNTS) rc = sb_h5r_fail(&r, SB_ERR_INPUT, "impulse counts of the wrong length in", "/resume");
+        if (!rc) {
+            sb_impulse_from_array(&rp->impulse, a);
+            rp->has_impulse = 1;
+        }
+        free(a);
     }
     if (!rc && ((!rp->has_mesh && dx != (hsize_t)expect->n_dofs) || dv != dx || dx > (hsize_t)INT32_MAX))
         rc = sb_h5r_fail(&r, SB_ERR_INPUT, "state of the wrong length in", "/resume");

@@ -404,6 +404,9 @@ static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
         bad |= sb_h5w_attr_long(w, g, "ccd_iterations", s->ccd_iterations);
         bad |= sb_h5w_attr_long(w, g, "impact_zones", s->impact_zones);
         bad |= sb_h5w_attr_long(w, g, "unresolved_steps", s->unresolved_steps);
+        bad |= sb_h5w_attr_long(w, g, "counted_steps", s->counted_steps);
+        bad |= sb_h5w_attr_long(w, g, "broad_queries", s->broad_queries);
+        bad |= sb_h5w_attr_long(w, g, "broad_candidates", s->broad_candidates);
     }
     H5Gclose(g);
     return bad ? -1 : 0;
