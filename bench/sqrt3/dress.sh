@@ -175,6 +175,10 @@ large)
     [ -s "$OUT/runs/$tag.json" ] && rm -f "$OUT/runs/$tag.steps"
   done
   series dress-large-full dress-large-adaptive "$OUT/series_dress_large.csv"
+  for s in 80 230 400; do   # the pictures of both finished runs
+    [ -s "$OUT/runs/dress-large-full.json" ] && picture dress-large-full dress_large $s
+    [ -s "$OUT/runs/dress-large-adaptive.json" ] && picture dress-large-adaptive dress_large $s
+  done
   ;;
 small-series)   # the small runs' series and pictures as far as they got (stop them first)
   series dress-full dress-adaptive "$OUT/series_dress.csv"
