@@ -309,6 +309,14 @@ def dress_section(d):
                                     "{:,}".format(ca_.get("impact_zones", 0)), "{:,}".format(cf_.get("impact_zones", 0)),
                                     "more than make up for" if ca_["broad_queries"] > 1.1 * cf_["broad_queries"]
                                     else "make up for"))
+                un = [(nm, c) for nm, c in (("full", cf_), ("adaptive", ca_)) if c.get("unresolved_steps")]
+                if un:
+                    out[-1] += ("  **Collisions left unresolved**: %s of the counted steps ended with a collision "
+                                "that the response could not remove (five CCD passes, then up to 100 impact-zone "
+                                "passes); the cloth crosses itself or the body there.  The runs' status is the "
+                                "solver's (`converged`): read these rows with that count." % " and ".join(
+                                    "%d of %d (%s)" % (c["unresolved_steps"], c.get("counted_steps") or c["steps"], nm)
+                                    for nm, c in un))
                 if info["pa"]["step"] > info["pf"]["step"]:
                     out[-1] += ("  **The adaptive run is slower than the full one** here (%.2f x its time a step): its "
                                 "mesh is only %.2f x smaller on average and its collision handling costs %.2f x the "
