@@ -153,6 +153,12 @@ def summary_rows(d):
                            "; floor %s (%s)" % (fmt(fl["mean"]), fmt(fl["largest"])) if fl else "")
     diff = ("%s: our circle skirt on a walking body of capsules, %.0f triangles full (paper 66,636), impulses with "
             "self-contact, CHOLMOD; wall clock on a shared machine" % (size, pf["tri"]))
+    csv_name = [c for sz, _, _, c, _ in SIZES if sz == size][0]
+    cc = contact_counts(d, csv_name)
+    un = [(nm, cc[nm]) for nm in ("full", "adaptive") if (cc.get(nm) or {}).get("unresolved_steps")]
+    if un:
+        diff += "; **collisions left unresolved** in %s counted steps" % " and ".join(
+            "%d of %d (%s)" % (c["unresolved_steps"], c.get("counted_steps") or c["steps"], nm) for nm, c in un)
     sp = lambda k: pf[k] / pa[k] if pa[k] > 0 else float("nan")
     out = ["| Fig. 10 dress | mesh reduction (full / adaptive triangles) | 1.78 x | %.2f x | %.2f | %s | %s |" % (
                pf["tri"] / pa["tri"], pf["tri"] / pa["tri"] / 1.78, diff, price)]
