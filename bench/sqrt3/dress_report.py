@@ -357,7 +357,7 @@ def dress_section(d):
                     "over time) is this scene's sensitivity, which any change of mesh, solver or machine would "
                     "show, and the adaptivity's own price is the excess above it (%.2f x the floor).  The curtain "
                     "(sections above) does not amplify differences this way: its price at the paper's size, "
-                    "0.0018, is two orders of magnitude smaller; the cloth over the sphere's (0.02) was not "
+                    "0.0018, is about 75 times smaller; the cloth over the sphere's (0.02) was not "
                     "measured against a floor." % (
                         fmt(fl["mean"]), fmt(fl["largest"]), fmt(fl["max"]), fmt(sum(rms) / len(rms)),
                         fmt(max(rms)), 100 * fl["mean"] / (sum(rms) / len(rms)), (sum(rms) / len(rms)) / fl["mean"])]
