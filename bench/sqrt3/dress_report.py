@@ -347,6 +347,9 @@ def dress_section(d):
         fl = floor(d, len(rows))
         if fl:
             rms = [r["rms"] for r in rows if math.isfinite(r["rms"])]
+            cur = [r.get("rms_adaptive") for r in series(d, "series_curtain_paper.csv")]
+            cur = [x for x in cur if x is not None and math.isfinite(x)]
+            curtain = sum(cur) / len(cur) if cur else None   # the curtain's price at the paper's size
             out += ["", "**The accuracy floor** (`bash bench/sqrt3/dress.sh … floor`): the small full-resolution run "
                     "made again with E_s = 5000.0001 instead of 5000 N/m (2e-8 of itself, far below any modelling "
                     "error) drifts from the unperturbed run by an RMS distance of %s of the diameter on average over "
@@ -357,10 +360,10 @@ def dress_section(d):
                     "over time) is this scene's sensitivity, which any change of mesh, solver or machine would "
                     "show, and the adaptivity's own price is the excess above it (%.2f x the floor).  The curtain "
                     "(sections above) does not amplify differences this way: its price at the paper's size, "
-                    "0.0018, is about 75 times smaller; the cloth over the sphere's (0.02) was not "
-                    "measured against a floor." % (
+                    "%s, is %s times smaller; the cloth over the sphere's was not measured against a floor." % (
                         fmt(fl["mean"]), fmt(fl["largest"]), fmt(fl["max"]), fmt(sum(rms) / len(rms)),
-                        fmt(max(rms)), 100 * fl["mean"] / (sum(rms) / len(rms)), (sum(rms) / len(rms)) / fl["mean"])]
+                        fmt(max(rms)), 100 * fl["mean"] / (sum(rms) / len(rms)), (sum(rms) / len(rms)) / fl["mean"],
+                        fmt(curtain), "%.0f" % ((sum(rms) / len(rms)) / curtain) if curtain else "—")]
         out += ["", "**Over time** (%s): triangles and the accuracy price (distance to the full run / 1.2 m)%s." % (
                     detail[0][0], ", beside the floor (distance between the two full runs)" if fl else ""),
                 "", "| t (s) | triangles adaptive | triangles full | RMS distance | max distance |%s" % (
