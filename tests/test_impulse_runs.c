@@ -17,6 +17,7 @@
 #include "run_json.h"
 #include "sb_context.h"
 #include "sb_impulse.h"
+#include "sb_record_io.h"
 #include "sb_run.h"
 #include "sb_run_state.h"
 #include "sb_solver.h"
@@ -297,6 +298,49 @@ SB_TEST(record_holds_the_counts)
     unlink(side);
 }
 
+/* A checkpoint whose /resume/impulse_counts has the wrong length (a copy
+ * of the real one, rewritten) is refused as input before any step, with a
+ * sentence naming the file and the group; the real one is left alone */
+static void bad_counts_are_refused(sb_test_state *T, sb_run_request *req, const char *out)
+{
+    char bad[1200], bad_partial[1300], good_partial[1300], cmd[3000];
+    snprintf(bad, sizeof bad, "%s.bad.h5", out);
+    snprintf(bad_partial, sizeof bad_partial, "%s.partial", bad);
+    snprintf(good_partial, sizeof good_partial, "%s.partial", out);
+    snprintf(cmd, sizeof cmd, "cp '%s' '%s'", good_partial, bad_partial);
+    CHECK_EQ_INT(system(cmd), 0);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    hid_t f = H5Fopen(bad_partial, H5F_ACC_RDWR, H5P_DEFAULT);
+    CHECK(f >= 0);
+    if (f < 0) return;
+    CHECK(H5Ldelete(f, "/resume/impulse_counts", H5P_DEFAULT) >= 0);
+    hsize_t n = 3;
+    long three[3] = { 1, 2, 3 };
+    hid_t sp = H5Screate_simple(1, &n, NULL);
+    hid_t d = H5Dcreate2(f, "/resume/impulse_counts", H5T_NATIVE_LONG, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    CHECK(d >= 0 && H5Dwrite(d, H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, three) >= 0);
+    H5Dclose(d);
+    H5Sclose(sp);
+    H5Fclose(f);
+    char msg[512];
+    CHECK_EQ_INT(sb_record_seal(bad_partial, msg, sizeof msg), 0);   /* sealed again: a well-formed file, wrong content */
+    const char *keep = req->out;
+    req->out = bad;
+    char *err = NULL, *js = NULL;
+    size_t len = 0;
+    FILE *es = open_memstream(&err, &len), *devnull = fopen("/dev/null", "w");
+    const int code = sb_run_execute(req, devnull, es, &js);
+    fclose(es);
+    if (devnull) fclose(devnull);
+    CHECK_EQ_INT(code, SB_EXIT_INPUT);
+    CHECK_MSG(err && strstr(err, "impulse counts of the wrong length") && strstr(err, bad_partial),
+              "message: %s", err ? err : "(none)");
+    free(js);
+    free(err);
+    req->out = keep;
+    unlink(bad_partial);
+}
+
 /* A run stopped part-way and resumed counts the collision response over
  * every step (the counts travel in the checkpoint's /resume/impulse_counts),
  * equal to the uninterrupted run's, and the broad phase's queries are
@@ -324,6 +368,7 @@ SB_TEST(a_resumed_run_counts_every_step)
     for (int stop = 5; stop <= 12; stop += 7) {   /* steps 1-5, then 6-12 resumed */
         req.stop_after_steps = stop < 12 ? stop : 0;
         req.resume = stop > 5;
+        if (stop > 5) bad_counts_are_refused(T, &req, pieces);
         j = sb_test_run_json(&req, &code);
         CHECK_EQ_INT(code, stop < 12 ? SB_EXIT_STOPPED : 0);
         json_decref(j);

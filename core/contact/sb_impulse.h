@@ -17,8 +17,13 @@ typedef struct sb_impulse_stats {
     long broad_candidates;     /*   primitives they returned (overlapping boxes), before the narrow phase */
 } sb_impulse_stats;
 
-/* the counts in a fixed order, for the checkpoint's /resume/impulse_counts */
+/* the counts in a fixed order: the checkpoint's /resume/impulse_counts,
+ * and the names under which /final/contact and the summary's `contact`
+ * object hold them */
 enum { SB_IMPULSE_N_COUNTS = 9 };
+static const char *const sb_impulse_count_names[SB_IMPULSE_N_COUNTS] = {
+    "proximity_impulses", "ccd_tests", "ccd_hits", "ccd_iterations", "impact_zones", "unresolved_steps",
+    "counted_steps", "broad_queries", "broad_candidates" };
 static inline void sb_impulse_to_array(const sb_impulse_stats *s, long a[SB_IMPULSE_N_COUNTS])
 {
     a[0] = s->proximity_impulses; a[1] = s->ccd_tests; a[2] = s->ccd_hits; a[3] = s->ccd_iterations;

@@ -299,17 +299,11 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
         if (R->rec.contact_stop[0]) json_object_set_new(co, "stopped", json_string(R->rec.contact_stop));
         if (R->rec.contact_coverage[0]) json_object_set_new(co, "coverage", json_string(R->rec.contact_coverage));
         if (R->rec.has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
-            const sb_impulse_stats *s = &R->rec.impulse;
+            long a[SB_IMPULSE_N_COUNTS];
+            sb_impulse_to_array(&R->rec.impulse, a);
             json_object_set_new(co, "model", json_string("impulse"));
-            json_object_set_new(co, "proximity_impulses", json_integer(s->proximity_impulses));
-            json_object_set_new(co, "ccd_tests", json_integer(s->ccd_tests));
-            json_object_set_new(co, "ccd_hits", json_integer(s->ccd_hits));
-            json_object_set_new(co, "ccd_iterations", json_integer(s->ccd_iterations));
-            json_object_set_new(co, "impact_zones", json_integer(s->impact_zones));
-            json_object_set_new(co, "unresolved_steps", json_integer(s->unresolved_steps));
-            json_object_set_new(co, "counted_steps", json_integer(s->counted_steps));
-            json_object_set_new(co, "broad_queries", json_integer(s->broad_queries));
-            json_object_set_new(co, "broad_candidates", json_integer(s->broad_candidates));
+            for (int k = 0; k < SB_IMPULSE_N_COUNTS; k++)
+                json_object_set_new(co, sb_impulse_count_names[k], json_integer(a[k]));
         }
         json_object_set_new(o, "contact", co);
     }

@@ -396,17 +396,10 @@ static int write_contact(sb_h5w *w, hid_t final, const sb_run *r)
     if (r->contact_stop[0]) bad |= sb_h5w_attr_str(w, g, "stopped", r->contact_stop);
     if (r->contact_coverage[0]) bad |= sb_h5w_attr_str(w, g, "coverage", r->contact_coverage);
     if (r->has_impulse) {   /* contact.model = "impulse" (sb_impulse.h) */
-        const sb_impulse_stats *s = &r->impulse;
+        long a[SB_IMPULSE_N_COUNTS];
+        sb_impulse_to_array(&r->impulse, a);
         bad |= sb_h5w_attr_str(w, g, "model", "impulse");
-        bad |= sb_h5w_attr_long(w, g, "proximity_impulses", s->proximity_impulses);
-        bad |= sb_h5w_attr_long(w, g, "ccd_tests", s->ccd_tests);
-        bad |= sb_h5w_attr_long(w, g, "ccd_hits", s->ccd_hits);
-        bad |= sb_h5w_attr_long(w, g, "ccd_iterations", s->ccd_iterations);
-        bad |= sb_h5w_attr_long(w, g, "impact_zones", s->impact_zones);
-        bad |= sb_h5w_attr_long(w, g, "unresolved_steps", s->unresolved_steps);
-        bad |= sb_h5w_attr_long(w, g, "counted_steps", s->counted_steps);
-        bad |= sb_h5w_attr_long(w, g, "broad_queries", s->broad_queries);
-        bad |= sb_h5w_attr_long(w, g, "broad_candidates", s->broad_candidates);
+        for (int k = 0; k < SB_IMPULSE_N_COUNTS; k++) bad |= sb_h5w_attr_long(w, g, sb_impulse_count_names[k], a[k]);
     }
     H5Gclose(g);
     return bad ? -1 : 0;
