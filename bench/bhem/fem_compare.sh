@@ -25,7 +25,10 @@
 # "large" is the FEM wrinkle amplitude toward the paper's 130k vertices
 # (Fig. 17): 320x128 (41k vertices), 480x192 (93k) and 570x228 (130k);
 # each needs more than 20 CPU-minutes on this machine: run them one at a
-# time with --max-runs 1 (each call does the next missing one).
+# time with --max-runs 1 (each call does the next missing one).  A run
+# stopped part way goes on from its checkpoint (FILE.h5.partial, written
+# every run.checkpoint = 300 s) when the script is called again; the CPU
+# seconds of a piece that was killed are not counted.
 set -u
 BIN=${1:-build/shellbench}
 MODE=${2:-all}
@@ -51,11 +54,21 @@ run() {
   else
     [ "$done_runs" -ge "$MAX_RUNS" ] && return 0
     done_runs=$((done_runs + 1))
-    echo "== $tag: $method $scene --res $res $*" >&2
-    /usr/bin/time -f '%U %S' -o "$OUT/$tag.cpu" \
+    # a run stopped earlier goes on from its checkpoint (written every
+    # run.checkpoint seconds); its CPU seconds add up across the pieces
+    local resume=() cpu0="0 0"
+    if [ -s "$OUT/$tag.h5.partial" ]; then
+      resume=(--resume)
+      [ -s "$OUT/$tag.cpu" ] && cpu0=$(tail -n 1 "$OUT/$tag.cpu")
+    fi
+    echo "== $tag: $method $scene --res $res $* ${resume[*]}" >&2
+    /usr/bin/time -f '%U %S' -o "$OUT/$tag.cpu.new" \
       "$BIN" run --scene "$scene" --method "$method" --solver lsnewton --res "$res" --out "$OUT/$tag.h5" \
-      --summary json "$@" > "$OUT/$tag.json" 2> "$OUT/$tag.log"
+      --summary json "${resume[@]}" "$@" > "$OUT/$tag.json" 2>> "$OUT/$tag.log"
     echo "   exit $?" >&2
+    # user and system seconds of every piece so far, one line
+    echo "$cpu0 $(tail -n 1 "$OUT/$tag.cpu.new")" | awk '{ printf "%.2f %.2f\n", $1 + $3, $2 + $4 }' > "$OUT/$tag.cpu"
+    rm -f "$OUT/$tag.cpu.new"
   fi
   # the profile tool takes the run's method options (not the solver's)
   local sets=() a prev=
