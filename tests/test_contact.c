@@ -604,6 +604,35 @@ SB_TEST(crossing_between_sample_points_is_said)
               "cloth_sphere: exit %d, %s", rc, out);
 }
 
+/* A run whose impulse response leaves collisions is not converged: the left
+ * edge is driven down through a fixed box, and the response cannot move
+ * prescribed vertices (infinite mass), so every step ends with the edge
+ * inside the box.  Reason contact_unresolved, exit 1, the count in the
+ * summary and a sentence on stderr; with run.contact_unresolved_max = -1
+ * the count is recorded but not judged. */
+SB_TEST(unresolved_collisions_are_not_converged)
+{
+    static const char *const methods[] = { "bhem --solver lsnewton", "linear_fem --solver lsnewton",
+                                           "adaptive_sqrt3 --solver linearized --set run.single_step_rtol=1e300" };
+    for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++) {
+        char out[16384] = "", err[4096] = "";
+        int rc = sb_sh(out, sizeof out, err, sizeof err,
+                       "cd '%s' && '%s' run --scene tests/scenes/contact/pinned_through_box_impulse.json --method %s "
+                       "--out none --summary json", sb_test_root(), sb_test_bin(), methods[i]);
+        CHECK_MSG(rc == 1, "%s: exit %d, %s %s", methods[i], rc, out, err);
+        CHECK_MSG(strstr(out, "\"reason\": \"contact_unresolved\"") != NULL, "%s: %s", methods[i], out);
+        CHECK_MSG(strstr(out, "\"unresolved_steps\": 2") != NULL, "%s: %s", methods[i], out);
+        CHECK_MSG(strstr(err, "2 of 2 steps ended with a collision the impulse response left unresolved") != NULL,
+                  "%s: %s", methods[i], err);
+        rc = sb_sh(out, sizeof out, err, sizeof err,
+                   "cd '%s' && '%s' run --scene tests/scenes/contact/pinned_through_box_impulse.json --method %s "
+                   "--out none --summary json --set run.contact_unresolved_max=2", sb_test_root(), sb_test_bin(),
+                   methods[i]);
+        CHECK_MSG(rc == 0 && strstr(out, "\"status\": \"converged\""), "%s, 2 allowed: exit %d, %s %s", methods[i],
+                  rc, out, err);
+    }
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
@@ -613,7 +642,9 @@ int main(int argc, char **argv)
         SB_CASE(resume_with_contact_is_bit_identical), SB_CASE(moving_obstacle_lifts_and_drags_a_point),
         SB_CASE(obstacle_moving_through_the_cloth_is_caught_barrier),
         SB_CASE(obstacle_moving_through_the_cloth_is_caught_impulse),
-        SB_CASE(cloth_starting_inside_an_obstacle_is_refused), SB_CASE(crossing_between_sample_points_is_said), SB_END
+        SB_CASE(cloth_starting_inside_an_obstacle_is_refused), SB_CASE(crossing_between_sample_points_is_said),
+        SB_CASE(unresolved_collisions_are_not_converged), SB_END
     };
     return sb_test_main(argc, argv, cases);
 }
+

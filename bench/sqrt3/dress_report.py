@@ -157,7 +157,7 @@ def summary_rows(d):
     cc = contact_counts(d, csv_name)
     un = [(nm, cc[nm]) for nm in ("full", "adaptive") if (cc.get(nm) or {}).get("unresolved_steps")]
     if un:
-        diff += "; **collisions left unresolved** in %s counted steps" % " and ".join(
+        diff += "; **not converged: collisions left unresolved** (contact_unresolved) in %s counted steps" % " and ".join(
             "%d of %d (%s)" % (c["unresolved_steps"], c.get("counted_steps") or c["steps"], nm) for nm, c in un)
     sp = lambda k: pf[k] / pa[k] if pa[k] > 0 else float("nan")
     out = ["| Fig. 10 dress | mesh reduction (full / adaptive triangles) | 1.78 x | %.2f x | %.2f | %s | %s |" % (
@@ -179,7 +179,7 @@ def collision_detail(size, info):
     out = []
     for name, key, summ in (("full", "full", info["f"]), ("adaptive", "adaptive", info["a"])):
         c = info["counts"].get(key)
-        status = "%s (%s)" % (summ["status"], summ["reason"]) if summ else "stopped part-way (checkpoint)"
+        status = judged_status(summ, c) if summ else "stopped part-way (checkpoint)"
         if not c and summ:
             c = dict(summ.get("contact") or {}, steps=summ["steps"])
         if not c or not c.get("steps"):
@@ -194,6 +194,18 @@ def collision_detail(size, info):
             "{:,.0f}".format(c["broad_queries"] / s) if c.get("broad_queries") else "—",
             "%.1f" % (c["broad_candidates"] / c["broad_queries"]) if c.get("broad_queries") else "—"))
     return out
+
+
+def judged_status(summ, counts):
+    """The run's status under today's rule: a run whose impulse response left
+    collisions in more than run.contact_unresolved_max (default 0) steps is
+    not converged (reason contact_unresolved, since 2026-12-06).  A record
+    made before the rule says `converged`; the report judges it by its count."""
+    un = (counts or summ.get("contact") or {}).get("unresolved_steps") or 0
+    if summ["status"] == "converged" and un > 0:
+        return "**not converged** (contact_unresolved: judged here; the record predates the rule and says %s)" % (
+            summ["reason"])
+    return "%s (%s)" % (summ["status"], summ["reason"])
 
 
 def others(d):
@@ -319,8 +331,10 @@ def dress_section(d):
                 if un:
                     out[-1] += ("  **Collisions left unresolved**: %s of the counted steps ended with a collision "
                                 "that the response could not remove (five CCD passes, then up to 100 impact-zone "
-                                "passes); the cloth crosses itself or the body there.  The runs' status is the "
-                                "solver's (`converged`): read these rows with that count." % " and ".join(
+                                "passes); the cloth crosses itself or the body there.  Under the rule of 2026-12-06 "
+                                "(run.contact_unresolved_max = 0: a run that leaves collisions is not converged) "
+                                "these runs are **not converged** (contact_unresolved); their records, made "
+                                "before the rule, say `converged`." % " and ".join(
                                     "%d of %d (%s)" % (c["unresolved_steps"], c.get("counted_steps") or c["steps"], nm)
                                     for nm, c in un))
                 if info["pa"]["step"] > info["pf"]["step"]:

@@ -21,6 +21,7 @@ static const char *const reason_names[SB_REASON_COUNT] = {
     [SB_REASON_STRAIN] = "strain_bound",
     [SB_REASON_SINGLE_STEP_RESIDUAL] = "single_step_residual",
     [SB_REASON_OBSTACLE_SWEPT] = "obstacle_swept",
+    [SB_REASON_CONTACT_UNRESOLVED] = "contact_unresolved",
 };
 
 const char *sb_reason_name(sb_reason r)

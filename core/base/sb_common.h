@@ -58,6 +58,9 @@ typedef enum {
                                 sample point (or overruns it): the barrier, which sees the obstacle at
                                 the step's end only, cannot keep the cloth on its side; the step is
                                 not solved (NOT converged; docs/contact.md) */
+    SB_REASON_CONTACT_UNRESOLVED, /* contact.model = impulse: more than run.contact_unresolved_max steps
+                                ended with a collision the response could not resolve (the cloth
+                                crosses itself or an obstacle in the state recorded; NOT converged) */
     SB_REASON_COUNT
 } sb_reason;
 

@@ -529,6 +529,7 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
         }
         sb_run_judge_penalty(R);
     }
+    sb_run_judge_contact(R);
     sb_run_potential_change(R);
     sb_run_contact_coverage(R);
     sb_run_record_material(R);
@@ -572,6 +573,11 @@ static int finish_run(run_state *R, const sb_run_request *req, const char *out_p
                 stats->seconds_total, out_path ? ", record " : "", out_path ? out_path : "");
     if (!req->quiet && rec->has_between && rec->contact_steps_between > 0)
         fprintf(err, "shellbench: warning: %s\n", rec->contact_coverage);
+    if (!req->quiet && rec->reason == SB_REASON_CONTACT_UNRESOLVED)
+        fprintf(err, "shellbench: %ld of %ld steps ended with a collision the impulse response left unresolved "
+                     "(run.contact_unresolved_max = %g): the recorded states cross themselves or an obstacle\n",
+                rec->impulse.unresolved_steps, rec->impulse.counted_steps,
+                sb_param(&R->ctx.params, "run.contact_unresolved_max"));
     if (ref_refused) return SB_EXIT_INPUT;   /* the record is kept, without an error */
     if (rec->status) return SB_EXIT_NOT_CONVERGED;
     if (req->strict && rec->validation == SB_VALIDATION_FAILED) {

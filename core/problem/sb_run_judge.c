@@ -70,6 +70,16 @@ void sb_run_judge_penalty(run_state *R)
     }
 }
 
+void sb_run_judge_contact(run_state *R)
+{
+    sb_run *rec = &R->rec;
+    if (!rec->has_impulse || rec->status != 0) return;
+    const double allowed = sb_param(&R->ctx.params, "run.contact_unresolved_max");
+    if (allowed < 0 || (double)rec->impulse.unresolved_steps <= allowed) return;
+    rec->status = 1;
+    rec->reason = SB_REASON_CONTACT_UNRESOLVED;
+}
+
 /* Phi_E(x_final) - Phi_E(X) (sb_record.h): the method's energy at the final
  * state and at the reference configuration, both with the last step's loads
  * and boundary data (the problem's current step).  Two energy evaluations,

@@ -124,6 +124,10 @@ sb_reason sb_run_judge_step(run_state *R, sb_reason reason);
  * run.penalty_tol times the displacement scale becomes not converged
  * (SB_REASON_PENALTY).  Needs rec->sample_pos of the final state. */
 void sb_run_judge_penalty(run_state *R);
+/* contact.model = impulse: a run whose response left collisions in more
+ * than run.contact_unresolved_max steps is not converged (reason
+ * contact_unresolved): its recorded states cross themselves or an obstacle. */
+void sb_run_judge_contact(run_state *R);
 /* The expected probe values judged (sb_validation.c): rec->checks,
  * rec->validation, probe_rel_error.  SB_OK or SB_ERR_NOMEM. */
 int  sb_run_validate(run_state *R);

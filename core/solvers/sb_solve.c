@@ -42,6 +42,10 @@ const sb_param_def sb_solve_params[] = {
       "a run whose penalty-imposed constraints are violated by more than penalty_tol times the displacement "
       "scale at its end is not converged (reason penalty_violated; methods with penalty constraints; 0 = recorded, "
       "not judged)" },
+    { "contact_unresolved_max", SB_PARAM_INT, 0, -1, 1e9, NULL,
+      "contact.model = impulse: a run in which more than this many steps ended with a collision the response "
+      "left unresolved is not converged at its end (reason contact_unresolved; the run goes on to its last "
+      "step; -1 = recorded, not judged)" },
     { "max_iter", SB_PARAM_INT, 10000, 1, 1e9, NULL, "iteration cap per step" },
     { "diverge", SB_PARAM_REAL, 1e6, 1, 1e300, NULL,
       "diverged when max|x - x_0| exceeds diverge * (1 + max|x_0|)" },
