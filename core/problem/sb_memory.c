@@ -165,7 +165,8 @@ int sb_memory_check_method(const sb_method_type *mt, const sb_scene *scene, cons
         return SB_ERR_INPUT;
     }
     sb_memory_run rl = *r;
-    if (!rl.lifts) rl.lifts = sb_memory_scene_lifts(scene, cfg->params);
+    /* penalty methods have no constrained dofs: nothing to lift (sb_problem_lift) */
+    if (!rl.lifts && !(mt->flags & SB_METHOD_PENALTY_BCS)) rl.lifts = sb_memory_scene_lifts(scene, cfg->params);
     sb_memory_estimate_run(&sz, &rl, &est);
     *bytes = est.bytes;
     return sb_memory_check(&sz, &est, limit_bytes, what, err, errlen);

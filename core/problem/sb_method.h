@@ -31,8 +31,11 @@ enum {
     SB_METHOD_TEST_FIXTURE = 1u << 2, /* test fixture, not a real discretization */
     SB_METHOD_RES_ST = 1u << 3,       /* honours sb_method_config.res_t (--res NxM) */
     SB_METHOD_IMPULSE_SELF = 1u << 4, /* impulse_response also resolves self-collision (contact.self) */
-    SB_METHOD_NODAL_DERIVATIVES = 1u << 5 /* nodes carry first derivatives as generalized coordinates
+    SB_METHOD_NODAL_DERIVATIVES = 1u << 5, /* nodes carry first derivatives as generalized coordinates
                                               (Hermite): honours a moving bc's "derivative" key */
+    SB_METHOD_PENALTY_BCS = 1u << 6   /* every boundary condition by penalty (dirichlet() is NULL): no
+                                         constrained dofs, so no lifting of boundary motion (its
+                                         factorization is not in the memory estimate) */
 };
 
 /* The most terms point_terms may return (16 Hermite/B-spline functions). */

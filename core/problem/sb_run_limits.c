@@ -57,7 +57,8 @@ static void run_size(const run_state *R, sb_memory_run *mr)
     mr->sample_n = R->n_grid;
     mr->multilevel = (R->stype->flags & SB_SOLVER_NEEDS_HIERARCHY) != 0;
     mr->supernodes = sb_param_int_or(&R->ctx.params, "run.supernodes", SB_SUPERNODES_CHOLMOD);
-    mr->lifts = !(R->stype->flags & SB_SOLVER_SINGLE_STEP) && sb_memory_scene_lifts(&R->scene, &R->ctx.params);
+    mr->lifts = !(R->stype->flags & SB_SOLVER_SINGLE_STEP) && !(R->mt->flags & SB_METHOD_PENALTY_BCS) &&
+                sb_memory_scene_lifts(&R->scene, &R->ctx.params);
 }
 
 /* "--res 8" or "--res 8x4096": the resolution as the user gave it */
