@@ -335,15 +335,15 @@ def goals(rows, g1):
             "give every size." % (len(big), ", ".join("%d" % n for n in sorted({r["n_dofs"] for r in big}))), "",
             "| goal | runs | met | missed | worst (run) |", "|---|--:|--:|--:|---|"]
 
-    def line(name, items, ok, fmt):
-        """items: (value, label); ok(value) -> bool"""
+    def line(name, items, ok, fmt, far=lambda v: abs(math.log(max(v, 1e-300)))):
+        """items: (value, label); ok(value) -> bool; far(value): how far from the goal (the worst run is the
+        farthest of the missed ones, else of all)"""
         items = [(v, l) for v, l in items if math.isfinite(v)]
         if not items:
             out.append("| %s | 0 | — | — | — |" % name)
             return
         bad = [(v, l) for v, l in items if not ok(v)]
-        worst = min(items, key=lambda x: (ok(x[0]), -abs(math.log(max(x[0], 1e-300)))))
-        worst = bad[0] if bad else worst
+        worst = max(bad or items, key=lambda x: far(x[0]))
         out.append("| %s | %d | %d | %d | %s (%s) |" % (name, len(items), len(items) - len(bad), len(bad),
                                                        fmt(worst[0]), worst[1]))
     lab = lambda r: "%s %s %d" % (r["scene"], r["config"], r["n_dofs"])
@@ -353,12 +353,25 @@ def goals(rows, g1):
           and r["solver"] in ("lsnewton", "tr")]
     line("CHOLMOD's numeric factorization ≥ 1/2 the one-core DGEMM rate (lsnewton, tr; no indefinite "
          "factorization; per CPU second, or per wall second for records before format 4)", fr, lambda v: v >= 0.5, lambda v: "%.0f %%" % (100 * v))
-    hs = [(r["harness"] / r["seconds_total"], lab(r)) for r in big if r["seconds_total"] > 0]
-    line("harness overhead (record, samples, checkpoint, progress, error) ≤ 3 % of the run", hs,
-         lambda v: v <= 0.03, lambda v: "%.1f %%" % (100 * v))
-    me = [(own_ratio(r), lab(r)) for r in big if r["own_peak"]]
-    line("memory estimate within 30 % of the measured peak (runs with their own peak)", me,
-         lambda v: abs(v - 1) <= 0.3, lambda v: "estimate/peak %.2f" % v)
+    # a run that never iterated on its finest level (rmtr whose cap went to the nested start's coarser
+    # tops) neither holds nor works on the finest level's structures: its peak and its harness share are
+    # not those of a run of its size, so the two goals below leave it out and say so
+    fine = [r for r in big if r.get("iters_finest", 1) > 0]
+    hs = [(r["harness"] / r["seconds_total"], lab(r)) for r in fine if r["seconds_total"] > 0]
+    line("harness overhead (record, samples, checkpoint, progress, error) ≤ 3 % of the run (runs that "
+         "iterated on their finest level)", hs, lambda v: v <= 0.03, lambda v: "%.1f %%" % (100 * v), lambda v: v)
+    me = [(own_ratio(r), lab(r)) for r in fine if r["own_peak"]]
+    line("memory estimate within 30 % of the measured peak (runs with their own peak that iterated on their "
+         "finest level)", me, lambda v: abs(v - 1) <= 0.3, lambda v: "estimate/peak %.2f" % v)
+    coarse = [r for r in big if r.get("iters_finest", 1) == 0]
+    if coarse:
+        out += ["", "Left out of these two goals: %s — each spent its whole iteration cap in the nested start's "
+                "V-cycles on coarser tops and never iterated on its finest level (harness share %s, estimate/peak "
+                "%s: the estimate is for the whole run, which holds the finest level's smoother and "
+                "Galerkin structures, never set up here)." % (
+                    "; ".join(lab(r) for r in coarse),
+                    ", ".join("%.1f %%" % (100 * r["harness"] / r["seconds_total"]) for r in coarse),
+                    ", ".join("%.2f" % own_ratio(r) for r in coarse))]
     inh = sum(1 for r in big if not r["own_peak"])
     if inh:
         out += ["", "%d runs of ≥ 1e5 dofs were recorded before a sweep reset its runs' peak memory: their "
