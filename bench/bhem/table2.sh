@@ -23,12 +23,15 @@
 #   (e.g. method.imperfection=2e-5); when a row finishes, its summary,
 #   digest and picture go to results/bhem/table2/large/ and
 #   results/bhem/images/table2_large_ROW.png.
-# Rows: ball umbrella can cans_h05 cans_h1 cans_h2 armadillo (default all).
+# Rows: ball umbrella can cans_h05 cans_h1 cans_h2 armadillo (default all),
+# and the can's two diagnostics can_dt1ms and can_slow (why the can stalls:
+# the rim moving 0.2 mm a step instead of 0.4 mm, by a halved dt or a
+# halved rim speed; docs/bhem_table2.md).
 set -u
 BIN=${1:-build/shellbench}
 MODE=${2:-paper}
 shift 2 2>/dev/null || shift $#
-ROWS=${*:-ball umbrella can cans_h05 cans_h1 cans_h2 armadillo}
+ROWS=${*:-ball umbrella can cans_h05 cans_h1 cans_h2 armadillo can_dt1ms can_slow}
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$ROOT"
 OUT=results/bhem/table2
@@ -45,6 +48,8 @@ row_args() {
     ball) echo "$SC/ball_drape.json 30 250" ;;
     umbrella) echo "$SC/umbrella_fold.json 5x280 300" ;;
     can) echo "$SC/can_crush.json 20 75" ;;
+    can_dt1ms) echo "$SC/can_crush_dt1ms.json 20 150" ;;
+    can_slow) echo "$SC/can_crush_slow.json 20 150" ;;
     cans_h05) echo "$SC/cans_mandrel_h05.json 30 100" ;;
     cans_h1) echo "$SC/cans_mandrel_h1.json 30 100" ;;
     cans_h2) echo "$SC/cans_mandrel_h2.json 30 100" ;;
@@ -54,7 +59,7 @@ row_args() {
 }
 
 # the picture's camera per row (the can stands along e_y beside its ground plane)
-view() { case $1 in can) echo "--camera 0.22,0.2,0.3,0,0.05,0 --no-ground" ;; esac; }
+view() { case $1 in can*) echo "--camera 0.22,0.2,0.3,0,0.05,0 --no-ground" ;; esac; }
 
 # large ROW SCENE RES STEPS: one piece of the whole scenario
 large() {
