@@ -46,6 +46,7 @@
  * count. */
 #include "sb_precond.h"
 #include "sb_context.h"
+#include "sb_linsolve.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -56,6 +57,17 @@ typedef struct mg_level {
     int n, bs;
     double *b, *x, *t, *e, *w;  /* right side, iterate, residual, correction, scatter scratch */
     double *binv;               /* n * bs inverted node blocks (levels >= 1) */
+    /* the penalty band (levels >= 1 of a method with penalty_support): its
+     * dofs, their principal submatrix of the level's operator (pattern from
+     * the level's, values copied from bpos each set-up), CHOLMOD */
+    int ns, band_ok;
+    int *band;
+    sb_pattern *bpat;
+    const sb_pattern *bfrom;    /* the level pattern bpos indexes */
+    long *bpos;
+    sb_matrix B;
+    sb_linsolve *bls;
+    double *bb;
 } mg_level;
 
 typedef struct mg_state {
@@ -65,15 +77,27 @@ typedef struct mg_state {
     mg_level lv[SB_MAX_LEVELS];
 } mg_state;
 
+static void band_free(mg_level *L)
+{
+    sb_linsolve_free(L->bls);
+    sb_matrix_free(&L->B);
+    sb_pattern_free(L->bpat);
+    free(L->band); free(L->bpos); free(L->bb);
+    L->bls = NULL, L->bpat = NULL, L->band = NULL, L->bpos = NULL, L->bb = NULL, L->ns = 0;
+}
+
 static void mg_free(void *st)
 {
     mg_state *m = st;
     for (int l = 0; l < SB_MAX_LEVELS; l++) {
         mg_level *L = &m->lv[l];
+        band_free(L);
         free(L->b); free(L->x); free(L->t); free(L->e); free(L->w); free(L->binv);
         memset(L, 0, sizeof *L);
     }
 }
+
+static int band_build(mg_level *L, sb_problem *p, int l);
 
 static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o)
 {
@@ -120,6 +144,14 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
             return sb_error(ctx, rc, "solver.linear=pcg-mg: %s", msg);
         }
     }
+    /* the penalty band of every level but the coarsest (solved exactly) */
+    for (int l = 1; l < m->nl; l++) {
+        int rc = band_build(&m->lv[l], p, l);
+        if (rc) {
+            mg_free(m);
+            return rc;
+        }
+    }
     return SB_OK;
 }
 
@@ -134,11 +166,108 @@ static void mg_block_inverses(mg_level *L, sb_problem *p, int l)
     for (int b0 = 0; b0 < L->n; b0 += L->bs) sb_block_inverse_spd(L->bs, L->binv + (size_t)b0 * L->bs);
 }
 
+/* The penalty band of level l (issue 38, docs/krylov.md): the method's
+ * penalty support, node-aligned.  Its pattern holds every node pair the
+ * level's pattern couples; the symbolic analysis is done once (level -1 for
+ * the statistics: the finest level's CHOLMOD figures stay the run's). */
+static int band_build(mg_level *L, sb_problem *p, int l)
+{
+    const sb_method_type *mt = sb_problem_method_type(p);
+    sb_context *ctx = sb_problem_context(p);
+    if (!mt->penalty_support || l < 1) return SB_OK;
+    unsigned char *mask = calloc((size_t)L->n, 1);
+    int *loc = malloc((size_t)L->n * sizeof *loc);
+    if (!mask || !loc) { free(mask); free(loc); return sb_error(ctx, SB_ERR_NOMEM, "out of memory (pcg-mg band)"); }
+    int ns = mt->penalty_support(sb_problem_method_state(p), l, mask);
+    const int bs = L->bs;
+    /* whole node blocks */
+    for (int b0 = 0; b0 < L->n; b0 += bs) {
+        int any = 0;
+        for (int c = 0; c < bs; c++) any |= mask[b0 + c];
+        for (int c = 0; c < bs; c++) mask[b0 + c] = (unsigned char)any;
+    }
+    ns = 0;
+    for (int i = 0; i < L->n; i++) loc[i] = mask[i] ? ns++ : -1;
+    int rc = SB_OK;
+    if (ns == 0 || ns == L->n) goto out;   /* nothing, or the whole level: the band adds nothing */
+    const sb_pattern *pat = sb_problem_hessian(p, l)->pat;
+    sb_pattern_builder *pb = sb_pattern_builder_new(ns / bs, bs);
+    if (!pb) { rc = sb_error(ctx, SB_ERR_NOMEM, "out of memory (pcg-mg band)"); goto out; }
+    for (int j = 0; j < L->n && !rc; j += bs) {
+        if (loc[j] < 0) continue;
+        int nd[2] = { loc[j] / bs, loc[j] / bs };
+        rc = sb_pattern_builder_add(pb, 1, nd);
+        for (long k = pat->colptr[j]; k < pat->colptr[j + 1] && !rc; k++) {
+            const int i = pat->rowind[k];
+            if (loc[i] < 0 || i / bs == j / bs || i % bs) continue;
+            nd[0] = loc[i] / bs;
+            rc = sb_pattern_builder_add(pb, 2, nd);
+        }
+    }
+    {   /* finishing frees the builder, also after an error */
+        sb_pattern *bp = NULL;
+        const int frc = sb_pattern_builder_finish(pb, &bp);
+        if (!rc) rc = frc, L->bpat = bp;
+        else sb_pattern_free(bp);
+    }
+    if (rc) { rc = sb_error(ctx, rc < 0 ? rc : SB_ERR_NOMEM, "pcg-mg: the penalty band's pattern"); goto out; }
+    L->ns = ns;
+    L->band = malloc((size_t)ns * sizeof *L->band);
+    L->bpos = malloc((size_t)L->bpat->nnz * sizeof *L->bpos);
+    L->bb = malloc((size_t)ns * sizeof *L->bb);
+    if (!L->band || !L->bpos || !L->bb || sb_matrix_init(&L->B, L->bpat)) {
+        rc = sb_error(ctx, SB_ERR_NOMEM, "out of memory (pcg-mg band)");
+        goto out;
+    }
+    for (int i = 0; i < L->n; i++)
+        if (loc[i] >= 0) L->band[loc[i]] = i;
+    L->bfrom = NULL;
+    rc = sb_linsolve_create(ctx, -1, &L->B, &L->bls);
+out:
+    if (rc) band_free(L);
+    free(mask);
+    free(loc);
+    return rc;
+}
+
+/* the band's values from the level's operator as it is; a band that is not
+ * positive definite (an indefinite Hessian) is left out of this set-up's
+ * cycles, which then stay those of the plain smoother */
+static int band_factor(mg_level *L, const sb_matrix *H)
+{
+    if (!L->ns) return SB_OK;
+    if (L->bfrom != H->pat) {   /* positions in the level's pattern (built once per pattern) */
+        for (int jc = 0; jc < L->ns; jc++)
+            for (long k = L->bpat->colptr[jc]; k < L->bpat->colptr[jc + 1]; k++)
+                L->bpos[k] = sb_pattern_find(H->pat, L->band[L->bpat->rowind[k]], L->band[jc]);
+        L->bfrom = H->pat;
+    }
+    for (long k = 0; k < L->bpat->nnz; k++) L->B.val[k] = L->bpos[k] >= 0 ? H->val[L->bpos[k]] : 0.0;
+    const int rc = sb_linsolve_factor(L->bls, 0.0);
+    L->band_ok = rc == SB_OK;
+    return rc == SB_NOT_POSDEF ? SB_OK : rc;
+}
+
+/* x += Z B^{-1} Z^T (b - H x): the exact band solve (a symmetric
+ * multiplicative subspace correction of the smoother) */
+static int band_solve(mg_level *L, const sb_matrix *H)
+{
+    if (!L->ns || !L->band_ok) return SB_OK;
+    sb_matrix_symv(H, L->x, L->t);
+    for (int k = 0; k < L->ns; k++) L->bb[k] = L->b[L->band[k]] - L->t[L->band[k]];
+    int rc = sb_linsolve_solve(L->bls, L->bb, L->bb);
+    if (rc) return rc;
+    for (int k = 0; k < L->ns; k++) L->x[L->band[k]] += L->bb[k];
+    return SB_OK;
+}
+
 static int mg_setup(void *st, sb_problem *p)
 {
     mg_state *m = st;
     const int F = m->nl - 1, step = sb_problem_step(p);
     mg_block_inverses(&m->lv[F], p, F);          /* the finest level: always the current Hessian */
+    int brc = band_factor(&m->lv[F], sb_problem_hessian(p, F));
+    if (brc) return brc;
     if (m->lag > 1 && m->step == step && m->since > 0 && m->since < m->lag) {
         m->since++;                              /* the coarse levels as built (solver.mg_lag) */
         return SB_OK;
@@ -149,7 +278,10 @@ static int mg_setup(void *st, sb_problem *p)
         int rc = sb_problem_galerkin_hessian(p, lc);
         if (rc) return rc;
     }
-    for (int l = 1; l < F; l++) mg_block_inverses(&m->lv[l], p, l);
+    for (int l = 1; l < F; l++) {
+        mg_block_inverses(&m->lv[l], p, l);
+        if ((brc = band_factor(&m->lv[l], sb_problem_hessian(p, l)))) return brc;
+    }
     /* the coarsest level by CHOLMOD; a Galerkin operator of an indefinite
      * Hessian may be indefinite: then the shift of the direct path (1e-8
      * max|H| grown 10x, Nocedal & Wright Alg. 3.3) keeps the V-cycle SPD */
@@ -243,13 +375,18 @@ static int vcycle(mg_state *m, sb_problem *p, int l)
         gs_forward(L, H, L->t, L->e);
         sb_axpy(n, 1.0, L->e, L->x);
     }
+    /* the penalty band solved exactly after the forward sweeps */
+    int rc = band_solve(L, H);
+    if (rc) return rc;
     /* coarse correction */
     residual(H, n, L->b, L->x, L->t);
-    int rc = sb_problem_restrict(p, l - 1, L->t, m->lv[l - 1].b);
+    rc = sb_problem_restrict(p, l - 1, L->t, m->lv[l - 1].b);
     if (!rc) rc = vcycle(m, p, l - 1);
     if (!rc) rc = sb_problem_prolong(p, l - 1, m->lv[l - 1].x, L->e);
     if (rc) return rc;
     sb_axpy(n, 1.0, L->e, L->x);
+    /* the band again before the backward sweeps: the adjoint order */
+    if ((rc = band_solve(L, H))) return rc;
     /* post-smoothing: backward sweeps (the adjoint of the pre-smoother) */
     for (int s = 0; s < m->sweeps; s++) {
         residual(H, n, L->b, L->x, L->t);
@@ -275,9 +412,14 @@ static void mg_describe(const void *st, char *buf, size_t len)
     const mg_state *m = st;
     char lag[96] = "";
     if (m->lag > 1) snprintf(lag, sizeof lag, ", coarse levels rebuilt every %d Newton iterations and each step", m->lag);
+    char band[96] = "";
+    int nb = 0;
+    for (int l = 1; l < m->nl; l++) nb += m->lv[l].ns;
+    if (nb) snprintf(band, sizeof band, ", the penalty band (%d dofs on the finest level) solved exactly by CHOLMOD",
+                     m->lv[m->nl - 1].ns);
     snprintf(buf, len, "V-cycle over %d levels, Galerkin coarse operators, block Gauss-Seidel %d+%d sweeps "
-             "(forward/backward), CHOLMOD on the coarsest level (%d dofs)%s", m->nl, m->sweeps, m->sweeps, m->lv[0].n,
-             lag);
+             "(forward/backward)%s, CHOLMOD on the coarsest level (%d dofs)%s", m->nl, m->sweeps, m->sweeps, band,
+             m->lv[0].n, lag);
 }
 
 const sb_precond_type sb_precond_mg = {

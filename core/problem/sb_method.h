@@ -203,6 +203,12 @@ typedef struct sb_method_type {
      * lies outside the domain.  NULL: the method holds nodes only (a scene
      * with a sliding pin is refused with a sentence). */
     int  (*point_terms)(const void *state, int level, const double st[2], int *dof, double *w);
+    /* issue 38: the dofs of `level` that the method's penalty terms couple
+     * (boundary conditions imposed by penalty): mask[i] = 1, else 0 (mask has
+     * n_dofs(level) entries).  Returns how many are marked.  pcg-mg solves
+     * them exactly inside its V-cycle (core/linalg/sb_precond_mg.c,
+     * docs/krylov.md).  NULL: the method has no penalty terms. */
+    int  (*penalty_support)(const void *state, int level, unsigned char *mask);
 } sb_method_type;
 
 /* registry (core/problem/sb_registry.c) */

@@ -299,6 +299,26 @@ static int cc_set_step(void *state, const sb_step_info *si)
     return SB_OK;
 }
 
+/* every control point of an element that holds a position or slope penalty
+ * point (cc_penalty.c), all three components: the band along the penalized
+ * boundary (ghost, boundary and first interior rows) */
+static int cc_penalty_support(const void *state, int level, unsigned char *mask)
+{
+    const cc_state *S = state;
+    if (level < 0 || level >= S->nlev) return 0;
+    const cc_level *L = &S->lv[level];
+    memset(mask, 0, (size_t)3 * L->nv);
+    for (int k = 0; k < L->npt; k++) {
+        const cc_pt *p = &L->pt[k];
+        if (p->kind != CC_PT_PENALTY && p->kind != CC_PT_SLOPE) continue;
+        for (int a = L->quad.eoff[p->elem]; a < L->quad.eoff[p->elem + 1]; a++)
+            memset(mask + 3 * L->quad.enode[a], 1, 3);
+    }
+    int marked = 0;
+    for (int i = 0; i < 3 * L->nv; i++) marked += mask[i];
+    return marked;
+}
+
 static const sb_dirichlet *cc_dirichlet(const void *state, int level)
 {
     (void)state;
@@ -423,6 +443,7 @@ const sb_method_type sb_method_subdiv = {
     .prolong_matrix = cc_prolong_matrix,
     .estimate = cc_estimate,
     .penalty_violation = cc_penalty_violation_op,
+    .penalty_support = cc_penalty_support,
     .describe = cc_describe,
     .surface = cc_surface,
     .contact_points = cc_contact_points,
