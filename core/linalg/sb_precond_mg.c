@@ -178,7 +178,7 @@ static int band_build(mg_level *L, sb_problem *p, int l)
     unsigned char *mask = calloc((size_t)L->n, 1);
     int *loc = malloc((size_t)L->n * sizeof *loc);
     if (!mask || !loc) { free(mask); free(loc); return sb_error(ctx, SB_ERR_NOMEM, "out of memory (pcg-mg band)"); }
-    int ns = mt->penalty_support(sb_problem_method_state(p), l, mask);
+    (void)mt->penalty_support(sb_problem_method_state(p), l, mask);
     const int bs = L->bs;
     /* whole node blocks */
     for (int b0 = 0; b0 < L->n; b0 += bs) {
@@ -186,7 +186,7 @@ static int band_build(mg_level *L, sb_problem *p, int l)
         for (int c = 0; c < bs; c++) any |= mask[b0 + c];
         for (int c = 0; c < bs; c++) mask[b0 + c] = (unsigned char)any;
     }
-    ns = 0;
+    int ns = 0;
     for (int i = 0; i < L->n; i++) loc[i] = mask[i] ? ns++ : -1;
     int rc = SB_OK;
     if (ns == 0 || ns == L->n) goto out;   /* nothing, or the whole level: the band adds nothing */
