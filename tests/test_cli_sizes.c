@@ -113,7 +113,7 @@ static void compare(sb_test_state *T, const char *method, const char *scene, int
     CHECK(o != NULL);
     if (o) {
         double nnz = json_number_value(json_object_get(json_object_get(o, "linear_algebra"), "matrix_nnz"));
-        sb_memory_run mr = { 1, sc.time.steps, sc.n_probes, 21, 0, SB_SUPERNODES_CHOLMOD, 0 };
+        sb_memory_run mr = { 1, sc.time.steps, sc.n_probes, 21, 0, SB_SUPERNODES_CHOLMOD, 0, 0 };
         sb_memory_estimate est;
         sz.levels = 1;
         sz.nodes[0] = sz.nodes[levels - 1];
@@ -236,7 +236,7 @@ SB_TEST(estimate_of_absurd_sizes_is_finite_and_refused)
     memset(&sz, 0, sizeof sz);
     sz.levels = 1, sz.bs = 12, sz.nodes_per_element = 4, sz.stencil = 9;
     sz.nodes[0] = 65537.0 * 65537.0, sz.elements[0] = 65536.0 * 65536.0, sz.method_bytes = 1e15;
-    sb_memory_run mr = { 1, 1000000, 32, 2001, 0, SB_SUPERNODES_CHOLMOD, 0 };
+    sb_memory_run mr = { 1, 1000000, 32, 2001, 0, SB_SUPERNODES_CHOLMOD, 0, 0 };
     sb_memory_estimate est;
     sb_memory_estimate_run(&sz, &mr, &est);
     CHECK(isfinite(est.bytes) && est.bytes > 1e15);

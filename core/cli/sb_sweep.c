@@ -114,7 +114,7 @@ int sb_sweep_validate(const sb_sweep_axes *ax, sb_sweep_plan *plan, char *err, s
                         sb_method_config cfg = { res, levels, &ctx.params, &ctx, 0 };
                         sb_memory_run mr = { sc->time.mode == SB_TIME_DYNAMIC, sc->time.steps, sc->n_probes,
                                              ax->sample_n > 0 ? ax->sample_n : 21,
-                                             (st->flags & SB_SOLVER_NEEDS_HIERARCHY) != 0, SB_SUPERNODES_CHOLMOD, 0 };
+                                             (st->flags & SB_SOLVER_NEEDS_HIERARCHY) != 0, SB_SUPERNODES_CHOLMOD, 0, 0 };
                         char what[300];
                         double bytes;
                         snprintf(what, sizeof what, "sweep: method %s on scene %s at --res %d with %d level%s", mt->name,

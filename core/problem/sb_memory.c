@@ -56,7 +56,7 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
     const int F = sz->levels > 0 ? sz->levels - 1 : 0;
     est->method = sz->method_bytes;
     est->matrices = 0;
-    const int C = r->multilevel ? 0 : F;   /* the level whose factor is counted */
+    const int C = r->multilevel || r->krylov_mg ? 0 : F;   /* the level whose factor is counted */
     double nnz_c = 0;
     for (int l = 0; l <= F; l++) {
         double nnz;
@@ -83,6 +83,19 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
             est->matrices += (nnz_l - nf > 0 ? nnz_l - nf : 0) * 8.0 + nf * (8.0 + 8.0 + 4.0 + 1.0) + nc * (8.0 + 4.0 + 2.0);
             est->matrices += 2.0 * ps * 12.0 + (nf + nc) * 8.0;
             est->matrices += sz->elements[l] * (0.5 * m * (m + 1.0) * 8.0 + m * 4.0 + 17.0);
+        }
+    /* pcg-mg (issue 38, sb_precond_mg.c, sb_galerkin.c lean products): per
+     * finer level of a pair, 8 bytes per off-diagonal entry of its pattern
+     * (docs/solvers.md, "lean" products), the smoother's inverted node blocks
+     * and five work vectors; the coarse levels' values are their matrices
+     * (counted above).  The penalty band's factors (rmtr: O(sqrt n) dofs)
+     * are left out. */
+    if (r->krylov_mg && !r->multilevel)
+        for (int l = 1; l <= F; l++) {
+            double nnz_l;
+            (void)level_bytes(sz, l, 0, &nnz_l);
+            const double nf = sz->nodes[l] * sz->bs;
+            est->matrices += (nnz_l - nf > 0 ? nnz_l - nf : 0) * 8.0 + nf * (sz->bs + 5.0) * 8.0;
         }
     est->dofs = sz->nodes[F] * sz->bs;
     est->factor = factor_bytes(sz, C, nnz_c, r->supernodes, &est->factor_nnz);

@@ -31,6 +31,9 @@ typedef struct sb_memory_run {
     int lifts;                          /* moving boundaries lifted by a CHOLMOD solve on the finest level
                                            (sb_problem_lift): a multilevel solver holds that factor too;
                                            sb_memory_check_method sets it from the scene */
+    int krylov_mg;                      /* solver.linear = pcg-mg (lsnewton, tr, damped, linearized): no
+                                           finest factor (the lifting solves by CG too); the coarsest
+                                           level's, the lean Galerkin weights and the smoother's blocks */
 } sb_memory_run;
 
 /* The estimate of a discretization of size sz run as r.  The Cholesky

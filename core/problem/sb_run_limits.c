@@ -59,6 +59,9 @@ static void run_size(const run_state *R, sb_memory_run *mr)
     mr->supernodes = sb_param_int_or(&R->ctx.params, "run.supernodes", SB_SUPERNODES_CHOLMOD);
     mr->lifts = !(R->stype->flags & SB_SOLVER_SINGLE_STEP) && !(R->mt->flags & SB_METHOD_PENALTY_BCS) &&
                 sb_memory_scene_lifts(&R->scene, &R->ctx.params);
+    /* solver.linear = pcg-mg: no finest factor (sb_memory.h) */
+    const char *lin = sb_param_choice(&R->ctx.params, "solver.linear");
+    mr->krylov_mg = lin && !strcmp(lin, "pcg-mg");
 }
 
 /* "--res 8" or "--res 8x4096": the resolution as the user gave it */

@@ -57,7 +57,7 @@ static int material_of(const char *path, const sb_record_setup *su, sb_material_
     }
     sb_method_config cfg = { su->res, su->levels > 0 ? su->levels : 1, &ctx.params, &ctx, su->res_t };
     /* a record's sizes are input like any other: what cannot fit is refused before create() */
-    sb_memory_run mr = { 0, 0, 0, 2, 0, SB_SUPERNODES_CHOLMOD, 0 };
+    sb_memory_run mr = { 0, 0, 0, 2, 0, SB_SUPERNODES_CHOLMOD, 0, 0 };
     double bytes;
     char what[600];
     snprintf(what, sizeof what, "%s: method %s at res %d with %d levels", path, mt->name, su->res, cfg.levels);

@@ -106,7 +106,7 @@ int sb_study_dofs_at(const sb_study *st, sb_dofs_cache *c, int i, int m, int lev
      * memory limit or for the index limits is refused here, as `run` would
      * refuse it, without setting the method up) */
     const sb_scene *scn = st->scenes[i].scene;
-    sb_memory_run mr = { scn->time.mode == SB_TIME_DYNAMIC, scn->time.steps, scn->n_probes, 21, levels > 1, SB_SUPERNODES_CHOLMOD, 0 };
+    sb_memory_run mr = { scn->time.mode == SB_TIME_DYNAMIC, scn->time.steps, scn->n_probes, 21, levels > 1, SB_SUPERNODES_CHOLMOD, 0, 0 };
     char what[300];
     double bytes = 0;
     snprintf(what, sizeof what, "method %s on scene %s at res %d with %d level%s", mt->name, st->scenes[i].name, res,

@@ -189,7 +189,7 @@ static int a3_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_me
         refined_size(&ntf, &nvf, gmax);
         sb_method_size szf;
         fill_size(&szf, ntf, nvf, scene->n_loads);
-        sb_memory_run mr = { scene->time.mode == SB_TIME_DYNAMIC, scene->time.steps, 0, 0, 0, SB_SUPERNODES_CHOLMOD, 0 };
+        sb_memory_run mr = { scene->time.mode == SB_TIME_DYNAMIC, scene->time.steps, 0, 0, 0, SB_SUPERNODES_CHOLMOD, 0, 0 };
         sb_memory_estimate est, base;
         sb_memory_estimate_run(sz, &mr, &base);
         sb_memory_estimate_run(&szf, &mr, &est);
