@@ -17,6 +17,7 @@
  * and inverse iteration: estimates from inside the spectrum).  `parts`
  * measures it properly: exact eigenvalues by LAPACK at small sizes, Lanczos
  * with residual bounds above. */
+#include "bench_rmtr_setup.h"
 #include "sb_context.h"
 #include "sb_scene.h"
 #include "sb_solver.h"
@@ -53,16 +54,10 @@ static int measure(const char *scene_name, int res, double sigma, int *n_out, do
     sb_context ctx;
     sb_context_init(&ctx);
     sb_scene sc;
-    char path[1024], err[2048];
-    if (sb_scene_resolve(scene_name, path, sizeof path) || sb_scene_load(path, &sc, err, sizeof err)) {
-        fprintf(stderr, "bench_cond: cannot load scene %s\n", scene_name);
-        return 2;
-    }
+    if (bench_load_scene("bench_cond", scene_name, &sc)) return 2;
     const sb_method_type *mt = sb_method_find("rmtr");
     const sb_solver_type *st = sb_solver_find("lsnewton");
-    sb_paramset_add(&ctx.params, "run", sb_solve_params);
-    sb_paramset_add(&ctx.params, "solver", st->params);
-    sb_paramset_add(&ctx.params, "method", mt->params);
+    bench_add_params(&ctx, mt, st);
     char set[64], perr[256];
     snprintf(set, sizeof set, "method.sigma=%g", sigma);
     /* the stopping rule results/rmtr/cond*.md were computed with (docs/trust.md) */
@@ -448,18 +443,13 @@ static int bench_cond_parts(int argc, char **argv)
     sb_context_init(&ctx);
     sb_context_init(&ctx2);
     sb_scene sc;
-    char path[1024], err[2048], perr[256];
-    if (sb_scene_resolve(scene_name, path, sizeof path) || sb_scene_load(path, &sc, err, sizeof err)) {
-        fprintf(stderr, "bench_cond: cannot load scene %s: %s\n", scene_name, err);
-        return 2;
-    }
+    char perr[256];
+    if (bench_load_scene("bench_cond", scene_name, &sc)) return 2;
     const sb_method_type *mt = sb_method_find("rmtr");
     const sb_solver_type *st = sb_solver_find("lsnewton");
     sb_context *cs[2] = { &ctx, &ctx2 };
     for (int k = 0; k < 2; k++) {
-        sb_paramset_add(&cs[k]->params, "run", sb_solve_params);
-        sb_paramset_add(&cs[k]->params, "solver", st->params);
-        sb_paramset_add(&cs[k]->params, "method", mt->params);
+        bench_add_params(cs[k], mt, st);
         if (sb_paramset_set(&cs[k]->params, "run.stop=paper", perr, sizeof perr)) goto bad;
     }
     for (int i = 3; i < argc; i++) {

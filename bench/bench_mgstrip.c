@@ -32,6 +32,7 @@
  * Both variants keep the preconditioner symmetric; P' has full column rank
  * when P has and H is SPD.  Dense: for sizes up to a few thousand dofs
  * (a measurement, not a solver). */
+#include "bench_rmtr_setup.h"
 #include "sb_context.h"
 #include "sb_run_state.h"
 #include "sb_scene.h"
@@ -198,16 +199,11 @@ int main(int argc, char **argv)
     sb_context ctx;
     sb_context_init(&ctx);
     sb_scene sc;
-    char path[1024], err[2048], perr[256];
-    if (sb_scene_resolve(argv[1], path, sizeof path) || sb_scene_load(path, &sc, err, sizeof err)) {
-        fprintf(stderr, "bench_mgstrip: cannot load scene %s: %s\n", argv[1], err);
-        return 2;
-    }
+    char perr[256];
+    if (bench_load_scene("bench_mgstrip", argv[1], &sc)) return 2;
     const sb_method_type *mt = sb_method_find("rmtr");
     const sb_solver_type *st = sb_solver_find("lsnewton");
-    sb_paramset_add(&ctx.params, "run", sb_solve_params);
-    sb_paramset_add(&ctx.params, "solver", st->params);
-    sb_paramset_add(&ctx.params, "method", mt->params);
+    bench_add_params(&ctx, mt, st);
     for (int i = argi; i < argc; i++) {
         if (!strcmp(argv[i], "header")) {
             printf("scene,setting,res,levels,coarse,dofs,coarse_dofs,strip_rule,strip_dofs,cg_plain,cg_plain_strip_solve,cg_energy_min_P,"
