@@ -108,7 +108,7 @@ TEST_OK  := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.result)
 BENCH_SRC := $(sort $(wildcard bench/bench_*.c))
 BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
 
-.PHONY: all deps test run bench report check-asan check-paraview clean fuzz fuzz-build fuzz-short nightly site check-site
+.PHONY: all deps test run bench bench-build report check-asan check-paraview clean fuzz fuzz-build fuzz-short nightly site check-site
 .DEFAULT_GOAL := all
 
 all: $(BIN)
@@ -233,6 +233,9 @@ check-site: $(BIN)
 
 bench: $(BIN) $(BENCH_BIN)
 	$(BLAS_ENV) bash bench/run_all.sh $(BUILD)
+
+# the bench programs built, nothing run (`make bench` runs them and rewrites results/)
+bench-build: $(BIN) $(BENCH_BIN)
 
 check-asan:
 	$(MAKE) --no-print-directory BUILD=build-asan OPT=-O1 \
