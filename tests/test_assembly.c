@@ -129,6 +129,7 @@ static double old_rmtr(cc_state *S, const double *x, double *g, sb_matrix *H)
     const sb_scene *sc = S->scene;
     cc_level *L = &S->lv[0];
     const cc_quad *Q = &L->quad;
+    if (cc_level_ref(S, 0)) return NAN;
     double gvec[3] = { 0, 0, 0 };
     int has_g = 0, has_p = 0;
     for (int i = 0; i < sc->n_loads; i++) {

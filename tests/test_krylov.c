@@ -548,6 +548,28 @@ static int read_col(const char *path, const char *name, hid_t type, void *buf, i
     return n;
 }
 
+/* Eisenstat & Walker choice 2 and its step-ratio variant (sb_krylov.h) on
+ * hand-made sequences */
+SB_TEST(forcing_terms_by_hand)
+{
+    CHECK_NEAR(sb_forcing_ew2(1.0, 0.0, 0.0), 0.5, 0.0);                    /* eta_0 */
+    CHECK_NEAR(sb_forcing_ew2(0.1, 1.0, 0.3), 0.9 * 0.01, 1e-15);          /* gamma r^2 (safeguard 0.081 < 0.1: off) */
+    CHECK_NEAR(sb_forcing_ew2(0.5, 1.0, 0.2), 0.9 * 0.25, 1e-15);          /* safeguard 0.036 < 0.1: off */
+    CHECK_NEAR(sb_forcing_ew2(0.01, 1.0, 0.5), 0.225, 1e-15);              /* safeguard 0.9 * 0.5^2 */
+    CHECK_NEAR(sb_forcing_ew2(2.0, 1.0, 0.5), 0.9, 0.0);                   /* eta_max */
+    /* the gradient at its floor (ratio 0.98) while the steps still shrink
+     * 100-fold: choice 2 says 0.86, the step ratio 0.9e-4 */
+    CHECK_NEAR(sb_forcing_ew2(0.98, 1.0, 0.05), 0.9 * 0.98 * 0.98, 1e-15);
+    CHECK_NEAR(sb_forcing_ew2_steps(0.98, 1.0, 1e-8, 1e-6, 0.05), 0.9e-4, 1e-18);
+    /* never looser than choice 2; no step ratio before two steps */
+    for (int k = 0; k < 200; k++) {
+        double g = 0.01 + 0.013 * k, s = 1e-3 * (k % 17 + 1), sp = 1e-3 * (k % 5 + 1), ep = 0.004 * k;
+        CHECK(sb_forcing_ew2_steps(g, 1.0, s, sp, ep) <= sb_forcing_ew2(g, 1.0, ep));
+    }
+    CHECK_NEAR(sb_forcing_ew2_steps(0.98, 1.0, 1e-8, 0.0, 0.05), sb_forcing_ew2(0.98, 1.0, 0.05), 0.0);
+    CHECK_NEAR(sb_forcing_ew2_steps(1e-12, 1.0, 1e-12, 1.0, 0.05), 1e-10, 0.0);   /* the floor */
+}
+
 /* the history of a record: forcing terms, Krylov counts and statuses */
 SB_TEST(history_records_forcing_terms)
 {
@@ -565,17 +587,19 @@ SB_TEST(history_records_forcing_terms)
     json_t *js = sb_test_run_json(&req, &ec);
     CHECK_EQ_INT(ec, 0);
     json_decref(js);
-    double rt[64], gn[64];
+    double rt[64], gn[64], sn[64];
     int li[64], ks[64];
     const int n = read_col(out, "krylov_rtol", H5T_NATIVE_DOUBLE, rt, 64);
     CHECK(read_col(out, "gnorm", H5T_NATIVE_DOUBLE, gn, 64) == n);
+    CHECK(read_col(out, "step_norm", H5T_NATIVE_DOUBLE, sn, 64) == n);
     CHECK(read_col(out, "linear_iters", H5T_NATIVE_INT, li, 64) == n);
     CHECK(read_col(out, "krylov_status", H5T_NATIVE_INT, ks, 64) == n);
     CHECK_MSG(n >= 3, "%d history rows", n);
     double gprev = 0, eta = 0;
     for (int i = 1; i < n; i++) {
-        /* Eisenstat & Walker 1996, choice 2, from the recorded ||g|| */
-        double expect = sb_forcing_ew2(gn[i - 1], gprev, eta);
+        /* Eisenstat & Walker 1996, choice 2, from the recorded ||g|| and the
+         * last two steps' norms (row 0 is the start: step 0) */
+        double expect = sb_forcing_ew2_steps(gn[i - 1], gprev, sn[i - 1], i >= 2 ? sn[i - 2] : 0.0, eta);
         CHECK_MSG(fabs(rt[i] - expect) <= 1e-12 * expect, "iteration %d: rtol %.6g, expected %.6g", i, rt[i], expect);
         CHECK(li[i] > 0);
         CHECK_EQ_INT(ks[i], SB_KRYLOV_CONVERGED);
@@ -758,7 +782,7 @@ int main(int argc, char **argv)
                                           SB_CASE(pcg_mg_with_the_penalty_band_on_the_subdivision_hierarchy),
                                           SB_CASE(every_path_reaches_the_probe_values_of_cholmod), SB_CASE(lifting_solves_with_the_run_s_linear_solver), SB_CASE(lean_galerkin_product_equals_the_indexed_one),
                                           SB_CASE(linearized_paths_match_cholmod),
-                                          SB_CASE(history_records_forcing_terms),
+                                          SB_CASE(forcing_terms_by_hand), SB_CASE(history_records_forcing_terms),
                                           SB_CASE(a_capped_solve_is_a_recorded_outcome),
                                           SB_CASE(indefinite_hessians_per_path),
                                           SB_CASE(lagged_coarse_levels_keep_the_preconditioner_spd),

@@ -34,15 +34,28 @@ const sb_precond_type *sb_linear_precond(int kind)
 
 /* Eisenstat & Walker 1996, choice 2 (gamma 0.9, alpha 2) with the
  * safeguards of their §3; floor 1e-10 */
-double sb_forcing_ew2(double gnorm, double gprev, double eta_prev)
+static double forcing_ew2(double ratio, double gprev, double eta_prev)
 {
     const double gamma = 0.9, alpha = 2.0, eta_max = 0.9, eta0 = 0.5, eta_min = 1e-10;
     if (!(gprev > 0.0) || !(eta_prev > 0.0)) return eta0;
-    double eta = gamma * pow(gnorm / gprev, alpha);
+    double eta = gamma * pow(ratio, alpha);
     double safe = gamma * pow(eta_prev, alpha);
     if (safe > 0.1) eta = fmax(eta, safe);
     eta = fmin(eta, eta_max);
     return fmax(eta, eta_min);
+}
+
+double sb_forcing_ew2(double gnorm, double gprev, double eta_prev)
+{
+    return forcing_ew2(gprev > 0.0 ? gnorm / gprev : 1.0, gprev, eta_prev);
+}
+
+/* choice 2 on min(||g_k||/||g_{k-1}||, ||s_{k-1}||/||s_{k-2}||) (sb_krylov.h) */
+double sb_forcing_ew2_steps(double gnorm, double gprev, double snorm, double sprev, double eta_prev)
+{
+    double ratio = gprev > 0.0 ? gnorm / gprev : 1.0;
+    if (sprev > 0.0 && snorm >= 0.0) ratio = fmin(ratio, snorm / sprev);
+    return forcing_ew2(ratio, gprev, eta_prev);
 }
 
 int sb_krylov_f_noise(double f, double f_trial, double pred)

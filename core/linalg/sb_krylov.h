@@ -66,6 +66,20 @@ int  sb_krylov_solve_to(sb_krylov *k, sb_problem *p, const double *g, double rto
  * the first iteration of a step. */
 double sb_forcing_ew2(double gnorm, double gprev, double eta_prev);
 
+/* The same with progress measured by the smaller of two ratios:
+ * ||g_k|| / ||g_{k-1}|| and ||s_{k-1}|| / ||s_{k-2}||, the norms of the last
+ * two steps taken (snorm, sprev; sprev <= 0: not known yet).  Assumption
+ * (not in Eisenstat & Walker): their analysis needs a progress measure
+ * equivalent to the error near the solution, and the Newton step is one
+ * (s_k ~ -e_k); the gradient is not once it reaches its round-off floor
+ * (about 1e-5 at 2.5e5 dofs on the denim trampoline), where its ratio sits
+ * near 1 and choice 2 returns eta_max: one CG iteration a Newton iteration,
+ * each removing about half of the remaining correction (12 Newton
+ * iterations where the direct solve needs 3; docs/krylov.md, "Forcing
+ * terms at the round-off floor").  The smaller ratio never loosens the
+ * choice-2 term; the safeguard on eta_{k-1} still bounds how fast it falls. */
+double sb_forcing_ew2_steps(double gnorm, double gprev, double snorm, double sprev, double eta_prev);
+
 /* The round-off test of the Krylov paths' line search and trust-region
  * ratio: an inexact Newton step leaves a residual in the stiff (membrane)
  * directions whose Newton correction changes f by far less than the

@@ -54,7 +54,9 @@ int sb_memory_scene_lifts(const sb_scene *scene, const sb_paramset *ps)
 void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb_memory_estimate *est)
 {
     const int F = sz->levels > 0 ? sz->levels - 1 : 0;
-    est->method = sz->method_bytes;
+    /* a coarser level's own energy is evaluated by the rmtr solver alone
+     * (its coarse models and nested start); Galerkin products never read it */
+    est->method = sz->method_bytes - (r->multilevel ? 0.0 : sz->coarse_energy_bytes);
     est->matrices = 0;
     const int C = r->multilevel || r->krylov_mg ? 0 : F;   /* the level whose factor is counted */
     double nnz_c = 0;

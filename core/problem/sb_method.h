@@ -87,6 +87,9 @@ typedef struct sb_method_size {
     int nodes_per_element;           /* the most nodes an element couples (4 Hermite, 16 B-spline) */
     int stencil;                     /* the most nodes one node couples with, itself included */
     double method_bytes;             /* the method's own data: geometry, quadrature, transfers */
+    double coarse_energy_bytes;      /* of it, what only a coarser level's own energy reads, built
+                                        at its first use (rmtr: the coarse reference geometry):
+                                        counted for the rmtr solver alone */
     double prolong_per_dof;          /* mean nonzeros of a fine dof's row of the prolongation
                                         between consecutive levels (0: counted as 1) */
 } sb_method_size;

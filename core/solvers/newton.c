@@ -87,6 +87,7 @@ typedef struct newton_state {
     sb_krylov kr;
     double cg_rtol;                    /* < 0: Eisenstat–Walker forcing */
     double eta, gprev;                 /* the last forcing term and the ||g|| it was computed at */
+    double snorm, sprev;               /* the last two steps' norms (0: none yet this step) */
     double *g, *gt, *d, *xt;
     double f, gnorm;
 } newton_state;
@@ -200,7 +201,7 @@ static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info 
     info->gnorm = s->gnorm;
     info->delta = INFINITY;
     s->eta = 0.0;          /* Eisenstat–Walker starts afresh each step */
-    s->gprev = 0.0;
+    s->gprev = s->snorm = s->sprev = 0.0;
     return rc;
 }
 
@@ -219,7 +220,7 @@ static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info 
 static int krylov_direction(newton_state *s, sb_problem *p, sb_iterate_info *info, double *shift_out)
 {
     const int n = s->n;
-    double eta = s->cg_rtol >= 0.0 ? s->cg_rtol : sb_forcing_ew2(s->gnorm, s->gprev, s->eta);
+    double eta = s->cg_rtol >= 0.0 ? s->cg_rtol : sb_forcing_ew2_steps(s->gnorm, s->gprev, s->snorm, s->sprev, s->eta);
     if (s->kind == KIND_LINEARIZED) eta = s->cg_rtol;
     s->eta = eta;
     s->gprev = s->gnorm;
@@ -425,6 +426,8 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
     info->delta = (info->shift == 0.0 && s->kind != KIND_DAMPED) ? INFINITY : 0.0;
     info->df = fold - s->f;
     info->step_norm = alpha * sb_norm2(n, s->d);
+    s->sprev = s->snorm;
+    s->snorm = info->step_norm;
     info->f = s->f;
     info->gnorm = s->gnorm;
     return SB_OK;

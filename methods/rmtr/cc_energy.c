@@ -140,6 +140,8 @@ int cc_energy(cc_state *S, int l, const double *x, double *f, double *g, sb_matr
 {
     const sb_scene *sc = S->scene;
     cc_level *L = &S->lv[l];
+    int rc = cc_level_ref(S, l);
+    if (rc) return rc;
     cc_asm a;
     memset(&a, 0, sizeof a);
     a.S = S;
@@ -171,6 +173,8 @@ int cc_mass(cc_state *S, int l, sb_matrix *M)
     cc_level *L = &S->lv[l];
     const cc_quad *Q = &L->quad;
     double rho = S->mat.density;
+    int rc = cc_level_ref(S, l);
+    if (rc) return rc;
     for (int el = 0; el < Q->ne; el++) {
         int k = Q->eoff[el + 1] - Q->eoff[el], n = 3 * k;
         double *Me = S->Ke;
@@ -205,7 +209,8 @@ int cc_material_state(cc_state *S, int l, const double *x, sb_material_state *ms
     cc_level *L = &S->lv[l];
     const cc_quad *Q = &L->quad;
     sb_material_state_init(ms);
-    int status = SB_OK;
+    int status = cc_level_ref(S, l);
+    if (status) return status;
     for (int el = 0; el < Q->ne; el++) {
         const int *nd = Q->enode + Q->eoff[el];
         int k = Q->eoff[el + 1] - Q->eoff[el];

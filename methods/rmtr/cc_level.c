@@ -138,6 +138,62 @@ int cc_level_element_of_face(const cc_level *L, int face)
     return face >= 0 && face < L->mesh->nf ? L->felem[face] : -1;
 }
 
+/* The reference geometry of level l's quadrature points (sb_shell_ref:
+ * metric, curvature, area element, weight) into out (NULL: each point is
+ * checked and dropped), and the level's mesh size h (longest cage edge of
+ * an element's face). */
+static int ref_fill(cc_state *S, int l, sb_shell_ref *out, cc_err *e)
+{
+    cc_level *L = &S->lv[l];
+    const cc_mesh *m = L->mesh;
+    const cc_quad *Q = &L->quad;
+    double Xq[3 * CC_MAX_BASIS];
+    sb_shell_ref tmp;
+    L->h = 0;
+    for (int el = 0; el < Q->ne; el++) {
+        const int *nd = Q->enode + Q->eoff[el];
+        int k = Q->eoff[el + 1] - Q->eoff[el];
+        for (int a = 0; a < k; a++) memcpy(Xq + 3 * a, L->X + 3 * nd[a], 3 * sizeof(double));
+        for (int q = 0; q < Q->nq; q++) {
+            sb_shell_basis b = cc_quad_basis(Q, el, q);
+            double w = Q->gw[q % Q->ng] * Q->gw[q / Q->ng];
+            if (sb_shell_ref_init_basis(out ? &out[(size_t)el * Q->nq + q] : &tmp, &b, Xq, S->mat.warp_angle, w) != SB_OK)
+                return cc_fail(e, SB_ERR_INPUT, "degenerate reference surface on level %d (face %d)", l, Q->face[el]);
+        }
+        const int *c = m->fv + 4 * Q->face[el];
+        for (int a = 0; a < 4; a++) {
+            const double *p = L->X + 3 * c[a], *r = L->X + 3 * c[(a + 1) % 4];
+            double d = sqrt((p[0] - r[0]) * (p[0] - r[0]) + (p[1] - r[1]) * (p[1] - r[1]) + (p[2] - r[2]) * (p[2] - r[2]));
+            L->h = d > L->h ? d : L->h;
+        }
+    }
+    return SB_OK;
+}
+
+/* Level l's stored reference geometry, built at its first use (issue 38):
+ * a coarser level's is read only where its own energy, mass or material
+ * state is evaluated (the rmtr solver's coarse models and nested start);
+ * lsnewton, tr and damped with pcg-mg (Galerkin coarse operators) never
+ * do, and it is a quarter of the subdivision method's reference data (60
+ * MB of rmtr's pcg-mg run at 2.5e5 dofs).  Checked at cc_level_build, so
+ * this cannot fail but for memory. */
+int cc_level_ref(cc_state *S, int l)
+{
+    cc_level *L = &S->lv[l];
+    if (L->ref) return SB_OK;
+    sb_shell_ref *r = malloc((size_t)L->quad.ne * L->quad.nq * sizeof *r);
+    if (!r) return SB_ERR_NOMEM;
+    const double h = L->h;
+    int st = ref_fill(S, l, r, NULL);
+    L->h = h;
+    if (st) {
+        free(r);
+        return st;
+    }
+    L->ref = r;
+    return SB_OK;
+}
+
 int cc_level_build(cc_state *S, int l, cc_err *e)
 {
     cc_level *L = &S->lv[l];
@@ -156,29 +212,13 @@ int cc_level_build(cc_state *S, int l, cc_err *e)
     if (st) return st;
     const cc_quad *Q = &L->quad;
     L->felem = malloc((size_t)m->nf * sizeof *L->felem);
-    L->ref = malloc((size_t)Q->ne * Q->nq * sizeof *L->ref);
-    if (!L->felem || !L->ref) return cc_fail(e, SB_ERR_NOMEM, "out of memory (level %d)", l);
+    if (!L->felem) return cc_fail(e, SB_ERR_NOMEM, "out of memory (level %d)", l);
     for (int f = 0; f < m->nf; f++) L->felem[f] = -1;
-    double Xq[3 * CC_MAX_BASIS];
-    L->h = 0;
-    for (int el = 0; el < Q->ne; el++) {
-        L->felem[Q->face[el]] = el;
-        const int *nd = Q->enode + Q->eoff[el];
-        int k = Q->eoff[el + 1] - Q->eoff[el];
-        for (int a = 0; a < k; a++) memcpy(Xq + 3 * a, L->X + 3 * nd[a], 3 * sizeof(double));
-        for (int q = 0; q < Q->nq; q++) {
-            sb_shell_basis b = cc_quad_basis(Q, el, q);
-            double w = Q->gw[q % Q->ng] * Q->gw[q / Q->ng];
-            if (sb_shell_ref_init_basis(&L->ref[(size_t)el * Q->nq + q], &b, Xq, S->mat.warp_angle, w) != SB_OK)
-                return cc_fail(e, SB_ERR_INPUT, "degenerate reference surface on level %d (face %d)", l, Q->face[el]);
-        }
-        const int *c = m->fv + 4 * Q->face[el];
-        for (int a = 0; a < 4; a++) {
-            const double *p = L->X + 3 * c[a], *r = L->X + 3 * c[(a + 1) % 4];
-            double d = sqrt((p[0] - r[0]) * (p[0] - r[0]) + (p[1] - r[1]) * (p[1] - r[1]) + (p[2] - r[2]) * (p[2] - r[2]));
-            L->h = d > L->h ? d : L->h;
-        }
-    }
+    for (int el = 0; el < Q->ne; el++) L->felem[Q->face[el]] = el;
+    /* the reference geometry: checked (and h taken) on every level now,
+     * stored now on the finest level only (cc_level_ref) */
+    if ((st = ref_fill(S, l, NULL, e))) return st;
+    if (l == S->nlev - 1 && (st = cc_level_ref(S, l))) return cc_fail(e, st, "out of memory (level %d)", l);
     if (!(L->h > 0)) return cc_fail(e, SB_ERR_INPUT, "level %d has zero mesh size", l);
     /* beta = h^-sigma (§3.1) times the scene's factor (cc_beta.c: exactly 1
      * for the paper's cloth, so its beta is bit for bit the paper's) */

@@ -178,6 +178,7 @@ static int cc_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_me
         bytes += nv * (2 * sizeof(double) + 2 * sizeof(int) + 4 * 3 * sizeof(int) + 3 * sizeof(double));  /* st, grid, topology, X */
         bytes += nf * (4 + 4 + 2 + 4 + 2) * sizeof(int);                                                    /* fv, fe, cell, vf, felem */
         bytes += ne * (16 + 4) * sizeof(int) + ne * nq * sizeof(sb_shell_ref);                             /* quadrature, reference */
+        if (l < levels - 1) sz->coarse_energy_bytes += ne * nq * sizeof(sb_shell_ref);                     /* cc_level_ref */
         bytes += nv * 10 * (sizeof(int) + sizeof(double));       /* S onto this level (about 6 entries a row) and P from it */
     }
     sz->method_bytes = bytes;

@@ -104,6 +104,8 @@ extern const sb_param_def cc_params[];
 int  cc_state_fail(const cc_state *S, int status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* cc_level.c: reference geometry, quadrature, structured lookup, projection */
 int  cc_level_build(cc_state *S, int l, cc_err *e);
+/* Level l's reference geometry L->ref, built at its first use (coarse levels); SB_OK or SB_ERR_NOMEM. */
+int  cc_level_ref(cc_state *S, int l);
 void cc_level_free(cc_level *L);
 /* Face and (u,v) of grid parameter (s,t) on a structured level. */
 int  cc_level_locate(const cc_level *L, double s, double t, int *face, double *u, double *v);
