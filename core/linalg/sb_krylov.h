@@ -75,8 +75,8 @@ double sb_forcing_ew2(double gnorm, double gprev, double eta_prev);
  * (about 1e-5 at 2.5e5 dofs on the denim trampoline), where its ratio sits
  * near 1 and choice 2 returns eta_max: one CG iteration a Newton iteration,
  * each removing about half of the remaining correction (12 Newton
- * iterations where the direct solve needs 3; docs/krylov.md, "Forcing
- * terms at the round-off floor").  The smaller ratio never loosens the
+ * iterations where the direct solve needs 3; docs/solvers.md, "Inexact
+ * Newton").  The smaller ratio never loosens the
  * choice-2 term; the safeguard on eta_{k-1} still bounds how fast it falls. */
 double sb_forcing_ew2_steps(double gnorm, double gprev, double snorm, double sprev, double eta_prev);
 
