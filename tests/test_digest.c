@@ -56,6 +56,20 @@ SB_TEST(a_digest_reports_as_the_same_run)
     CHECK_EQ_INT(sb_sh(out, sizeof out, NULL, 0, "cd %s && %s digest a.h5", tmpdir, sb_test_bin()), 0);
     CHECK(strstr(out, "already a digest") != NULL);
     CHECK_EQ_INT(size_of(tmpdir, "a.h5"), once);
+    /* a digest that keeps its state is slimmed by --drop-state (once): the
+     * same report, smaller, and render names the dropped state */
+    CHECK_EQ_INT(sb_sh(before, sizeof before, NULL, 0, "cd %s && %s report --format csv a.h5", tmpdir, sb_test_bin()), 0);
+    CHECK_EQ_INT(sb_sh(out, sizeof out, NULL, 0, "cd %s && %s digest --drop-state a.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strstr(out, "already a digest") == NULL);
+    CHECK_EQ_INT(sb_sh(after, sizeof after, NULL, 0, "cd %s && %s report --format csv a.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strcmp(before, after) == 0);
+    CHECK(size_of(tmpdir, "a.h5") < once);
+    CHECK_EQ_INT(sb_sh(NULL, 0, err, sizeof err, "cd %s && %s render a.h5 --out a2.png --quiet", tmpdir, sb_test_bin()), 2);
+    CHECK(strstr(err, "digest") && strstr(err, "/final/x"));
+    const long slim = size_of(tmpdir, "a.h5");
+    CHECK_EQ_INT(sb_sh(out, sizeof out, NULL, 0, "cd %s && %s digest --drop-state a.h5", tmpdir, sb_test_bin()), 0);
+    CHECK(strstr(out, "already a digest") != NULL);
+    CHECK_EQ_INT(size_of(tmpdir, "a.h5"), slim);
     /* without its state: the same report, and render says why it cannot draw */
     CHECK_EQ_INT(sb_sh(before, sizeof before, NULL, 0, "cd %s && %s report --format csv b.h5", tmpdir, sb_test_bin()), 0);
     CHECK_EQ_INT(sb_sh(NULL, 0, NULL, 0, "cd %s && %s digest --drop-state b.h5", tmpdir, sb_test_bin()), 0);

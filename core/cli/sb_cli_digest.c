@@ -15,7 +15,8 @@ const char sb_cli_digest_help[] =
     "parameters, statistics, histories, probes, errors, the final sample grid), without the per-step\n"
     "surfaces and the final displacement, reference grid and triangles.  --drop-state also drops the\n"
     "final dof vector, which `render` and `inspect` need.  A digest is sealed like any record; a\n"
-    "digest is left as it is.  Exit 2 if any file is not a finished record.\n";
+    "digest is left as it is, but for --drop-state on one that still holds its final dof vector.\n"
+    "Exit 2 if any file is not a finished record.\n";
 
 static long file_size(const char *path)
 {

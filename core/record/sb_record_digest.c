@@ -206,8 +206,10 @@ static int write_digest(const char *path, const char *tmp, int drop_state, char 
         for (int i = 0; dropped[i] && k < notelen; i++)
             if (i < N_ALWAYS || drop_state) k += (size_t)snprintf(note + k, notelen - k, " %s", dropped[i]);
         sb_h5w w = { "" };
-        /* an older digest keeps its own note of what it dropped */
-        bad = (H5Aexists(dst, "digest") <= 0 && sb_h5w_attr_str(&w, dst, "digest", note) != 0) ||
+        /* an older digest keeps its own note of what it dropped, unless this
+         * digest drops its state too (then the note above says it all) */
+        if (drop_state && H5Aexists(dst, "digest") > 0 && H5Adelete(dst, "digest") < 0) bad = 1;
+        bad = bad || (H5Aexists(dst, "digest") <= 0 && sb_h5w_attr_str(&w, dst, "digest", note) != 0) ||
               (H5Aexists(dst, "digest_storage") <= 0 && sb_h5w_attr_str(&w, dst, "digest_storage", digest_storage) != 0);
     }
     if (dst >= 0 && H5Fclose(dst) < 0) bad = 1;
@@ -252,8 +254,12 @@ static int digest_locked(const char *path, int drop_state, int *already, char *e
     /* the record must read (checksum, format) and not be a checkpoint */
     int rc = sb_h5r_open(&r, &f);
     /* a digest is left alone; one written before digests were compressed is
-     * rewritten once (its "digest" attribute is then replaced, not doubled) */
-    if (!rc && H5Aexists(f, "digest") > 0 && H5Aexists(f, "digest_storage") > 0) *already = 1;
+     * rewritten once (its "digest" attribute is then replaced, not doubled),
+     * and one that still holds its state is rewritten without it when
+     * drop_state asks (a committed digest slimmed later) */
+    if (!rc && H5Aexists(f, "digest") > 0 && H5Aexists(f, "digest_storage") > 0 &&
+        !(drop_state && H5Lexists(f, "/final/x", H5P_DEFAULT) > 0))
+        *already = 1;
     if (!rc && H5Lexists(f, "/resume", H5P_DEFAULT) > 0) {
         snprintf(err, errlen, "cannot digest %s: it is a checkpoint of an unfinished run (it holds /resume), not a "
                  "finished record: finish the run with --resume, then digest its record", path);
