@@ -10,7 +10,8 @@
 # by run.sh) with solver.krylov=auto beside them, records rmtrdK-SCENE-lL in
 # results/rmtr/runs, same stopping rule, kernel and BLAS settings as run.sh
 # (so the two differ only in the Krylov steps).  Each record is digested
-# (shellbench digest) as soon as it is finished.
+# without its state (shellbench digest --drop-state, as
+# scripts/digest_results.sh) as soon as it is finished.
 #   quick: levels 2-3 on every scene, the trampoline to 5 levels, drooping 4
 #          (about 10 min of one core)
 #   large: + 4 and 5 levels on the hard scenes, 6 levels (51,483 dofs,
@@ -43,7 +44,7 @@ run() {   # run FILE SCENE RES LEVELS [--set ...]
   nice -n 10 "$BIN" run --scene "$scene" --method rmtr --solver rmtr --res "$res" --levels "$lev" \
     --out "$OUT/$f.h5" --quiet --set run.max_iter=$CAP --set method.kernel=$KERNEL $KEEP "${resume[@]}" "$@"
   echo "exit $?  $f"
-  [ -f "$OUT/$f.h5" ] && "$BIN" digest "$OUT/$f.h5" >/dev/null
+  [ -f "$OUT/$f.h5" ] && "$BIN" digest --drop-state "$OUT/$f.h5" >/dev/null   # as scripts/digest_results.sh
 }
 
 K="--set solver.krylov=auto"
