@@ -140,16 +140,16 @@ int cc_level_element_of_face(const cc_level *L, int face)
 
 /* The reference geometry of level l's quadrature points (sb_shell_ref:
  * metric, curvature, area element, weight) into out (NULL: each point is
- * checked and dropped), and the level's mesh size h (longest cage edge of
- * an element's face). */
-static int ref_fill(cc_state *S, int l, sb_shell_ref *out, cc_err *e)
+ * checked and dropped), and the level's mesh size into *h when asked (the
+ * longest cage edge of an element's face). */
+static int ref_fill(cc_state *S, int l, sb_shell_ref *out, double *h, cc_err *e)
 {
     cc_level *L = &S->lv[l];
     const cc_mesh *m = L->mesh;
     const cc_quad *Q = &L->quad;
     double Xq[3 * CC_MAX_BASIS];
     sb_shell_ref tmp;
-    L->h = 0;
+    double hmax = 0;
     for (int el = 0; el < Q->ne; el++) {
         const int *nd = Q->enode + Q->eoff[el];
         int k = Q->eoff[el + 1] - Q->eoff[el];
@@ -164,9 +164,10 @@ static int ref_fill(cc_state *S, int l, sb_shell_ref *out, cc_err *e)
         for (int a = 0; a < 4; a++) {
             const double *p = L->X + 3 * c[a], *r = L->X + 3 * c[(a + 1) % 4];
             double d = sqrt((p[0] - r[0]) * (p[0] - r[0]) + (p[1] - r[1]) * (p[1] - r[1]) + (p[2] - r[2]) * (p[2] - r[2]));
-            L->h = d > L->h ? d : L->h;
+            hmax = d > hmax ? d : hmax;
         }
     }
+    if (h) *h = hmax;
     return SB_OK;
 }
 
@@ -183,9 +184,7 @@ int cc_level_ref(cc_state *S, int l)
     if (L->ref) return SB_OK;
     sb_shell_ref *r = malloc((size_t)L->quad.ne * L->quad.nq * sizeof *r);
     if (!r) return SB_ERR_NOMEM;
-    const double h = L->h;
-    int st = ref_fill(S, l, r, NULL);
-    L->h = h;
+    int st = ref_fill(S, l, r, NULL, NULL);
     if (st) {
         free(r);
         return st;
@@ -217,7 +216,7 @@ int cc_level_build(cc_state *S, int l, cc_err *e)
     for (int el = 0; el < Q->ne; el++) L->felem[Q->face[el]] = el;
     /* the reference geometry: checked (and h taken) on every level now,
      * stored now on the finest level only (cc_level_ref) */
-    if ((st = ref_fill(S, l, NULL, e))) return st;
+    if ((st = ref_fill(S, l, NULL, &L->h, e))) return st;
     if (l == S->nlev - 1 && (st = cc_level_ref(S, l))) return cc_fail(e, st, "out of memory (level %d)", l);
     if (!(L->h > 0)) return cc_fail(e, SB_ERR_INPUT, "level %d has zero mesh size", l);
     /* beta = h^-sigma (§3.1) times the scene's factor (cc_beta.c: exactly 1
