@@ -305,14 +305,16 @@ SB_TEST(cholmod_figures_per_factorization)
         double *fl = dset(f, "/stats/chol_flops", &n1, NULL), *fls = dset(f, "/stats/chol_flops_sum", &n2, NULL);
         double *lz = dset(f, "/stats/chol_nnz_l", &n3, NULL), *lzs = dset(f, "/stats/chol_nnz_l_sum", &n4, NULL);
         double *fe = dset(f, "/stats/chol_factor_entries", &n5, NULL);
-        size_t n6;
+        size_t n6, n7, n8;
         double *fc = dset(f, "/stats/chol_factorize_cpu", &n6, NULL);
+        double *f1c = dset(f, "/stats/chol_first_factorize_cpu", &n7, NULL);
+        double *f1f = dset(f, "/stats/chol_first_flops", &n8, NULL);
         double *cnt = dset(f, "/stats/events_count", &nc, &cols);
         const int cf = event_col(f, "factorize");
-        CHECK(fl && fls && lz && lzs && fe && fc && cnt && cf >= 0 && n1 >= 1 && n2 == n1 && n4 == n1 && n5 == n1 &&
-              n6 == n1);
-        for (size_t l = 0; fl && fls && lz && lzs && fe && fc && cnt && cf >= 0 && l < n1 && l < n2 && l < n4 &&
-             l < n5 && l < n6; l++) {
+        CHECK(fl && fls && lz && lzs && fe && fc && f1c && f1f && cnt && cf >= 0 && n1 >= 1 && n2 == n1 &&
+              n4 == n1 && n5 == n1 && n6 == n1 && n7 == n1 && n8 == n1);
+        for (size_t l = 0; fl && fls && lz && lzs && fe && fc && f1c && f1f && cnt && cf >= 0 && l < n1 && l < n2 &&
+             l < n4 && l < n5 && l < n6 && l < n7 && l < n8; l++) {
             const double k = cnt[l * cols + (size_t)cf];
             CHECK_MSG(k >= 1, "level %zu: %g factorizations", l, k);
             CHECK_REL(fls[l], k * fl[l], 1e-12);
@@ -320,8 +322,12 @@ SB_TEST(cholmod_figures_per_factorization)
             CHECK_MSG(fe[l] >= lz[l] && fe[l] < 3 * lz[l], "level %zu: stored %g, nnz(L) %g", l, fe[l], lz[l]);
             /* the factorizations' CPU seconds (format 4): every factorization did some work */
             CHECK_MSG(isfinite(fc[l]) && fc[l] > 0, "level %zu: %g CPU seconds in %g factorizations", l, fc[l], k);
+            /* format 5: the first factorization after the one analysis, apart:
+             * its flops are the analysis's, its seconds a part of all */
+            CHECK_REL(f1f[l], fl[l], 1e-12);
+            CHECK_MSG(f1c[l] > 0 && f1c[l] <= fc[l], "level %zu: first %g of %g CPU seconds", l, f1c[l], fc[l]);
         }
-        free(fl); free(fls); free(lz); free(lzs); free(fe); free(fc); free(cnt);
+        free(fl); free(fls); free(lz); free(lzs); free(fe); free(fc); free(f1c); free(f1f); free(cnt);
         H5Fclose(f);
     }
     sb_sh(NULL, 0, NULL, 0, "rm -rf %s", dir);

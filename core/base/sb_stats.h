@@ -124,6 +124,14 @@ typedef struct sb_stats {
      * chol_flops_sum the achieved rate per CPU second, which other processes
      * on the machine do not change the way they change wall seconds (format 4) */
     double chol_factorize_cpu[SB_MAX_LEVELS];
+    /* the first numeric factorization after each symbolic analysis, apart
+     * (format 5): its CPU seconds and flops.  In it CHOLMOD allocates the
+     * factor's values and the kernel hands the pages over (first touch: on
+     * this project's VM 1.7 s per GB on huge pages, docs/scaling.md), so the
+     * factorizations' steady rate is (flops_sum - first_flops) / (cpu -
+     * first_cpu) */
+    double chol_first_cpu[SB_MAX_LEVELS];
+    double chol_first_flops[SB_MAX_LEVELS];
     /* memory (issue 42), bytes: the run.max_memory estimate, the process's
      * peak resident size after set-up and at the end (VmHWM) */
     double mem_estimate, peak_rss_setup, peak_rss;

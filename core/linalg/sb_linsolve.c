@@ -52,6 +52,7 @@ struct sb_linsolve {
     cholmod_factor *L;
     cholmod_dense *B, *X, *Y, *E;  /* solve2 workspaces (X, Y, E reused) */
     int factored;
+    int factorized_once;      /* a numeric factorization was attempted since the analysis */
     double flops, lnz;
 };
 
@@ -151,8 +152,13 @@ int sb_linsolve_factor(sb_linsolve *ls, double shift)
         st->chol_flops_sum[ls->level] += ls->flops;
         st->chol_nnz_l_sum[ls->level] += ls->lnz;
         st->chol_factorize_cpu[ls->level] += cpu;
+        if (!ls->factorized_once) {   /* the first after this analysis (first touch of the factor) */
+            st->chol_first_cpu[ls->level] += cpu;
+            st->chol_first_flops[ls->level] += ls->flops;
+        }
         st->chol_factor_entries[ls->level] = (double)(ls->L->is_super ? ls->L->xsize : ls->L->nzmax);
     }
+    ls->factorized_once = 1;
     if (status == CHOLMOD_NOT_POSDEF) {
         ls->factored = 0;
         ls->ctx->stats.not_posdef++;

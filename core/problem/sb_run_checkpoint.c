@@ -135,6 +135,8 @@ int sb_run_resume(run_state *R, int quiet)
     memcpy(st->chol_flops_sum, rp.stats.chol_flops_sum, sizeof st->chol_flops_sum);
     memcpy(st->chol_nnz_l_sum, rp.stats.chol_nnz_l_sum, sizeof st->chol_nnz_l_sum);
     memcpy(st->chol_factorize_cpu, rp.stats.chol_factorize_cpu, sizeof st->chol_factorize_cpu);
+    memcpy(st->chol_first_cpu, rp.stats.chol_first_cpu, sizeof st->chol_first_cpu);
+    memcpy(st->chol_first_flops, rp.stats.chol_first_flops, sizeof st->chol_first_flops);
     st->n_iters = st->n_steps = 0;
     int bad = 0;
     for (size_t i = 0; i < rp.stats.n_iters && !bad; i++) bad = sb_stats_push_iter(st, &rp.stats.iters[i]);

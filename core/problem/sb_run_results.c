@@ -186,6 +186,7 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
     json_set_num(lin, "factor_flops_sum", st->chol_flops_sum[F]);
     json_set_num(lin, "factor_entries", st->chol_factor_entries[F]);
     json_set_num(lin, "factorize_cpu_seconds", st->chol_factorize_cpu[F]);
+    json_set_num(lin, "first_factorize_cpu_seconds", st->chol_first_cpu[F]);
     json_object_set_new(lin, "not_posdef", json_integer(st->not_posdef));
     json_object_set_new(o, "linear_algebra", lin);
     /* the up-front estimate (sb_memory.h) beside what the process took */

@@ -238,10 +238,12 @@ void sb_run_init(sb_run *run);
 /* Layout version written as the root attribute "format_version"; a reader
  * refuses files with a newer version.  The layout is documented in
  * docs/recorded_figures.md. */
-#define SB_RECORD_FORMAT_VERSION 4   /* 2: root attribute "checksum" (docs/trust.md); 3: exclusive event
+#define SB_RECORD_FORMAT_VERSION 5   /* 2: root attribute "checksum" (docs/trust.md); 3: exclusive event
                                         seconds, harness events, CHOLMOD per factorization, peak memory,
                                         per-iteration and per-step seconds by part (issue 42); 4: CPU
-                                        seconds of the numeric factorizations (/stats/chol_factorize_cpu) */
+                                        seconds of the numeric factorizations (/stats/chol_factorize_cpu);
+                                        5: the first factorization after each analysis apart
+                                        (/stats/chol_first_factorize_cpu, chol_first_flops) */
 #define SB_RECORD_FORMAT_NAME "shellbench-run"
 /* Record status of a checkpoint (run.checkpoint): the run was still going. */
 #define SB_STATUS_UNFINISHED 2

@@ -59,6 +59,8 @@ int sb_record_write_resume(sb_h5w *w, hid_t f, const sb_resume_point *rp)
     bad |= sb_h5w_dset_dbl(w, g, "chol_flops_sum", 1, d2, s->chol_flops_sum, "flop");
     bad |= sb_h5w_dset_dbl(w, g, "chol_nnz_l_sum", 1, d2, s->chol_nnz_l_sum, "entries");
     bad |= sb_h5w_dset_dbl(w, g, "chol_factorize_cpu", 1, d2, s->chol_factorize_cpu, "s");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_first_factorize_cpu", 1, d2, s->chol_first_cpu, "s");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_first_flops", 1, d2, s->chol_first_flops, "flop");
     if (rp->has_impulse) {
         long a[SB_IMPULSE_N_COUNTS];
         hsize_t dn = SB_IMPULSE_N_COUNTS;
@@ -215,8 +217,8 @@ static int read_events(sb_h5r *r, hid_t f, sb_stats *s)
 {
     hsize_t d1[2], d2[2];
     long *cnt = NULL;
-    double *sec = NULL, *self = NULL, *fl = NULL, *lz = NULL, *fc = NULL;
-    hsize_t d3[2], d4[2] = { 0, 0 }, d5[2] = { 0, 0 }, d6[2] = { 0, 0 };
+    double *sec = NULL, *self = NULL, *fl = NULL, *lz = NULL, *fc = NULL, *f1c = NULL, *f1f = NULL;
+    hsize_t d3[2], d4[2] = { 0, 0 }, d5[2] = { 0, 0 }, d6[2] = { 0, 0 }, d7[2] = { 0, 0 }, d8[2] = { 0, 0 };
     int rc = sb_h5r_dset(r, f, "/resume/events_count", 2, H5T_NATIVE_LONG, sizeof(long), d1, (void **)&cnt);
     if (!rc) rc = sb_h5r_dset(r, f, "/resume/events_seconds", 2, H5T_NATIVE_DOUBLE, sizeof(double), d2, (void **)&sec);
     /* format version 3 (issue 42): exclusive seconds and CHOLMOD sums; older checkpoints have neither */
@@ -232,14 +234,24 @@ static int read_events(sb_h5r *r, hid_t f, sb_stats *s)
     /* format 4: CPU seconds of the factorizations; an older checkpoint's start from zero */
     if (!rc && H5Lexists(f, "/resume/chol_factorize_cpu", H5P_DEFAULT) > 0)
         rc = sb_h5r_dset(r, f, "/resume/chol_factorize_cpu", 1, H5T_NATIVE_DOUBLE, sizeof(double), d6, (void **)&fc);
+    /* format 5: the first factorization after each analysis, apart */
+    if (!rc && H5Lexists(f, "/resume/chol_first_factorize_cpu", H5P_DEFAULT) > 0 &&
+        !(rc = sb_h5r_dset(r, f, "/resume/chol_first_factorize_cpu", 1, H5T_NATIVE_DOUBLE, sizeof(double), d7,
+                           (void **)&f1c)) &&
+        H5Lexists(f, "/resume/chol_first_flops", H5P_DEFAULT) > 0)
+        rc = sb_h5r_dset(r, f, "/resume/chol_first_flops", 1, H5T_NATIVE_DOUBLE, sizeof(double), d8, (void **)&f1f);
     for (int l = 0; !rc && l < SB_MAX_LEVELS; l++) {
         if (fl && (hsize_t)l < d4[0]) s->chol_flops_sum[l] = fl[l];
         if (lz && (hsize_t)l < d5[0]) s->chol_nnz_l_sum[l] = lz[l];
         if (fc && (hsize_t)l < d6[0]) s->chol_factorize_cpu[l] = fc[l];
+        if (f1c && (hsize_t)l < d7[0]) s->chol_first_cpu[l] = f1c[l];
+        if (f1f && (hsize_t)l < d8[0]) s->chol_first_flops[l] = f1f[l];
     }
     free(fl);
     free(lz);
     free(fc);
+    free(f1c);
+    free(f1f);
     if (!rc && (d1[0] != SB_MAX_LEVELS || d1[1] < 1 || d1[1] > 64 || d2[0] != d1[0] || d2[1] != d1[1]))
         rc = sb_h5r_fail(r, SB_ERR_INPUT, "event table of another shape (another build's event list) in", "/resume");
     hid_t g = rc ? -1 : H5Gopen2(f, "/stats", H5P_DEFAULT);

@@ -171,6 +171,8 @@ static int write_stats(sb_h5w *w, hid_t f, const sb_stats *s, const sb_run *r)
     bad |= sb_h5w_dset_dbl(w, g, "chol_nnz_l_sum", 1, &d1, s->chol_nnz_l_sum, "entries");
     bad |= sb_h5w_dset_dbl(w, g, "chol_factor_entries", 1, &d1, s->chol_factor_entries, "entries");
     bad |= sb_h5w_dset_dbl(w, g, "chol_factorize_cpu", 1, &d1, s->chol_factorize_cpu, "s");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_first_factorize_cpu", 1, &d1, s->chol_first_cpu, "s");
+    bad |= sb_h5w_dset_dbl(w, g, "chol_first_flops", 1, &d1, s->chol_first_flops, "flop");
     bad |= sb_h5w_attr_dbl(w, g, "memory_estimate", s->mem_estimate);
     bad |= sb_h5w_attr_dbl(w, g, "peak_rss_start", s->peak_rss_start);
     bad |= sb_h5w_attr_dbl(w, g, "peak_rss_setup", s->peak_rss_setup);
