@@ -2,7 +2,8 @@
  * issue 38; core/solvers/rmtr.c krylov_iterate, docs/krylov.md):
  *   - off is the plain RMTR path bit for bit (iterations, f, ||g||, work
  *     units, probe positions equal to the last bit);
- *   - auto and always converge to the known minimizer: on the clamped plate
+ *   - auto and always (and auto with krylov_boundary=krylov on the
+ *     trampoline) converge to the known minimizer: on the clamped plate
  *     (bhem) the probe is the discrete minimizer of lsnewton + CHOLMOD to
  *     1e-6 relative and the analytic Kirchhoff deflection to the scene's
  *     tolerance; on the trampoline (rmtr method) the probes of TR with exact
@@ -20,6 +21,7 @@
 #include "sb_run.h"
 #include "sb_test.h"
 
+/* set: NULL, or one or two --set KEY=VALUE separated by a space */
 static json_t *run(const char *scene, const char *method, const char *solver, int res, int levels, const char *set,
                    int *exit_code)
 {
@@ -27,9 +29,18 @@ static json_t *run(const char *scene, const char *method, const char *solver, in
     sb_test_request(&req, scene, method, solver, res);
     req.levels = levels;
     req.summary_json = 1;
-    const char *sets[1] = { set };
+    char buf[256] = "";
+    const char *sets[2] = { NULL, NULL };
+    int n = 0;
+    if (set) {
+        snprintf(buf, sizeof buf, "%s", set);
+        char *sp = strchr(buf, ' ');
+        if (sp) *sp = '\0';
+        sets[n++] = buf;
+        if (sp) sets[n++] = sp + 1;
+    }
     req.sets = sets;
-    req.n_sets = set ? 1 : 0;
+    req.n_sets = n;
     return sb_test_run_json(&req, exit_code);
 }
 
@@ -113,12 +124,13 @@ SB_TEST(krylov_reaches_the_minimizer_of_the_trampoline)
 {
     char scene[1024];
     snprintf(scene, sizeof scene, "%s/tests/scenes/trampoline_1step.json", sb_test_root());
-    static const char *const modes[] = { "solver.krylov=auto", "solver.krylov=always" };
+    static const char *const modes[] = { "solver.krylov=auto", "solver.krylov=always",
+                                         "solver.krylov=auto solver.krylov_boundary=krylov" };
     int ec;
     json_t *ref = run(scene, "rmtr", "tr", 8, 2, NULL, &ec);
     CHECK(ref && ec == 0);
     if (!ref) return;
-    for (int m = 0; m < 2; m++) {
+    for (int m = 0; m < 3; m++) {
         json_t *r = run(scene, "rmtr", "rmtr", 8, 2, modes[m], &ec);
         CHECK_MSG(r && ec == 0, "%s: exit %d", modes[m], ec);
         if (!r) continue;
@@ -127,7 +139,7 @@ SB_TEST(krylov_reaches_the_minimizer_of_the_trampoline)
             CHECK_NEAR(probe(r, "quarter", c), probe(ref, "quarter", c), 1e-6);
         }
         if (m == 1) CHECK(cg_iters(r) > 0);
-        printf("    trampoline 363 dofs %-22s iterations %2d, CG iterations %4d\n", modes[m],
+        printf("    trampoline 363 dofs %-48s iterations %2d, CG iterations %4d\n", modes[m],
                (int)num(r, "iterations", NULL), cg_iters(r));
         json_decref(r);
     }

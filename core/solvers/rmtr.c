@@ -75,6 +75,7 @@ static const char *const coarse_model_names[] = { "auto", "nonlinear", "galerkin
 enum { MODEL_AUTO = 0, MODEL_NONLINEAR = 1, MODEL_GALERKIN = 2, MODEL_CORRECTED = 3 };
 static const char *const coarse_radius_names[] = { "fine", "own", NULL };
 static const char *const krylov_names[] = { "off", "auto", "always", NULL };
+static const char *const krylov_boundary_names[] = { "vcycle", "krylov", NULL };
 enum { KRYLOV_OFF = 0, KRYLOV_AUTO = 1, KRYLOV_ALWAYS = 2 };
 
 static const sb_param_def rmtr_params[] = {
@@ -121,6 +122,9 @@ static const sb_param_def rmtr_params[] = {
     { "krylov_rtol", SB_PARAM_REAL, 0.1, -1, 0.5, NULL,
       "Krylov acceleration: CG stops at ||H s + g|| <= krylov_rtol ||g|| (default 0.1, measured: docs/krylov.md); "
       "-1: Eisenstat-Walker forcing (choice 2)" },
+    { "krylov_boundary", SB_PARAM_CHOICE, 0, 0, 0, krylov_boundary_names,
+      "Krylov acceleration, auto: after an accepted Krylov step that ended on the trust-region boundary with rho > "
+      "eta2 (the radius grew), vcycle goes back to the V-cycles, krylov takes another Krylov step" },
     { "krylov_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,
       "Krylov acceleration: block Gauss-Seidel sweeps before (forward) and after (backward) each coarse correction" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
@@ -172,6 +176,7 @@ typedef struct rmtr_state {
     double k_rtol;            /* fixed relative tolerance, < 0: Eisenstat-Walker */
     double k_eta, k_gprev;    /* the forcing term and the ||g|| it was taken at */
     int k_next;               /* auto: the next finest iteration is a Krylov step */
+    int k_boundary_krylov;    /* solver.krylov_boundary = krylov */
     int k_setup;              /* the preconditioner was set up for the current finest Hessian */
 } rmtr_state;
 
@@ -332,6 +337,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
          * alloc refuses a hierarchy without Galerkin products (with a sentence) */
         R->k_max = sb_param_int(ps, "solver.krylov_max_iter");
         R->k_rtol = sb_param(ps, "solver.krylov_rtol");
+        R->k_boundary_krylov = sb_param_int(ps, "solver.krylov_boundary") == 1;
         sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.krylov_sweeps"), .mg_lag = 1, .amg_strength = 0.5 };
         sb_context *kctx = sb_problem_context(p);
         for (int l = 0; l < R->L_fine; l++)
@@ -856,7 +862,7 @@ static int krylov_iterate(rmtr_state *R, sb_problem *p, double *x, sb_iterate_in
     /* Alg. 4.3 lines 1-3 on the finest level (see the assumption on rejection) */
     if (rho < R->eta1) V->delta = R->gamma1 * fmin(V->delta, snorm > 0 ? snorm : V->delta);
     else if (rho > R->eta2) V->delta = fmin(R->gamma2 * V->delta, 1e300);
-    R->k_next = accepted && interior;
+    R->k_next = accepted && (interior || (R->k_boundary_krylov && kr.status == SB_KRYLOV_BOUNDARY && rho > R->eta2));
     info->level = L;
     info->f = V->f;
     info->df = accepted ? f_old - V->f : 0.0;
