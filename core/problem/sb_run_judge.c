@@ -98,6 +98,11 @@ void sb_run_potential_change(run_state *R)
     if (sb_problem_method_energy(R->prob, R->xref, &e0) != SB_OK) return;
     rec->has_potential = 1;
     rec->potential_change = e1 - e0;
+    /* E(x) is also the record's energy_final (sb_run_record_energy uses it
+     * instead of a third evaluation: one pass over the elements less at the
+     * end of a run, issue 42's harness share) */
+    rec->has_energy = 1;
+    rec->energy_final = e1;
 }
 
 /* "dir/name" with dir made absolute (realpath) when it exists */

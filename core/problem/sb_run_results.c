@@ -385,6 +385,7 @@ void sb_run_record_material(run_state *R)
 void sb_run_record_energy(run_state *R)
 {
     sb_run *rec = &R->rec;
+    if (rec->has_potential && rec->has_energy) return;   /* E(x) of sb_run_potential_change, the same call */
     double e = NAN;
     rec->has_energy = R->mt->energy(R->ms, sb_problem_finest(R->prob), R->x, &e, NULL, NULL) == SB_OK && isfinite(e);
     rec->energy_final = rec->has_energy ? e : NAN;
