@@ -9,6 +9,8 @@
  *     tolerance; on the trampoline (rmtr method) the probes of TR with exact
  *     (dogleg) Newton steps to 1e-6 m; Krylov steps were taken (CG
  *     iterations counted);
+ *   - krylov_boundary=krylov follows an accepted boundary Krylov step by
+ *     another Krylov step, the default never does (record history);
  *   - a hierarchy without Galerkin coarse operators is refused before any
  *     work with a sentence naming solver.krylov.
  * No timing is asserted. */
@@ -17,16 +19,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <hdf5.h>
+#include <unistd.h>
+
 #include "run_json.h"
 #include "sb_run.h"
 #include "sb_test.h"
 
-/* set: NULL, or one or two --set KEY=VALUE separated by a space */
-static json_t *run(const char *scene, const char *method, const char *solver, int res, int levels, const char *set,
-                   int *exit_code)
+/* set: NULL, or one or two --set KEY=VALUE separated by a space; out: the
+ * record's path, NULL for none */
+static json_t *run_out(const char *scene, const char *method, const char *solver, int res, int levels, const char *set,
+                       const char *out, int *exit_code)
 {
     sb_run_request req;
     sb_test_request(&req, scene, method, solver, res);
+    if (out) req.out = out;
     req.levels = levels;
     req.summary_json = 1;
     char buf[256] = "";
@@ -42,6 +49,35 @@ static json_t *run(const char *scene, const char *method, const char *solver, in
     req.sets = sets;
     req.n_sets = n;
     return sb_test_run_json(&req, exit_code);
+}
+
+static json_t *run(const char *scene, const char *method, const char *solver, int res, int levels, const char *set,
+                   int *exit_code)
+{
+    return run_out(scene, method, solver, res, levels, set, NULL, exit_code);
+}
+
+/* a column of /history/iterations, NULL when absent */
+static double *hist(hid_t f, const char *name, size_t *n)
+{
+    char path[128];
+    snprintf(path, sizeof path, "/history/iterations/%s", name);
+    *n = 0;
+    if (H5Lexists(f, path, H5P_DEFAULT) <= 0) return NULL;
+    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+    if (d < 0) return NULL;
+    hid_t sp = H5Dget_space(d);
+    hsize_t dim = 0;
+    H5Sget_simple_extent_dims(sp, &dim, NULL);
+    double *b = malloc((dim ? dim : 1) * sizeof *b);
+    if (b && dim && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0) {
+        free(b);
+        b = NULL;
+    }
+    H5Sclose(sp);
+    H5Dclose(d);
+    *n = b ? (size_t)dim : 0;
+    return b;
 }
 
 static double num(json_t *o, const char *a, const char *b)
@@ -146,6 +182,47 @@ SB_TEST(krylov_reaches_the_minimizer_of_the_trampoline)
     json_decref(ref);
 }
 
+/* solver.krylov_boundary (docs/krylov.md): on drooping at 2 levels, where
+ * Krylov steps end on the trust-region boundary, the default (vcycle) never
+ * follows an accepted boundary Krylov step by another Krylov step, and
+ * krylov does (the record's history: krylov_rtol > 0 marks a Krylov step,
+ * krylov_status 3 the boundary); both converge. */
+SB_TEST(krylov_boundary_chooses_the_step_after_a_boundary_step)
+{
+    static const char *const modes[] = { "solver.krylov=auto", "solver.krylov=auto solver.krylov_boundary=krylov" };
+    int follows[2] = { -1, -1 };
+    for (int m = 0; m < 2; m++) {
+        char path[96];
+        snprintf(path, sizeof path, "/tmp/sb_rmtr_kb%ld_%d.h5", (long)getpid(), m);
+        int ec;
+        json_t *r = run_out("drooping", "rmtr", "rmtr", 8, 2, modes[m], path, &ec);
+        CHECK_MSG(r && ec == 0, "%s: exit %d", modes[m], ec);
+        json_decref(r);
+        hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+        CHECK(f >= 0);
+        if (f < 0) continue;
+        size_t n1, n2, n3, n4;
+        double *kr = hist(f, "krylov_rtol", &n1), *ks = hist(f, "krylov_status", &n2);
+        double *acc = hist(f, "accepted", &n3), *st = hist(f, "step", &n4);
+        CHECK(kr && ks && acc && st && n1 == n2 && n1 == n3 && n1 == n4);
+        int boundary = 0;
+        follows[m] = 0;
+        for (size_t i = 0; kr && ks && acc && st && n1 == n2 && n1 == n3 && n1 == n4 && i + 1 < n1; i++)
+            if (kr[i] > 0 && ks[i] == 3 && acc[i] > 0 && st[i + 1] == st[i]) {
+                boundary++;
+                if (kr[i + 1] > 0) follows[m]++;
+            }
+        CHECK_MSG(boundary > 0, "%s: no accepted boundary Krylov step", modes[m]);
+        printf("    drooping 363 dofs %-48s accepted boundary Krylov steps %d, followed by a Krylov step %d\n",
+               modes[m], boundary, follows[m]);
+        free(kr); free(ks); free(acc); free(st);
+        H5Fclose(f);
+        remove(path);
+    }
+    CHECK_MSG(follows[0] == 0, "vcycle: %d boundary steps followed by a Krylov step", follows[0]);
+    CHECK_MSG(follows[1] > 0, "krylov: no boundary step followed by a Krylov step");
+}
+
 /* The spring-net fixture's coarse patterns cannot hold I^T H I: the V-cycle
  * preconditioner cannot be built, refused before any work. */
 SB_TEST(krylov_refused_without_galerkin_operators)
@@ -178,6 +255,7 @@ int main(int argc, char **argv)
     static const sb_test_case cases[] = { SB_CASE(krylov_off_is_the_plain_path_bit_for_bit),
                                           SB_CASE(krylov_reaches_the_minimizer_of_the_clamped_plate),
                                           SB_CASE(krylov_reaches_the_minimizer_of_the_trampoline),
+                                          SB_CASE(krylov_boundary_chooses_the_step_after_a_boundary_step),
                                           SB_CASE(krylov_refused_without_galerkin_operators), SB_END };
     return sb_test_main(argc, argv, cases);
 }
