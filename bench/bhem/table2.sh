@@ -4,8 +4,9 @@
 # the paper's patches (its dofs), lsnewton, over the scene file's steps (the
 # first part of each scenario, chosen so that one run stays well under 20
 # CPU-minutes); per run the JSON summary (`shellbench run --summary json`),
-# the record made a digest (`shellbench digest`, ROW.digest.h5: statistics,
-# histories, probes and the final state, no per-step surfaces), the load
+# the record made a digest after its picture is drawn (`shellbench digest
+# --drop-state`, ROW.digest.h5: statistics, histories and probes, as every
+# committed digest, docs/reproducibility.md), the load
 # average at its start (ROW.load) under results/bhem/table2/, and a 240x180
 # picture of the final state, results/bhem/images/table2_ROW.png.  The
 # report section (bench/bhem/table2_report.py, in results/bhem_report.md)
@@ -85,7 +86,7 @@ large() {
   cp "$ldir/$tag.json" "$dir/$tag.json"
   "$BIN" render "$rec" --size 240x180 --spp 8 $(view "$row") --out "$IMG/table2_large_$tag.png" --quiet ||
     echo "$tag: not drawn" >&2
-  "$BIN" digest "$rec" > /dev/null && cp "$rec" "$dir/$tag.digest.h5"
+  "$BIN" digest --drop-state "$rec" > /dev/null && cp "$rec" "$dir/$tag.digest.h5"
   echo "$tag: done (exit $code)"
 }
 
@@ -105,5 +106,5 @@ for row in $ROWS; do
   mv "$f.tmp" "$f"
   "$BIN" render "$rec" --size 240x180 --spp 8 $(view "$row") --out "$IMG/table2_$row.png" --quiet ||
     echo "$row: not drawn" >&2
-  "$BIN" digest "$rec" > /dev/null && cp "$rec" "$OUT/$row.digest.h5"
+  "$BIN" digest --drop-state "$rec" > /dev/null && cp "$rec" "$OUT/$row.digest.h5"
 done
