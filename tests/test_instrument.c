@@ -11,6 +11,7 @@
 #include "cli_sh.h"
 #include "sb_record.h"
 #include "sb_stats.h"
+#include "h5_read.h"
 #include "sb_test.h"
 
 #include <hdf5.h>
@@ -34,29 +35,6 @@ static double attr_dbl(hid_t f, const char *obj, const char *name)
 
 /* a 1-D or 2-D dataset as doubles (caller frees); *n its element count,
  * cols its second extent (1 for 1-D) */
-static double *dset(hid_t f, const char *name, size_t *n, size_t *cols)
-{
-    *n = 0;
-    if (cols) *cols = 1;
-    if (H5Lexists(f, name, H5P_DEFAULT) <= 0) return NULL;
-    hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
-    if (d < 0) return NULL;
-    hid_t s = H5Dget_space(d);
-    hsize_t dims[2] = { 0, 1 };
-    int rank = H5Sget_simple_extent_dims(s, dims, NULL);
-    size_t m = (size_t)dims[0] * (rank > 1 ? (size_t)dims[1] : 1);
-    double *b = malloc((m ? m : 1) * sizeof *b);
-    if (b && m && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0) {
-        free(b);
-        b = NULL;
-    }
-    H5Sclose(s);
-    H5Dclose(d);
-    *n = b ? m : 0;
-    if (cols) *cols = rank > 1 ? (size_t)dims[1] : 1;
-    return b;
-}
-
 /* the column of event `name` in /stats/event_names, -1 when absent */
 static int event_col(hid_t f, const char *name)
 {
@@ -134,9 +112,9 @@ static void check_attribution(sb_test_state *T, const char *path, int want_check
     const double total = attr_dbl(f, "/stats", "seconds_total");
     const double un = attr_dbl(f, "/stats", "seconds_unattributed");
     size_t n, cols, n2, n3;
-    double *self = dset(f, "/stats/events_self_seconds", &n, &cols);
-    double *incl = dset(f, "/stats/events_seconds", &n2, NULL);
-    double *cnt = dset(f, "/stats/events_count", &n3, NULL);
+    double *self = sb_test_h5_doubles(f, "/stats/events_self_seconds", &n, &cols);
+    double *incl = sb_test_h5_doubles(f, "/stats/events_seconds", &n2, NULL);
+    double *cnt = sb_test_h5_doubles(f, "/stats/events_count", &n3, NULL);
     CHECK(self && incl && cnt && n == n2 && n == n3 && cols == SB_EV_COUNT);
     /* a resumed run's set-up processes are in the resume log, not in the events */
     double rs = 0;
@@ -177,8 +155,8 @@ static void check_attribution(sb_test_state *T, const char *path, int want_check
     CHECK_MSG(pst > 0 && pst <= peak0, "%s: peak_rss_start %g, peak_rss_setup %g", path, pst, peak0);
     CHECK(attr_dbl(f, "/stats", "memory_estimate") > 0);
     size_t ns, nss;
-    double *sp = dset(f, "/history/steps/peak_rss", &ns, NULL);
-    double *ss = dset(f, "/history/steps/seconds", &nss, NULL);
+    double *sp = sb_test_h5_doubles(f, "/history/steps/peak_rss", &ns, NULL);
+    double *ss = sb_test_h5_doubles(f, "/history/steps/seconds", &nss, NULL);
     CHECK(sp && ns >= 1 && ss && nss == ns);
     /* each step's peak is its own process's: bounded and nondecreasing within one process (a resumed
      * run's earlier steps are the interrupted process's) */
@@ -196,7 +174,7 @@ static void check_attribution(sb_test_state *T, const char *path, int want_check
         char name[96];
         size_t m;
         snprintf(name, sizeof name, "/history/steps/%s", parts[k]);
-        double *v = dset(f, name, &m, NULL);
+        double *v = sb_test_h5_doubles(f, name, &m, NULL);
         CHECK_MSG(v && m == ns, "%s: %s", path, name);
         for (size_t i = 0; v && i < m && i < ns; i++) {
             CHECK_MSG(v[i] >= -1e-9, "%s: %s[%zu] = %g", path, name, i, v[i]);
@@ -209,10 +187,10 @@ static void check_attribution(sb_test_state *T, const char *path, int want_check
                   psum[i], ss[i]);
     /* the iterations: assembly + factorize + solve within the iteration's seconds; summed within the steps' */
     size_t ni, m1, m2, m3;
-    double *it = dset(f, "/history/iterations/seconds", &ni, NULL);
-    double *ia = dset(f, "/history/iterations/seconds_assembly", &m1, NULL);
-    double *ifa = dset(f, "/history/iterations/seconds_factorize", &m2, NULL);
-    double *iso = dset(f, "/history/iterations/seconds_solve", &m3, NULL);
+    double *it = sb_test_h5_doubles(f, "/history/iterations/seconds", &ni, NULL);
+    double *ia = sb_test_h5_doubles(f, "/history/iterations/seconds_assembly", &m1, NULL);
+    double *ifa = sb_test_h5_doubles(f, "/history/iterations/seconds_factorize", &m2, NULL);
+    double *iso = sb_test_h5_doubles(f, "/history/iterations/seconds_solve", &m3, NULL);
     CHECK(it && ia && ifa && iso && m1 == ni && m2 == ni && m3 == ni);
     double isum = 0, ssum = 0;
     for (size_t i = 0; it && ia && ifa && iso && i < ni; i++) {
@@ -274,7 +252,7 @@ SB_TEST(every_second_is_attributed)
             if (f < 0) continue;
             int c = event_col(f, "cg_iter");
             size_t n1, n2, w1, w2;
-            double *incl = dset(f, "/stats/events_seconds", &n1, &w1), *self = dset(f, "/stats/events_self_seconds", &n2, &w2);
+            double *incl = sb_test_h5_doubles(f, "/stats/events_seconds", &n1, &w1), *self = sb_test_h5_doubles(f, "/stats/events_self_seconds", &n2, &w2);
             CHECK(c >= 0 && incl && self && n1 == n2 && w1 == w2);
             if (c >= 0 && incl && self && n1 == n2 && w1 == w2) {
                 double si = 0, ss = 0;
@@ -302,14 +280,14 @@ SB_TEST(cholmod_figures_per_factorization)
     CHECK(f >= 0);
     if (f >= 0) {
         size_t n1, n2, n3, n4, n5, nc, cols;
-        double *fl = dset(f, "/stats/chol_flops", &n1, NULL), *fls = dset(f, "/stats/chol_flops_sum", &n2, NULL);
-        double *lz = dset(f, "/stats/chol_nnz_l", &n3, NULL), *lzs = dset(f, "/stats/chol_nnz_l_sum", &n4, NULL);
-        double *fe = dset(f, "/stats/chol_factor_entries", &n5, NULL);
+        double *fl = sb_test_h5_doubles(f, "/stats/chol_flops", &n1, NULL), *fls = sb_test_h5_doubles(f, "/stats/chol_flops_sum", &n2, NULL);
+        double *lz = sb_test_h5_doubles(f, "/stats/chol_nnz_l", &n3, NULL), *lzs = sb_test_h5_doubles(f, "/stats/chol_nnz_l_sum", &n4, NULL);
+        double *fe = sb_test_h5_doubles(f, "/stats/chol_factor_entries", &n5, NULL);
         size_t n6, n7, n8;
-        double *fc = dset(f, "/stats/chol_factorize_cpu", &n6, NULL);
-        double *f1c = dset(f, "/stats/chol_first_factorize_cpu", &n7, NULL);
-        double *f1f = dset(f, "/stats/chol_first_flops", &n8, NULL);
-        double *cnt = dset(f, "/stats/events_count", &nc, &cols);
+        double *fc = sb_test_h5_doubles(f, "/stats/chol_factorize_cpu", &n6, NULL);
+        double *f1c = sb_test_h5_doubles(f, "/stats/chol_first_factorize_cpu", &n7, NULL);
+        double *f1f = sb_test_h5_doubles(f, "/stats/chol_first_flops", &n8, NULL);
+        double *cnt = sb_test_h5_doubles(f, "/stats/events_count", &nc, &cols);
         const int cf = event_col(f, "factorize");
         CHECK(fl && fls && lz && lzs && fe && fc && f1c && f1f && cnt && cf >= 0 && n1 >= 1 && n2 == n1 &&
               n4 == n1 && n5 == n1 && n6 == n1 && n7 == n1 && n8 == n1);
@@ -410,11 +388,11 @@ SB_TEST(wide_supernodes_same_factorization_larger_blocks)
         double *v;
         probe[k] = attr_dbl(f, "/error", "probe");
         est[k] = attr_dbl(f, "/stats", "memory_estimate");
-        if ((v = dset(f, "/stats/chol_nnz_l", &n, NULL)) && n) lnz[k] = v[n - 1];
+        if ((v = sb_test_h5_doubles(f, "/stats/chol_nnz_l", &n, NULL)) && n) lnz[k] = v[n - 1];
         free(v);
-        if ((v = dset(f, "/stats/chol_factor_entries", &n, NULL)) && n) stored[k] = v[n - 1];
+        if ((v = sb_test_h5_doubles(f, "/stats/chol_factor_entries", &n, NULL)) && n) stored[k] = v[n - 1];
         free(v);
-        if ((v = dset(f, "/stats/chol_flops", &n, NULL)) && n) flops[k] = v[n - 1];
+        if ((v = sb_test_h5_doubles(f, "/stats/chol_flops", &n, NULL)) && n) flops[k] = v[n - 1];
         free(v);
         H5Fclose(f);
     }

@@ -19,9 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <hdf5.h>
 #include <unistd.h>
 
+#include "h5_read.h"
 #include "run_json.h"
 #include "sb_run.h"
 #include "sb_test.h"
@@ -62,22 +62,7 @@ static double *hist(hid_t f, const char *name, size_t *n)
 {
     char path[128];
     snprintf(path, sizeof path, "/history/iterations/%s", name);
-    *n = 0;
-    if (H5Lexists(f, path, H5P_DEFAULT) <= 0) return NULL;
-    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
-    if (d < 0) return NULL;
-    hid_t sp = H5Dget_space(d);
-    hsize_t dim = 0;
-    H5Sget_simple_extent_dims(sp, &dim, NULL);
-    double *b = malloc((dim ? dim : 1) * sizeof *b);
-    if (b && dim && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0) {
-        free(b);
-        b = NULL;
-    }
-    H5Sclose(sp);
-    H5Dclose(d);
-    *n = b ? (size_t)dim : 0;
-    return b;
+    return sb_test_h5_doubles(f, path, n, NULL);
 }
 
 static double num(json_t *o, const char *a, const char *b)

@@ -111,6 +111,28 @@ SB_TEST(stvk_never_softens)
     CHECK(sb_shell_section_stability(NULL, A, B, &lm, &ls) == SB_ERR_INPUT);
 }
 
+/* 300 random strain points (random_strains with seed, span, bend) into a
+ * fresh material state, and beside it the per-point exact figures: the
+ * smallest membrane eigenvalue and the soft membrane and section counts
+ * (the state decides the section without the 6 x 6 eigenproblem where
+ * Cholesky can) */
+static void feed_random_points(sb_test_state *T, const sb_material *m, unsigned long seed, double span, double bend,
+                               sb_material_state *ms, double *min_lm, long *soft, long *soft_s)
+{
+    sb_material_state_init(ms);
+    *min_lm = INFINITY;
+    *soft = *soft_s = 0;
+    for (int i = 0; i < 300; i++) {
+        double A[3], B[3], lm, ls;
+        random_strains(&seed, span, bend, A, B);
+        CHECK(sb_shell_section_stability(m, A, B, &lm, &ls) == SB_OK);
+        *min_lm = fmin(*min_lm, lm);
+        *soft += lm < -1e-9;
+        *soft_s += ls < -1e-9;
+        CHECK(sb_material_state_add_strains(ms, m, 0.5, A, B) == SB_OK);
+    }
+}
+
 /* issue 42: a material state reuses StVK's strain-independent tangent
  * eigenvalues (computed at its first point) and gives, bit for bit, what
  * evaluating every point gives; denim is evaluated at every point but
@@ -130,19 +152,9 @@ SB_TEST(material_state_reuses_only_a_constant_tangent)
     for (int which = 0; which < 2; which++) {
         const sb_material *m = mats[which];
         sb_material_state ms;
-        sb_material_state_init(&ms);
-        double min_lm = INFINITY;
-        long soft = 0, soft_s = 0;
-        unsigned long s = 11;
-        for (int i = 0; i < 300; i++) {
-            double A[3], B[3], lm, ls;
-            random_strains(&s, 0.12, 11.0, A, B);
-            CHECK(sb_shell_section_stability(m, A, B, &lm, &ls) == SB_OK);
-            min_lm = fmin(min_lm, lm);
-            soft += lm < -1e-9;
-            soft_s += ls < -1e-9;   /* the state decides without the 6 x 6 eigenproblem where Cholesky can */
-            CHECK(sb_material_state_add_strains(&ms, m, 0.5, A, B) == SB_OK);
-        }
+        double min_lm;
+        long soft, soft_s;
+        feed_random_points(T, m, 11, 0.12, 11.0, &ms, &min_lm, &soft, &soft_s);
         CHECK_MSG(ms.min_rel_eig == min_lm, "material %d: state %.17g, per point %.17g", which, ms.min_rel_eig, min_lm);
         CHECK_EQ_INT((int)ms.soft_membrane, (int)soft);
         CHECK_EQ_INT((int)ms.soft_section, (int)soft_s);
@@ -152,16 +164,9 @@ SB_TEST(material_state_reuses_only_a_constant_tangent)
         if (which == 1) CHECK_MSG(soft > 0, "the denim sample should reach its softening strains");
         if (which == 1) {   /* mild strains: no soft point, a positive minimum */
             sb_material_state mm;
-            sb_material_state_init(&mm);
-            double min_mild = INFINITY;
-            unsigned long s2 = 5;
-            for (int i = 0; i < 300; i++) {
-                double A[3], B[3], lm, ls;
-                random_strains(&s2, 0.004, 1.0, A, B);
-                CHECK(sb_shell_section_stability(m, A, B, &lm, &ls) == SB_OK);
-                min_mild = fmin(min_mild, lm);
-                CHECK(sb_material_state_add_strains(&mm, m, 0.5, A, B) == SB_OK);
-            }
+            double min_mild;
+            long soft_mild, soft_s_mild;
+            feed_random_points(T, m, 5, 0.004, 1.0, &mm, &min_mild, &soft_mild, &soft_s_mild);
             CHECK_MSG(mm.min_rel_eig == min_mild && min_mild > 0, "mild: state %.17g, per point %.17g",
                       mm.min_rel_eig, min_mild);
             CHECK_EQ_INT((int)mm.soft_membrane, 0);
