@@ -113,8 +113,8 @@ static double rel_min_eig_bound3(const double *S)
  * at half its value and only above 1e-6, where the round-off of det (the
  * smallest eigenvalue then >= 1e-6 of the largest) is far below a half;
  * so the state's minimum and its counts are dsyev's, bit for bit (issue
- * 42: on the denim drape at 1.2e6 dofs these per-point eigenproblems were
- * most of `samples`, 3 % of a bounded run). */
+ * 42: `samples` 4.6 -> 3.6 s on a bounded bhem drape at 1.2e6 dofs, the
+ * harness share 3.1 -> 1.9 %, docs/scaling.md). */
 static int section_soft(const sb_material *m, const double A[3], const double B[3], double tol, double need,
                         double *lm, int *section_is_soft)
 {
