@@ -77,6 +77,7 @@ static const char *const coarse_radius_names[] = { "fine", "own", NULL };
 static const char *const krylov_names[] = { "off", "auto", "always", NULL };
 static const char *const krylov_boundary_names[] = { "vcycle", "krylov", NULL };
 enum { KRYLOV_OFF = 0, KRYLOV_AUTO = 1, KRYLOV_ALWAYS = 2 };
+enum { KRYLOV_BOUNDARY_VCYCLE = 0, KRYLOV_BOUNDARY_KRYLOV = 1 };
 
 static const sb_param_def rmtr_params[] = {
     { "eta1", SB_PARAM_REAL, 0.1, 0, 1, NULL, "accept when rho > eta1 (RMTR paper Table 2)" },
@@ -337,7 +338,7 @@ static int rmtr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
          * alloc refuses a hierarchy without Galerkin products (with a sentence) */
         R->k_max = sb_param_int(ps, "solver.krylov_max_iter");
         R->k_rtol = sb_param(ps, "solver.krylov_rtol");
-        R->k_boundary_krylov = sb_param_int(ps, "solver.krylov_boundary") == 1;
+        R->k_boundary_krylov = sb_param_int(ps, "solver.krylov_boundary") == KRYLOV_BOUNDARY_KRYLOV;
         sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.krylov_sweeps"), .mg_lag = 1, .amg_strength = 0.5 };
         sb_context *kctx = sb_problem_context(p);
         for (int l = 0; l < R->L_fine; l++)
@@ -793,9 +794,11 @@ static int rmtr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *i
  *    accepted and lay inside half its radius (the criterion of
  *    has_correction, radius inactive), and another Krylov step follows a
  *    Krylov step that was accepted and ended inside the radius with CG
- *    converged; anything else (boundary, negative curvature, cap,
- *    rejection) returns to the V-cycles, whose coarse corrections handle the
- *    nonconvex phases.  Every step starts with V-cycles. */
+ *    converged (with solver.krylov_boundary = krylov also one accepted on
+ *    the boundary with rho > eta2, measured in docs/krylov.md); anything
+ *    else (boundary, negative curvature, cap, rejection) returns to the
+ *    V-cycles, whose coarse corrections handle the nonconvex phases.  Every
+ *    step starts with V-cycles. */
 static int krylov_iterate(rmtr_state *R, sb_problem *p, double *x, sb_iterate_info *info)
 {
     const int L = R->L;
