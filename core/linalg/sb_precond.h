@@ -23,8 +23,17 @@
 typedef struct sb_precond_opts {
     int mg_sweeps;          /* pcg-mg: smoothing sweeps before and after the coarse correction */
     int mg_lag;             /* pcg-mg: coarse levels rebuilt every mg_lag-th setup and at each step's first (0, 1: every setup) */
+    int mg_cycle;           /* pcg-mg: SB_MG_CYCLE_V (0) or SB_MG_CYCLE_W (each coarse level but the coarsest
+                               visited twice) */
     double amg_strength;    /* pcg-amg: BoomerAMG strength threshold */
 } sb_precond_opts;
+
+enum { SB_MG_CYCLE_V = 0, SB_MG_CYCLE_W = 1 };
+extern const char *const sb_mg_cycle_names[];      /* v, w (the order of the enum) */
+int sb_mg_cycle_kind(const char *name);            /* SB_MG_CYCLE_*; V for NULL or an unknown name */
+#define SB_MG_CYCLE_HELP "pcg-mg: v (V-cycle) or w (W-cycle: each coarse level but the coarsest visited " \
+    "twice, about one more finest-level cycle of work; keeps linear_fem's CG counts from growing with the " \
+    "levels, docs/krylov.md)"
 
 typedef struct sb_precond_type {
     const char *name;

@@ -57,6 +57,7 @@ typedef struct mg_level {
     int n, bs;
     double *b, *x, *t, *e, *w;  /* right side, iterate, residual, correction, scatter scratch */
     double *binv;               /* n * bs inverted node blocks (levels >= 1) */
+    double *xw;                 /* W-cycle (levels 1 .. nl-2): the first cycle's iterate */
     /* the penalty band (levels >= 1 of a method with penalty_support): its
      * dofs, their principal submatrix of the level's operator (pattern from
      * the level's, values copied from bpos each set-up), CHOLMOD */
@@ -70,8 +71,15 @@ typedef struct mg_level {
     double *bb;
 } mg_level;
 
+const char *const sb_mg_cycle_names[] = { "v", "w", NULL };
+
+int sb_mg_cycle_kind(const char *name)
+{
+    return name && strcmp(name, "w") == 0 ? SB_MG_CYCLE_W : SB_MG_CYCLE_V;
+}
+
 typedef struct mg_state {
-    int nl, sweeps;
+    int nl, sweeps, cycle;
     int lag, since, step;       /* solver.mg_lag; setups since the coarse levels were built, and in which step */
     double coarse_shift;        /* shift of the coarsest factorization (0 unless indefinite) */
     mg_level lv[SB_MAX_LEVELS];
@@ -92,7 +100,7 @@ static void mg_free(void *st)
     for (int l = 0; l < SB_MAX_LEVELS; l++) {
         mg_level *L = &m->lv[l];
         band_free(L);
-        free(L->b); free(L->x); free(L->t); free(L->e); free(L->w); free(L->binv);
+        free(L->b); free(L->x); free(L->t); free(L->e); free(L->w); free(L->binv); free(L->xw);
         memset(L, 0, sizeof *L);
     }
 }
@@ -113,6 +121,7 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
                         "method's hierarchy), but --levels is %d", level + 1);
     m->nl = level + 1;
     m->sweeps = o && o->mg_sweeps > 0 ? o->mg_sweeps : 1;
+    m->cycle = o && o->mg_cycle == SB_MG_CYCLE_W ? SB_MG_CYCLE_W : SB_MG_CYCLE_V;
     m->lag = o && o->mg_lag > 1 ? o->mg_lag : 1;
     m->since = 0;
     m->step = -1;
@@ -128,7 +137,9 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
         L->e = malloc(n * sizeof(double));
         L->w = malloc(n * sizeof(double));
         if (l > 0) L->binv = malloc(n * (size_t)L->bs * sizeof(double));
-        if (!L->b || !L->x || !L->t || !L->e || !L->w || (l > 0 && !L->binv)) {
+        const int w = m->cycle == SB_MG_CYCLE_W && l > 0 && l < m->nl - 1;
+        if (w) L->xw = malloc(n * sizeof(double));
+        if (!L->b || !L->x || !L->t || !L->e || !L->w || (l > 0 && !L->binv) || (w && !L->xw)) {
             mg_free(m);
             return sb_error(ctx, SB_ERR_NOMEM, "out of memory (pcg-mg workspaces, level %d)", l);
         }
@@ -361,16 +372,43 @@ static void residual(const sb_matrix *H, int n, const double *b, const double *x
     for (int i = 0; i < n; i++) t[i] = b[i] - t[i];
 }
 
-/* x_l ~ H_l^{-1} b_l by one V-cycle from x_l = 0 */
+static int vcycle(mg_state *m, sb_problem *p, int l);
+
+/* The W-cycle's second visit (gamma = 2) of level c (0 < c < nl-1): one more
+ * cycle on the residual of the first one's iterate, x_c += B_c (b_c - H_c x_c).
+ * Two steps of a symmetric iteration are again symmetric, B_2 = 2 B - B H B =
+ * B (2 B^-1 - H) B, and positive definite when the cycle converges in the
+ * energy norm (2 B^-1 - H > 0 iff ||I - B H||_H < 1, which the symmetric
+ * Gauss-Seidel cycle with an exact coarsest solve satisfies): CG stays valid.
+ * Cost: level c is visited 2^(nl-1-c) times with a quarter of the dofs per
+ * level, so the coarse levels together cost about one more finest-level
+ * cycle (Trottenberg, Oosterlee & Schueller, Multigrid (2001), §2.4). */
+static int second_cycle(mg_state *m, sb_problem *p, int c)
+{
+    mg_level *C = &m->lv[c];
+    residual(sb_problem_hessian(p, c), C->n, C->b, C->x, C->t);
+    double *sw = C->b;
+    C->b = C->t;        /* the residual is the right side of the second cycle */
+    C->t = sw;
+    sw = C->x;
+    C->x = C->xw;       /* the first iterate is kept in xw */
+    C->xw = sw;
+    int rc = vcycle(m, p, c);
+    sb_axpy(C->n, 1.0, C->xw, C->x);
+    return rc;
+}
+
+/* x_l ~ H_l^{-1} b_l by one cycle (V, or W: see second_cycle) from x_l = 0 */
 static int vcycle(mg_state *m, sb_problem *p, int l)
 {
     mg_level *L = &m->lv[l];
     if (l == 0) return sb_problem_solve(p, 0, L->b, L->x);
     const sb_matrix *H = sb_problem_hessian(p, l);
     const int n = L->n;
+    const int nsw = m->sweeps;
     /* pre-smoothing: forward sweeps */
     gs_forward(L, H, L->b, L->x);
-    for (int s = 1; s < m->sweeps; s++) {
+    for (int s = 1; s < nsw; s++) {
         residual(H, n, L->b, L->x, L->t);
         gs_forward(L, H, L->t, L->e);
         sb_axpy(n, 1.0, L->e, L->x);
@@ -382,13 +420,14 @@ static int vcycle(mg_state *m, sb_problem *p, int l)
     residual(H, n, L->b, L->x, L->t);
     rc = sb_problem_restrict(p, l - 1, L->t, m->lv[l - 1].b);
     if (!rc) rc = vcycle(m, p, l - 1);
+    if (!rc && m->cycle == SB_MG_CYCLE_W && l - 1 > 0) rc = second_cycle(m, p, l - 1);
     if (!rc) rc = sb_problem_prolong(p, l - 1, m->lv[l - 1].x, L->e);
     if (rc) return rc;
     sb_axpy(n, 1.0, L->e, L->x);
     /* the band again before the backward sweeps: the adjoint order */
     if ((rc = band_solve(L, H))) return rc;
     /* post-smoothing: backward sweeps (the adjoint of the pre-smoother) */
-    for (int s = 0; s < m->sweeps; s++) {
+    for (int s = 0; s < nsw; s++) {
         residual(H, n, L->b, L->x, L->t);
         gs_backward(L, H, L->t, L->e, L->w);
         sb_axpy(n, 1.0, L->e, L->x);
@@ -417,8 +456,9 @@ static void mg_describe(const void *st, char *buf, size_t len)
     for (int l = 1; l < m->nl; l++) nb += m->lv[l].ns;
     if (nb) snprintf(band, sizeof band, ", the penalty band (%d dofs on the finest level) solved exactly by CHOLMOD",
                      m->lv[m->nl - 1].ns);
-    snprintf(buf, len, "V-cycle over %d levels, Galerkin coarse operators, block Gauss-Seidel %d+%d sweeps "
-             "(forward/backward)%s, CHOLMOD on the coarsest level (%d dofs)%s", m->nl, m->sweeps, m->sweeps, band,
+    snprintf(buf, len, "%s over %d levels, Galerkin coarse operators, block Gauss-Seidel %d+%d sweeps "
+             "(forward/backward)%s%s, CHOLMOD on the coarsest level (%d dofs)%s",
+             m->cycle == SB_MG_CYCLE_W ? "W-cycle" : "V-cycle", m->nl, m->sweeps, m->sweeps, "", band,
              m->lv[0].n, lag);
 }
 

@@ -21,6 +21,7 @@
     { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,                                                                       \
       "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },               \
     { "mg_lag", SB_PARAM_INT, 1, 1, 1000000, NULL, MG_LAG_HELP },                                                      \
+    { "mg_cycle", SB_PARAM_CHOICE, 0, 0, 0, sb_mg_cycle_names, SB_MG_CYCLE_HELP },                                     \
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,                                                               \
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" }
 #define MG_LAG_HELP "pcg-mg: rebuild the coarse levels (Galerkin products, coarsest factorization) at each step's " \
@@ -68,6 +69,7 @@ static const sb_param_def linearized_params[] = {
     { "mg_sweeps", SB_PARAM_INT, 1, 1, 20, NULL,
       "pcg-mg: block Gauss-Seidel sweeps before (forward) and after (backward) the coarse correction" },
     { "mg_lag", SB_PARAM_INT, 1, 1, 1000000, NULL, MG_LAG_HELP },
+    { "mg_cycle", SB_PARAM_CHOICE, 0, 0, 0, sb_mg_cycle_names, SB_MG_CYCLE_HELP },
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
@@ -115,6 +117,7 @@ static int krylov_alloc(newton_state *s, sb_problem *p, const sb_paramset *ps)
     s->cg_rtol = sb_param(ps, "solver.cg_rtol");
     s->cg_max_iter = sb_param_int(ps, "solver.cg_max_iter");
     sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.mg_sweeps"), .mg_lag = sb_param_int(ps, "solver.mg_lag"),
+                          .mg_cycle = sb_mg_cycle_kind(sb_param_choice(ps, "solver.mg_cycle")),
                           .amg_strength = sb_param(ps, "solver.amg_strength") };
     return sb_krylov_alloc(&s->kr, p, s->F, pt, &o);
 }

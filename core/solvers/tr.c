@@ -37,6 +37,7 @@ static const sb_param_def tr_params[] = {
     { "mg_lag", SB_PARAM_INT, 1, 1, 1000000, NULL,
       "pcg-mg: rebuild the coarse levels (Galerkin products, coarsest factorization) at each step's first TR "
       "iteration and every mg_lag-th one after; 1: every iteration" },
+    { "mg_cycle", SB_PARAM_CHOICE, 0, 0, 0, sb_mg_cycle_names, SB_MG_CYCLE_HELP },
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
     { NULL, 0, 0, 0, 0, NULL, NULL }
@@ -86,7 +87,9 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         t->krylov = 1;
         t->cg_rtol = sb_param(ps, "solver.cg_rtol");
         sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.mg_sweeps"),
-                              .mg_lag = sb_param_int(ps, "solver.mg_lag"), .amg_strength = sb_param(ps, "solver.amg_strength") };
+                              .mg_lag = sb_param_int(ps, "solver.mg_lag"),
+                              .mg_cycle = sb_mg_cycle_kind(sb_param_choice(ps, "solver.mg_cycle")),
+                              .amg_strength = sb_param(ps, "solver.amg_strength") };
         rc = sb_krylov_alloc(&t->kr, p, t->F, pt, &o);
     }
     return rc;
