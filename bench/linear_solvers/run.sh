@@ -4,7 +4,7 @@
 # study of the same records, e.g. linear_solvers_1e6.json) that have no record
 # yet, one at a time, each as its own `shellbench run` process (the study's
 # plan, its resolutions and record paths from `sweep --plan`; the same
-# parameters the sweep would set: run.max_iter=30 and solver.linear), and
+# parameters the sweep would set: run.max_iter and the varied solver.* keys), and
 # appends each run's CPU seconds to results/linear_solvers/cpu_seconds.csv.
 # FILTER (a grep -E pattern on the plan line) picks runs, e.g. 'L5.*pcg-mg'.
 #
@@ -33,16 +33,24 @@ trap 'rm -rf "$tmp"' EXIT
 declare -A SCENE=([trampoline_s2]=bench/scaling/scenes/trampoline_s2.json [drape_s2]=bench/scaling/scenes/drape_s2.json
                   [plate_clamped]=plate_clamped)
 done_n=0
-while read -r sc ms lv lin _res res _dofs _dd _start _s0 out rest; do
-  [ -n "${rest:-}" ] && continue                          # "(recorded)" or a refusal
+# a plan line: SCENE METHOD/SOLVER Ln VARIANT... res R DOFS dofs start S OUT [(recorded) | skip ...]; each
+# VARIANT k=v is the study's "vary" key ending in .k (solver.linear, solver.mg_cycle)
+while read -r -a F; do
+  i=3
+  while [ "$i" -lt "${#F[@]}" ] && [ "${F[$i]}" != res ]; do i=$((i + 1)); done
+  [ $((i + 7)) -eq "${#F[@]}" ] || continue               # "(recorded)", a refusal or a skip
+  sc=${F[0]}; ms=${F[1]}; lv=${F[2]}; res=${F[$((i + 1))]}; out=${F[$((i + 6))]}
+  variants=("${F[@]:3:$((i - 3))}")
   [ -e "$out" ] || [ -e "${out%.h5}.h5.refused" ] && continue
-  echo "$sc $ms $lv $lin $res" | grep -qE "$FILTER" || continue
+  echo "$sc $ms $lv ${variants[*]} $res" | grep -qE "$FILTER" || continue
   [ "$done_n" -ge "$N" ] && break
   m=${ms%/*}; s=${ms#*/}
-  echo "run: $sc $m $s ${lv#L} levels ${lin} res $res -> $out"
+  sets=()
+  for v in "${variants[@]}"; do sets+=(--set "solver.${v%%=*}=${v#*=}"); done
+  echo "run: $sc $m $s ${lv#L} levels ${variants[*]} res $res -> $out"
   /usr/bin/time -f "%U,%S,%M,%e" -o "$tmp/t" nice -n 10 "$BIN" run --scene "${SCENE[$sc]:-$sc}" --method "$m" \
-      --solver "$s" --res "$res" --levels "${lv#L}" --set "run.max_iter=$MAXITER" \
-      --set "solver.linear=${lin#linear=}" --out "$out" --quiet < /dev/null
+      --solver "$s" --res "$res" --levels "${lv#L}" --set "run.max_iter=$MAXITER" "${sets[@]}" --out "$out" \
+      --quiet < /dev/null
   rc=$?
   [ -e "$out" ] && echo "${out#results/linear_solvers/},$(tail -1 "$tmp/t"),$rc,$(date -u +%FT%TZ)" >> "$CSV"
   done_n=$((done_n + 1))
