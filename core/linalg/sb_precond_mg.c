@@ -1,5 +1,6 @@
-/* sb_precond_mg.c — one symmetric V-cycle of the method's own nested
- * hierarchy as the preconditioner of CG (solver.linear = pcg-mg).
+/* sb_precond_mg.c — one symmetric V-cycle (or W-cycle, solver.mg_cycle=w:
+ * see second_cycle) of the method's own nested hierarchy as the
+ * preconditioner of CG (solver.linear = pcg-mg).
  *
  *   coarse operators  H_l = I_l^T H_{l+1} I_l, Galerkin, recomputed once per
  *                     Newton iteration from the finest Hessian
@@ -405,10 +406,9 @@ static int vcycle(mg_state *m, sb_problem *p, int l)
     if (l == 0) return sb_problem_solve(p, 0, L->b, L->x);
     const sb_matrix *H = sb_problem_hessian(p, l);
     const int n = L->n;
-    const int nsw = m->sweeps;
     /* pre-smoothing: forward sweeps */
     gs_forward(L, H, L->b, L->x);
-    for (int s = 1; s < nsw; s++) {
+    for (int s = 1; s < m->sweeps; s++) {
         residual(H, n, L->b, L->x, L->t);
         gs_forward(L, H, L->t, L->e);
         sb_axpy(n, 1.0, L->e, L->x);
@@ -427,7 +427,7 @@ static int vcycle(mg_state *m, sb_problem *p, int l)
     /* the band again before the backward sweeps: the adjoint order */
     if ((rc = band_solve(L, H))) return rc;
     /* post-smoothing: backward sweeps (the adjoint of the pre-smoother) */
-    for (int s = 0; s < nsw; s++) {
+    for (int s = 0; s < m->sweeps; s++) {
         residual(H, n, L->b, L->x, L->t);
         gs_backward(L, H, L->t, L->e, L->w);
         sb_axpy(n, 1.0, L->e, L->x);
@@ -457,9 +457,8 @@ static void mg_describe(const void *st, char *buf, size_t len)
     if (nb) snprintf(band, sizeof band, ", the penalty band (%d dofs on the finest level) solved exactly by CHOLMOD",
                      m->lv[m->nl - 1].ns);
     snprintf(buf, len, "%s over %d levels, Galerkin coarse operators, block Gauss-Seidel %d+%d sweeps "
-             "(forward/backward)%s%s, CHOLMOD on the coarsest level (%d dofs)%s",
-             m->cycle == SB_MG_CYCLE_W ? "W-cycle" : "V-cycle", m->nl, m->sweeps, m->sweeps, "", band,
-             m->lv[0].n, lag);
+             "(forward/backward)%s, CHOLMOD on the coarsest level (%d dofs)%s",
+             m->cycle == SB_MG_CYCLE_W ? "W-cycle" : "V-cycle", m->nl, m->sweeps, m->sweeps, band, m->lv[0].n, lag);
 }
 
 const sb_precond_type sb_precond_mg = {
