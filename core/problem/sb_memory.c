@@ -14,7 +14,8 @@
  * sb_sparse.c): the pattern (row indices, column pointers, diagonal
  * positions), the element node lists and scatter maps (one 4-byte offset per
  * ordered node pair a <= b of an element), the value arrays of H (and M and
- * the damping matrix D of dynamic scenes), and the per-dof work vectors. */
+ * the damping matrix D of dynamic scenes; M by its nonzeros where the method
+ * says how many), and the per-dof work vectors. */
 static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *nnz_out)
 {
     const double bs = sz->bs, n = sz->nodes[l] * bs, ne = sz->elements[l], k = sz->nodes_per_element;
@@ -24,7 +25,8 @@ static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *
     *nnz_out = nnz;
     double b = nnz * 4.0 + 16.0 * n;                        /* rowind, colptr, diag */
     b += ne * k * 4.0 + ne * 0.5 * k * (k + 1) * 4.0;       /* element nodes, scatter map (4 B a node block) */
-    b += nnz * 8.0 * (dynamic ? 3.0 : 1.0);                 /* H (M, D) */
+    b += nnz * 8.0 * (dynamic ? 2.0 : 1.0);                 /* H (D) */
+    if (dynamic) b += sz->mass_nnz[l] > 0 ? sz->mass_nnz[l] * 16.0 + 8.0 * n : nnz * 8.0;   /* M */
     b += n * (1.0 + 4.0 * 8.0);                             /* fixed flags, tmp, xhat, xn, spare */
     return b;
 }

@@ -92,6 +92,9 @@ typedef struct sb_method_size {
                                         counted for the rmtr solver alone */
     double prolong_per_dof;          /* mean nonzeros of a fine dof's row of the prolongation
                                         between consecutive levels (0: counted as 1) */
+    double mass_nnz[SB_MAX_LEVELS];  /* upper-triangle nonzeros of the mass matrix of a level when at
+                                        most a quarter of its pattern's (sb_problem.c holds it by them,
+                                        16 bytes each); 0: held on the pattern */
 } sb_method_size;
 
 typedef struct sb_method_type {

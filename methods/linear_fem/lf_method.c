@@ -105,6 +105,9 @@ static int lf_estimate(const sb_scene *scene, const sb_method_config *cfg, sb_me
         const double ne = nv + nt - 1, dofs = 3 * nv + (edge_dofs ? ne : 0);
         sz->nodes[l] = edge_dofs ? dofs : nv;
         sz->elements[l] = nt + (bending == LF_BEND_HINGE ? ne : 0);
+        /* the consistent mass couples the same component of an edge's ends:
+         * 3 (nv + ne) upper entries, 7-14 % of the pattern (sb_problem.c) */
+        sz->mass_nnz[l] = 3.0 * (nv + ne);
         bytes += nt * (sizeof(lf_tri) + 64) + ne * (bending == LF_BEND_HINGE ? sizeof(lf_hinge) : 0) + nv * 96 + ne * 32;
         bytes += dofs * (2 + scene->n_loads) * sizeof(double);                                 /* x_ref, f_ext, loads */
         if (l > 0) bytes += dofs * 6 * (sizeof(int) + sizeof(double));                         /* prolongation rows */
