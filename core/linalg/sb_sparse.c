@@ -13,7 +13,13 @@ struct sb_pattern_builder {
     long *off;          /* n_elems+1 */
     int *nodes;
     size_t cap_e, cap_n;
+    int lazy_maps;      /* sb_pattern_builder_lazy_maps */
 };
+
+void sb_pattern_builder_lazy_maps(sb_pattern_builder *pb)
+{
+    if (pb) pb->lazy_maps = 1;
+}
 
 sb_pattern_builder *sb_pattern_builder_new(int n_nodes, int bs)
 {
@@ -199,42 +205,11 @@ int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out)
     p->n_elems = ne;
     p->elem_node_off = malloc(((size_t)ne + 1) * sizeof *p->elem_node_off);
     p->elem_nodes = malloc((size_t)(pb->off[ne] ? pb->off[ne] : 1) * sizeof *p->elem_nodes);
-    p->elem_map_off = malloc(((size_t)ne + 1) * sizeof *p->elem_map_off);
-    if (!p->elem_node_off || !p->elem_nodes || !p->elem_map_off) goto fail;
+    if (!p->elem_node_off || !p->elem_nodes) goto fail;
     memcpy(p->elem_node_off, pb->off, ((size_t)ne + 1) * sizeof *pb->off);
     memcpy(p->elem_nodes, pb->nodes, (size_t)pb->off[ne] * sizeof *pb->nodes);
-    long nmap = 0;
-    p->elem_map_off[0] = 0;
-    for (int e = 0; e < ne; e++) {
-        const int *nd = pb->nodes + pb->off[e];
-        int k = (int)(pb->off[e + 1] - pb->off[e]);
-        for (int a = 0; a < k; a++)
-            for (int b = 0; b < k; b++)
-                if (nd[a] >= 0 && nd[b] >= 0 && nd[a] <= nd[b]) nmap++;
-        p->elem_map_off[e + 1] = nmap;
-    }
-    p->map = malloc((size_t)(nmap ? nmap : 1) * sizeof *p->map);
-    if (!p->map) goto fail;
-    long m = 0;
-    for (int e = 0; e < ne; e++) {
-        const int *nd = pb->nodes + pb->off[e];
-        int k = (int)(pb->off[e + 1] - pb->off[e]);
-        for (int a = 0; a < k; a++)
-            for (int b = 0; b < k; b++) {
-                if (nd[a] < 0 || nd[b] < 0 || nd[a] > nd[b]) continue;
-                /* one offset per block: in every column of node nd[b] the
-                 * rows of node nd[a] start at the same place (its rank among
-                 * the column's neighbour nodes times bs) */
-                const int c0 = nd[b] * bs;
-                const long o = find_pos(p, nd[a] * bs, c0) - p->colptr[c0];
-                for (int j = 0; j < bs; j++)
-                    if (o < 0 || find_pos(p, nd[a] * bs, c0 + j) != p->colptr[c0 + j] + o) {
-                        rc = SB_ERR_INTERNAL;
-                        goto fail;
-                    }
-                p->map[m++] = (int)o;
-            }
-    }
+    if (!pb->lazy_maps && (rc = sb_pattern_ensure_maps(p)) != SB_OK) goto fail;
+    rc = SB_ERR_NOMEM;
     free(inc_off);
     free(inc);
     free(mark);
@@ -252,6 +227,52 @@ fail:
     builder_free(pb);
     sb_pattern_free(p);
     return rc;
+}
+
+int sb_pattern_ensure_maps(sb_pattern *p)
+{
+    if (p->map) return SB_OK;
+    const int ne = p->n_elems, bs = p->bs;
+    const long *off = p->elem_node_off;
+    const int *nodes = p->elem_nodes;
+    long *moff = malloc(((size_t)ne + 1) * sizeof *moff);
+    if (!moff) return SB_ERR_NOMEM;
+    long nmap = 0;
+    moff[0] = 0;
+    for (int e = 0; e < ne; e++) {
+        const int *nd = nodes + off[e];
+        int k = (int)(off[e + 1] - off[e]);
+        for (int a = 0; a < k; a++)
+            for (int b = 0; b < k; b++)
+                if (nd[a] >= 0 && nd[b] >= 0 && nd[a] <= nd[b]) nmap++;
+        moff[e + 1] = nmap;
+    }
+    int *map = malloc((size_t)(nmap ? nmap : 1) * sizeof *map);
+    if (!map) { free(moff); return SB_ERR_NOMEM; }
+    long m = 0;
+    for (int e = 0; e < ne; e++) {
+        const int *nd = nodes + off[e];
+        int k = (int)(off[e + 1] - off[e]);
+        for (int a = 0; a < k; a++)
+            for (int b = 0; b < k; b++) {
+                if (nd[a] < 0 || nd[b] < 0 || nd[a] > nd[b]) continue;
+                /* one offset per block: in every column of node nd[b] the
+                 * rows of node nd[a] start at the same place (its rank among
+                 * the column's neighbour nodes times bs) */
+                const int c0 = nd[b] * bs;
+                const long o = find_pos(p, nd[a] * bs, c0) - p->colptr[c0];
+                for (int j = 0; j < bs; j++)
+                    if (o < 0 || find_pos(p, nd[a] * bs, c0 + j) != p->colptr[c0 + j] + o) {
+                        free(moff);
+                        free(map);
+                        return SB_ERR_INTERNAL;
+                    }
+                map[m++] = (int)o;
+            }
+    }
+    p->elem_map_off = moff;
+    p->map = map;
+    return SB_OK;
 }
 
 void sb_pattern_free(sb_pattern *p)

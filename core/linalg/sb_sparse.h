@@ -36,7 +36,7 @@ typedef struct sb_pattern {
     int n_elems;
     long *elem_node_off;/* n_elems+1, into elem_nodes */
     int *elem_nodes;    /* node lists (-1 = no node) */
-    long *elem_map_off; /* n_elems+1, into map */
+    long *elem_map_off; /* n_elems+1, into map (NULL until sb_pattern_ensure_maps for a lazy pattern) */
     int *map;           /* block row offsets within their columns */
 } sb_pattern;
 
@@ -45,6 +45,12 @@ sb_pattern_builder *sb_pattern_builder_new(int n_nodes, int bs);
 int sb_pattern_builder_add(sb_pattern_builder *pb, int k, const int *nodes);
 /* Finish: builds the pattern and the scatter maps; frees the builder (also on error). */
 int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out);
+/* finish without the element scatter maps: sb_pattern_ensure_maps builds
+ * them before the first sb_matrix_add_element / get_element on the pattern
+ * (a coarse level whose matrices are Galerkin products never needs them:
+ * 924 bytes a linear_fem triangle) */
+void sb_pattern_builder_lazy_maps(sb_pattern_builder *pb);
+int  sb_pattern_ensure_maps(sb_pattern *p);     /* SB_OK when built (or already there) */
 void sb_pattern_free(sb_pattern *p);
 /* position of entry (i, j) (any order) in the value array, -1 if not in the pattern */
 long sb_pattern_find(const sb_pattern *p, int i, int j);

@@ -16,7 +16,7 @@
  * ordered node pair a <= b of an element), the value arrays of H (and M and
  * the damping matrix D of dynamic scenes; M by its nonzeros where the method
  * says how many), and the per-dof work vectors. */
-static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *nnz_out)
+static double level_bytes(const sb_method_size *sz, int l, int dynamic, int maps, double *nnz_out)
 {
     const double bs = sz->bs, n = sz->nodes[l] * bs, ne = sz->elements[l], k = sz->nodes_per_element;
     const double offdiag = 0.5 * (sz->stencil > 1 ? sz->stencil - 1 : 0);
@@ -24,7 +24,9 @@ static double level_bytes(const sb_method_size *sz, int l, int dynamic, double *
     const double nnz = sz->nodes[l] * (offdiag * bs * bs + 0.5 * bs * (bs + 1));
     *nnz_out = nnz;
     double b = nnz * 4.0 + 16.0 * n;                        /* rowind, colptr, diag */
-    b += ne * k * 4.0 + ne * 0.5 * k * (k + 1) * 4.0;       /* element nodes, scatter map (4 B a node block) */
+    b += ne * k * 4.0 + (maps ? ne * 0.5 * k * (k + 1) * 4.0 : 0.0);   /* element nodes, scatter map (4 B a node
+                                                                          block; a coarser level's only when it
+                                                                          assembles: the rmtr solver) */
     b += nnz * 8.0 * (dynamic ? 2.0 : 1.0);                 /* H (D) */
     if (dynamic) b += sz->mass_nnz[l] > 0 ? sz->mass_nnz[l] * 16.0 + 8.0 * n : nnz * 8.0;   /* M */
     b += n * (1.0 + 4.0 * 8.0);                             /* fixed flags, tmp, xhat, xn, spare */
@@ -64,7 +66,7 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
     double nnz_c = 0;
     for (int l = 0; l <= F; l++) {
         double nnz;
-        est->matrices += level_bytes(sz, l, r->dynamic, &nnz);
+        est->matrices += level_bytes(sz, l, r->dynamic, l == F || r->multilevel, &nnz);
         if (r->multilevel && l > 0) est->matrices += nnz * 8.0;   /* Galerkin coarse model I^T H I */
         if (l == F) est->nnz = nnz;
         if (l == C) nnz_c = nnz;
@@ -80,7 +82,7 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
     if (r->multilevel)
         for (int l = 1; l <= F; l++) {
             double nnz_l;
-            (void)level_bytes(sz, l, 0, &nnz_l);
+            (void)level_bytes(sz, l, 0, 1, &nnz_l);
             const double nf = sz->nodes[l] * sz->bs, nc = sz->nodes[l - 1] * sz->bs;
             const double ps = (sz->prolong_per_dof > 0 ? sz->prolong_per_dof : 1.0) * nf;
             const double m = (double)sz->nodes_per_element * sz->bs;
@@ -97,7 +99,7 @@ void sb_memory_estimate_run(const sb_method_size *sz, const sb_memory_run *r, sb
     if (r->krylov_mg && !r->multilevel)
         for (int l = 1; l <= F; l++) {
             double nnz_l;
-            (void)level_bytes(sz, l, 0, &nnz_l);
+            (void)level_bytes(sz, l, 0, 1, &nnz_l);
             const double nf = sz->nodes[l] * sz->bs;
             est->matrices += (nnz_l - nf > 0 ? nnz_l - nf : 0) * 8.0 + nf * (sz->bs + 5.0) * 8.0;
         }

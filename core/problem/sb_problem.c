@@ -270,12 +270,21 @@ static void mass_compact(level_data *L)
 
 static int mass_built(const level_data *L) { return L->M.val || L->Ms.val; }
 
+int sb_problem_element_maps(sb_problem *p, int level)
+{
+    const int rc = sb_pattern_ensure_maps(p->lv[level].pat);
+    return rc ? sb_error(p->ctx, rc, "%s (element scatter maps of level %d)",
+                         rc == SB_ERR_NOMEM ? "out of memory" : "a pattern inconsistent with its elements", level)
+              : SB_OK;
+}
+
 /* The mass matrix of level l (dynamic scenes), built once at its first use. */
 static int level_mass(sb_problem *p, int l)
 {
     level_data *L = &p->lv[l];
     if (mass_built(L)) return SB_OK;
-    int rc = sb_matrix_init(&L->M, L->pat);
+    int rc = sb_problem_element_maps(p, l);
+    if (!rc) rc = sb_matrix_init(&L->M, L->pat);
     if (rc) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (mass matrix, level %d)", l);
     if ((rc = p->mt->mass(p->ms, l, &L->M))) {
         sb_matrix_free(&L->M);
@@ -320,6 +329,10 @@ static int level_setup(sb_problem *p, int l)
         if (!pb) { rc = sb_error(ctx, SB_ERR_NOMEM, "out of memory (pattern)"); goto fail; }
         rc = mt->pattern(ms, l, pb);
         if (rc) { sb_pattern_builder_finish(pb, &L->pat); sb_pattern_free(L->pat); L->pat = NULL; goto fail; }
+        /* a coarser level's scatter maps at its first assembly
+         * (sb_problem_element_maps): never with lsnewton, tr, damped or
+         * linearized, whose coarse matrices are Galerkin products */
+        if (l < p->nl - 1) sb_pattern_builder_lazy_maps(pb);
         rc = sb_pattern_builder_finish(pb, &L->pat);
         if (rc) { sb_error(ctx, rc, "building the sparsity pattern of level %d failed", l); goto fail; }
         ctx->stats.matrix_nnz[l] = L->pat->nnz;
@@ -641,6 +654,7 @@ int sb_problem_begin_step(sb_problem *p, const sb_step_info *si, const double *x
         if (p->ray_b != 0.0) {
             double f = 0.0;
             double t0 = sb_stats_begin(&p->ctx->stats);
+            if ((rc = sb_problem_element_maps(p, l))) return rc;
             rc = p->mt->energy(p->ms, l, L->xn, &f, NULL, &L->D);
             sb_stats_event(&p->ctx->stats, l, SB_EV_HESSIAN, t0);
             if (rc) return rc;
@@ -777,7 +791,9 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
     if (g) memset(g, 0, (size_t)n * sizeof *g);
     if (H) sb_matrix_zero(H);
     double e = 0.0;
-    int rc = p->mt->energy(p->ms, level, x, &e, g, H);
+    int rc = H ? sb_problem_element_maps(p, level) : SB_OK;
+    if (rc) return rc;
+    rc = p->mt->energy(p->ms, level, x, &e, g, H);
     if (rc < 0) return rc;
     if (L->pins && rc == SB_OK && sb_pins_energy(L->pins, x, &e, g, H))
         return sb_error(p->ctx, SB_ERR_INTERNAL, "method %s: a sliding pin of level %d couples dofs outside the "

@@ -77,6 +77,10 @@ int  sb_problem_method_energy(sb_problem *p, const double *x, double *e);
  * sb_problem_hessian()).  Returns SB_OK or SB_NONFINITE. */
 int  sb_problem_eval(sb_problem *p, int level, const double *x, double *f, double *g, sb_matrix *H);
 sb_matrix *sb_problem_hessian(sb_problem *p, int level);
+/* The element scatter maps of a level's pattern, built at the first need:
+ * before reading a level's matrix by elements (sb_matrix_get_element,
+ * rmtr's Schwarz smoother); the problem's own assemblies call it. */
+int sb_problem_element_maps(sb_problem *p, int level);
 /* Factor the level's Hessian (as last assembled) + shift I.  SB_NOT_POSDEF is an outcome. */
 int  sb_problem_factor(sb_problem *p, int level, double shift);
 int  sb_problem_solve(sb_problem *p, int level, const double *b, double *x);

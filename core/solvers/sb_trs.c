@@ -299,7 +299,10 @@ static void stcg_apply(const stcg_state *c, const double *r, double *z)
 static int stcg_setup_precond(stcg_state *c, sb_problem *p, int level)
 {
     const int n = c->n;
-    if (c->precond == 4) return sb_schwarz_setup(&c->schwarz, sb_problem_hessian(p, level));
+    if (c->precond == 4) {
+        const int rc = sb_problem_element_maps(p, level);
+        return rc ? rc : sb_schwarz_setup(&c->schwarz, sb_problem_hessian(p, level));
+    }
     sb_problem_hess_diag(p, level, c->dinv);
     for (int i = 0; i < n; i++) c->dinv[i] = c->dinv[i] > 0 ? 1.0 / c->dinv[i] : c->dinv[i] < 0 ? -1.0 / c->dinv[i] : 1.0;
     if (c->precond < 2) return SB_OK;
