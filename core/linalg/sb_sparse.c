@@ -209,15 +209,9 @@ int sb_pattern_builder_finish(sb_pattern_builder *pb, sb_pattern **out)
     memcpy(p->elem_node_off, pb->off, ((size_t)ne + 1) * sizeof *pb->off);
     memcpy(p->elem_nodes, pb->nodes, (size_t)pb->off[ne] * sizeof *pb->nodes);
     if (!pb->lazy_maps && (rc = sb_pattern_ensure_maps(p)) != SB_OK) goto fail;
-    rc = SB_ERR_NOMEM;
-    free(inc_off);
-    free(inc);
-    free(mark);
-    free(ncount);
-    free(nbr);
-    builder_free(pb);
     *out = p;
-    return SB_OK;
+    p = NULL;
+    rc = SB_OK;
 fail:
     free(inc_off);
     free(inc);
