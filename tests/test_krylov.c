@@ -29,6 +29,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include "fd_check.h"
 #include "run_json.h"
 #include "sb_context.h"
 #include "sb_galerkin.h"
@@ -796,10 +797,65 @@ SB_TEST(bad_requests_are_refused_with_a_sentence)
         refused(T, "bhem", "lsnewton", 4, 1, "solver.linear=pcg-amg", "solver.linear=pcg-amg needs hypre");
 }
 
+/* linear_fem's mass is held by its nonzeros (sb_problem.c: 7 % of its
+ * pattern) and a coarser level's scatter maps are built at its first
+ * assembly: the dynamic problem's energy, gradient and Hessian stay
+ * consistent, on the finest level and on the next coarser one (whose maps
+ * and mass come into being here), by finite differences in a random
+ * direction */
+SB_TEST(dynamic_problem_with_the_mass_by_its_nonzeros_is_consistent)
+{
+    /* the trampoline with dt 1e-4 instead of 1 s, so that M / dt^2 dominates
+     * the Hessian and a wrong mass entry shows in the differences */
+    char src[1024], scene[256];
+    snprintf(src, sizeof src, "%s/bench/scenes/trampoline.json", sb_test_root());
+    snprintf(scene, sizeof scene, "/tmp/sb_test_krylov_mass_%d.json", (int)getpid());
+    FILE *in = fopen(src, "r"), *out = fopen(scene, "w");
+    int replaced = 0;
+    if (in && out) {
+        char line[4096];
+        while (fgets(line, sizeof line, in)) {
+            char *q = strstr(line, "\"dt\": 1.0");
+            if (q) {
+                fwrite(line, 1, (size_t)(q - line), out);
+                fputs("\"dt\": 1e-4", out);
+                fputs(q + strlen("\"dt\": 1.0"), out);
+                replaced++;
+            } else fputs(line, out);
+        }
+    }
+    if (in) fclose(in);
+    if (out) fclose(out);
+    CHECK_MSG(replaced == 1, "bench/scenes/trampoline.json: \"dt\": 1.0 found %d times", replaced);
+    fix f;
+    int rc = fix_open(&f, scene, "linear_fem", 8, 3);
+    CHECK(rc == 0);
+    for (int l = f.F; l >= f.F - 1 && !rc && replaced == 1; l--) {
+        const int n = sb_problem_n(f.p, l);
+        double *x = malloc(n * sizeof(double)), *dir = malloc(n * sizeof(double));
+        if (l == f.F) memcpy(x, f.x, n * sizeof(double));
+        else CHECK_EQ_INT(f.mt->project(f.ms, l, f.x, x), 0);   /* level F -> F-1 by injection */
+        unsigned long long z = 7;
+        for (int i = 0; i < n; i++) x[i] += 1e-3 * rnd(&z);
+        for (int i = 0; i < n; i++) dir[i] = rnd(&z);
+        sb_problem_constrain(f.p, l, dir);
+        fd_report r;
+        fd_check_problem(f.p, l, x, dir, 1e-6, &r);
+        printf("    trampoline dt 1e-4, linear_fem level %d: FD gradient %.2e, Hessian %.2e\n", l, r.best_grad,
+               r.best_hess);
+        CHECK_MSG(r.best_grad < 1e-6 && r.best_hess < 1e-6, "level %d: FD gradient %.3g, Hessian %.3g", l, r.best_grad,
+                  r.best_hess);
+        free(x); free(dir);
+    }
+    fix_close(&f);
+    remove(scene);
+}
+
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = { SB_CASE(preconditioners_are_symmetric_positive_definite),
                                           SB_CASE(bhem_prolong_matrix_equals_probing),
+                                          SB_CASE(dynamic_problem_with_the_mass_by_its_nonzeros_is_consistent),
                                           SB_CASE(pcg_mg_iterations_do_not_grow_with_size),
                                           SB_CASE(pcg_mg_with_the_penalty_band_on_the_subdivision_hierarchy),
                                           SB_CASE(every_path_reaches_the_probe_values_of_cholmod), SB_CASE(lifting_solves_with_the_run_s_linear_solver), SB_CASE(lean_galerkin_product_equals_the_indexed_one),
