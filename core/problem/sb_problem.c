@@ -284,8 +284,8 @@ static int level_mass(sb_problem *p, int l)
     level_data *L = &p->lv[l];
     if (mass_built(L)) return SB_OK;
     int rc = sb_problem_element_maps(p, l);
-    if (!rc) rc = sb_matrix_init(&L->M, L->pat);
-    if (rc) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (mass matrix, level %d)", l);
+    if (rc) return rc;
+    if ((rc = sb_matrix_init(&L->M, L->pat))) return sb_error(p->ctx, SB_ERR_NOMEM, "out of memory (mass matrix, level %d)", l);
     if ((rc = p->mt->mass(p->ms, l, &L->M))) {
         sb_matrix_free(&L->M);
         return sb_error(p->ctx, rc < 0 ? rc : SB_ERR_INTERNAL, "method %s: mass matrix of level %d failed", p->mt->name, l);
@@ -810,10 +810,8 @@ static int eval_impl(sb_problem *p, int level, const double *x, double *f, doubl
                             "method's sparsity pattern", p->mt->name, level);
     }
     if (p->dynamic) {
-        if (!mass_built(L)) {
-            const int mrc = level_mass(p, level);
-            if (mrc) return mrc;
-        }
+        const int mrc = level_mass(p, level);   /* at its first use */
+        if (mrc) return mrc;
         /* inertia: 1/(2 dt^2) (x - xhat)^T M (x - xhat)  (DESIGN.md) */
         const double idt2 = 1.0 / (p->dt * p->dt);
         double *d = L->tmp;
