@@ -35,6 +35,10 @@ static void check_assembly(sb_test_state *T, int nn, int bs, int ne, int kmax)
     CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pat), 0);
     int n = nn * bs;
     CHECK_EQ_INT(pat->n, n);
+    long maxcol = 0;
+    for (int c = 0; c < n; c++)
+        if (pat->colptr[c + 1] - pat->colptr[c] > maxcol) maxcol = pat->colptr[c + 1] - pat->colptr[c];
+    CHECK_EQ_INT(pat->map_width, maxcol <= 256 ? 1 : 2);
     sb_matrix A;
     sb_matrix_init(&A, pat);
     double *dense = calloc((size_t)n * n, sizeof(double));
@@ -105,6 +109,53 @@ static void check_assembly(sb_test_state *T, int nn, int bs, int ne, int kmax)
 SB_TEST(pattern_bs1) { check_assembly(T, 40, 1, 60, 4); }
 SB_TEST(pattern_bs3) { check_assembly(T, 30, 3, 40, 6); }
 SB_TEST(pattern_bs12) { check_assembly(T, 12, 12, 10, 4); }
+/* the scatter map's width follows the longest column: 1 byte above, 2 bytes here */
+SB_TEST(pattern_two_byte_map)
+{
+    rng_state = 777u;
+    check_assembly(T, 120, 3, 60, 40);
+    sb_pattern_builder *pb = sb_pattern_builder_new(120, 3);
+    int nd[90];   /* one element of 90 nodes: its last column has 270 entries */
+    for (int a = 0; a < 90; a++) nd[a] = a;
+    sb_pattern_builder_add(pb, 90, nd);
+    sb_pattern *pat;
+    CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pat), 0);
+    CHECK_EQ_INT(pat->map_width, 2);
+    sb_pattern_free(pat);
+}
+
+/* a star (node N-1 coupled to every node, as a constraint or a rigid body
+ * would): its column has more than 65,536 entries, so 4-byte offsets */
+SB_TEST(pattern_four_byte_map_on_a_star)
+{
+    const int N = 70000;
+    sb_pattern_builder *pb = sb_pattern_builder_new(N, 1);
+    for (int i = 0; i + 1 < N; i++) {
+        int nd[2] = { i, N - 1 };
+        CHECK_EQ_INT(sb_pattern_builder_add(pb, 2, nd), 0);
+    }
+    sb_pattern *pat;
+    CHECK_EQ_INT(sb_pattern_builder_finish(pb, &pat), 0);
+    CHECK_EQ_INT(pat->map_width, 4);
+    sb_matrix A;
+    CHECK_EQ_INT(sb_matrix_init(&A, pat), 0);
+    for (int i = 0; i + 1 < N; i++) {
+        const double Ke[4] = { 1.0, 0.5 + i, 0.5 + i, 2.0 };
+        sb_matrix_add_element(&A, i, Ke);
+    }
+    int bad = 0;
+    for (int i = 0; i + 1 < N; i++) {
+        const long q = sb_pattern_find(pat, i, N - 1), d = sb_pattern_find(pat, i, i);
+        if (q < 0 || d < 0 || A.val[q] != 0.5 + i || A.val[d] != 1.0) bad++;
+        double Ke[4];
+        sb_matrix_get_element(&A, i, Ke);
+        if (Ke[1] != 0.5 + i || Ke[2] != 0.5 + i || Ke[0] != 1.0 || Ke[3] != 2.0 * (N - 1)) bad++;
+    }
+    CHECK_EQ_INT(bad, 0);
+    CHECK_EQ_INT(A.val[pat->diag[N - 1]] == 2.0 * (N - 1), 1);
+    sb_matrix_free(&A);
+    sb_pattern_free(pat);
+}
 
 /* 1-D Laplacian with a Dirichlet-like diagonal: SPD, known solution */
 static sb_pattern *chain(int n)
@@ -348,7 +399,8 @@ SB_TEST(galerkin_product)
 int main(int argc, char **argv)
 {
     static const sb_test_case cases[] = {
-        SB_CASE(pattern_bs1), SB_CASE(pattern_bs3), SB_CASE(pattern_bs12), SB_CASE(cholmod_solve_and_not_posdef),
+        SB_CASE(pattern_bs1), SB_CASE(pattern_bs3), SB_CASE(pattern_bs12), SB_CASE(pattern_two_byte_map),
+        SB_CASE(pattern_four_byte_map_on_a_star), SB_CASE(cholmod_solve_and_not_posdef),
         SB_CASE(params_validation), SB_CASE(schwarz_preconditioner), SB_CASE(galerkin_product), SB_END,
     };
     return sb_test_main(argc, argv, cases);

@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <limits.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -223,12 +224,23 @@ fail:
     return rc;
 }
 
+/* entry i of a scatter map of w bytes an entry (w a constant where inlined) */
+static inline __attribute__((always_inline)) long map_get(const void *map, int w, long i)
+{
+    return w == 1 ? ((const uint8_t *)map)[i] : w == 2 ? ((const uint16_t *)map)[i] : ((const int32_t *)map)[i];
+}
+
 int sb_pattern_ensure_maps(sb_pattern *p)
 {
     if (p->map) return SB_OK;
     const int ne = p->n_elems, bs = p->bs;
     const long *off = p->elem_node_off;
     const int *nodes = p->elem_nodes;
+    long maxcol = 0;   /* every offset o lies below the longest column's length */
+    for (int c = 0; c < p->n; c++)
+        if (p->colptr[c + 1] - p->colptr[c] > maxcol) maxcol = p->colptr[c + 1] - p->colptr[c];
+    if (maxcol > INT32_MAX) return SB_ERR_INTERNAL;
+    const int w = maxcol <= UINT8_MAX + 1L ? 1 : maxcol <= UINT16_MAX + 1L ? 2 : 4;
     long *moff = malloc(((size_t)ne + 1) * sizeof *moff);
     if (!moff) return SB_ERR_NOMEM;
     long nmap = 0;
@@ -241,7 +253,7 @@ int sb_pattern_ensure_maps(sb_pattern *p)
                 if (nd[a] >= 0 && nd[b] >= 0 && nd[a] <= nd[b]) nmap++;
         moff[e + 1] = nmap;
     }
-    int *map = malloc((size_t)(nmap ? nmap : 1) * sizeof *map);
+    unsigned char *map = malloc((size_t)(nmap ? nmap : 1) * (size_t)w);
     if (!map) { free(moff); return SB_ERR_NOMEM; }
     long m = 0;
     for (int e = 0; e < ne; e++) {
@@ -261,11 +273,15 @@ int sb_pattern_ensure_maps(sb_pattern *p)
                         free(map);
                         return SB_ERR_INTERNAL;
                     }
-                map[m++] = (int)o;
+                if (w == 1) map[m] = (uint8_t)o;
+                else if (w == 2) ((uint16_t *)map)[m] = (uint16_t)o;
+                else ((int32_t *)map)[m] = (int32_t)o;
+                m++;
             }
     }
     p->elem_map_off = moff;
     p->map = map;
+    p->map_width = w;
     return SB_OK;
 }
 
@@ -305,14 +321,15 @@ void sb_matrix_free(sb_matrix *A)
 
 void sb_matrix_zero(sb_matrix *A) { memset(A->val, 0, (size_t)A->pat->nnz * sizeof *A->val); }
 
-void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke)
+static inline __attribute__((always_inline)) void add_element_w(sb_matrix *A, int e, const double *Ke, int w)
 {
     const sb_pattern *p = A->pat;
     const int bs = p->bs;
     const int *nd = p->elem_nodes + p->elem_node_off[e];
     const int k = (int)(p->elem_node_off[e + 1] - p->elem_node_off[e]);
     const int m = bs * k;
-    const int *map = p->map + p->elem_map_off[e];
+    const void *map = p->map;
+    long mi = p->elem_map_off[e];
     const long *cp = p->colptr;
     double *val = A->val;
     for (int a = 0; a < k; a++) {
@@ -321,7 +338,7 @@ void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke)
             if (nd[b] < 0 || nd[a] > nd[b]) continue;
             const double *blk = Ke + (size_t)(bs * a) * m + bs * b;
             const long *col = cp + (size_t)nd[b] * bs;
-            const int o = *map++;
+            const long o = map_get(map, w, mi++);
             if (nd[a] < nd[b]) {
                 for (int j = 0; j < bs; j++) {
                     double *dst = val + col[j] + o;
@@ -337,6 +354,15 @@ void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke)
     }
 }
 
+void sb_matrix_add_element(sb_matrix *A, int e, const double *Ke)
+{
+    switch (A->pat->map_width) {   /* one copy of the loop per width */
+    case 1: add_element_w(A, e, Ke, 1); break;
+    case 2: add_element_w(A, e, Ke, 2); break;
+    default: add_element_w(A, e, Ke, 4); break;
+    }
+}
+
 void sb_matrix_get_element(const sb_matrix *A, int e, double *Ke)
 {
     const sb_pattern *p = A->pat;
@@ -344,7 +370,7 @@ void sb_matrix_get_element(const sb_matrix *A, int e, double *Ke)
     const int *nd = p->elem_nodes + p->elem_node_off[e];
     const int k = (int)(p->elem_node_off[e + 1] - p->elem_node_off[e]);
     const int m = bs * k;
-    const int *map = p->map + p->elem_map_off[e];
+    long mi = p->elem_map_off[e];
     const long *cp = p->colptr;
     const double *val = A->val;
     memset(Ke, 0, (size_t)m * m * sizeof *Ke);
@@ -353,7 +379,7 @@ void sb_matrix_get_element(const sb_matrix *A, int e, double *Ke)
         for (int b = 0; b < k; b++) {
             if (nd[b] < 0 || nd[a] > nd[b]) continue;
             const long *col = cp + (size_t)nd[b] * bs;
-            const int o = *map++;
+            const long o = map_get(p->map, p->map_width, mi++);
             for (int j = 0; j < bs; j++) {
                 const double *src = val + col[j] + o;
                 for (int i = 0; i < bs; i++) {

@@ -27,9 +27,13 @@ typedef struct sb_pattern {
      * nd[a] >= 0, nd[b] >= 0 and nd[a] <= nd[b] each own one entry o: the
      * block's first row in column c = bs*nd[b] + j is at position
      * colptr[c] + o of the value array, the same o for every j (node
-     * nd[a]'s rank among the neighbour nodes of nd[b], times bs; 4 bytes a
-     * block: bs positions of 8 bytes each took a third of linear_fem's
-     * memory, docs/solvers.md "Memory").  nd[a] < nd[b]: full bs x bs block;
+     * nd[a]'s rank among the neighbour nodes of nd[b], times bs).  o is
+     * below the longest column's length, so it is stored in map_width = 1,
+     * 2 or 4 bytes, the fewest that hold every column (1 for every method
+     * here: linear_fem's scalar pattern with edge directors, 231 blocks a
+     * triangle, took 80 MB at 261,251 dofs in 4 bytes; bs positions of 8
+     * bytes each once took a third of its memory, docs/solvers.md
+     * "Memory").  nd[a] < nd[b]: full bs x bs block;
      * nd[a] == nd[b] (the diagonal block, also for a repeated node —
      * periodic identification — where both orders are kept): upper triangle
      * i <= j. */
@@ -37,7 +41,8 @@ typedef struct sb_pattern {
     long *elem_node_off;/* n_elems+1, into elem_nodes */
     int *elem_nodes;    /* node lists (-1 = no node) */
     long *elem_map_off; /* n_elems+1, into map (NULL until sb_pattern_ensure_maps for a lazy pattern) */
-    int *map;           /* block row offsets within their columns */
+    void *map;          /* block row offsets within their columns: uint8_t, uint16_t or int32_t */
+    int map_width;      /* bytes an entry of map: 1, 2 or 4 */
 } sb_pattern;
 
 sb_pattern_builder *sb_pattern_builder_new(int n_nodes, int bs);

@@ -12,8 +12,8 @@
 
 /* Bytes of the structures of one level of the problem (sb_problem.c,
  * sb_sparse.c): the pattern (row indices, column pointers, diagonal
- * positions), the element node lists and scatter maps (one 4-byte offset per
- * ordered node pair a <= b of an element), the value arrays of H (and M and
+ * positions), the element node lists and scatter maps (one 1-, 2- or 4-byte
+ * offset per ordered node pair a <= b of an element), the value arrays of H (and M and
  * the damping matrix D of dynamic scenes; M by its nonzeros where the method
  * says how many), and the per-dof work vectors. */
 static double level_bytes(const sb_method_size *sz, int l, int dynamic, int maps, double *nnz_out)
@@ -24,9 +24,10 @@ static double level_bytes(const sb_method_size *sz, int l, int dynamic, int maps
     const double nnz = sz->nodes[l] * (offdiag * bs * bs + 0.5 * bs * (bs + 1));
     *nnz_out = nnz;
     double b = nnz * 4.0 + 16.0 * n;                        /* rowind, colptr, diag */
-    b += ne * k * 4.0 + (maps ? ne * 0.5 * k * (k + 1) * 4.0 : 0.0);   /* element nodes, scatter map (4 B a node
-                                                                          block; a coarser level's only when it
-                                                                          assembles: the rmtr solver) */
+    /* scatter map: one offset a node block in 1, 2 or 4 bytes (sb_sparse.h: the fewest that hold the longest
+     * column, at most stencil * bs entries); a coarser level's only when it assembles (the rmtr solver) */
+    const double colmax = (sz->stencil > 1 ? sz->stencil : 1) * bs, wmap = colmax <= 256 ? 1 : colmax <= 65536 ? 2 : 4;
+    b += ne * k * 4.0 + (maps ? ne * 0.5 * k * (k + 1) * wmap : 0.0);   /* element nodes, scatter map */
     b += nnz * 8.0 * (dynamic ? 2.0 : 1.0);                 /* H (D) */
     if (dynamic) b += sz->mass_nnz[l] > 0 ? sz->mass_nnz[l] * 16.0 + 8.0 * n : nnz * 8.0;   /* M */
     b += n * (1.0 + 4.0 * 8.0);                             /* fixed flags, tmp, xhat, xn, spare */
