@@ -184,6 +184,7 @@ typedef struct lf_state {
     const sb_scene *scene;
     struct sb_context *ctx;
     sb_material mat;
+    sb_shell_isa isa;           /* vector width of the section law (run.vectors) */
     int bending, director, pattern, lumped;
     sb_hess_kind hess;
     double jitter;

@@ -17,7 +17,8 @@
  * our first implementation spun the free end's director by pi), while the
  * angle keeps it growing quadratically.  Strains as in sb_shell.h: A = (a - abar)/2,
  * B = (b - bbar)/2 in covariant components, T A and T B in the local warp /
- * weft frame, energy dA * sb_shell_section(T A, T B).
+ * weft frame, energy dA * sb_shell_section(T A, T B) (its fast form,
+ * sb_section_fast_isa, at the width of run.vectors).
  *
  * Derivatives: dE = nA . dA_cov + sum_i mu_i dw_i with nA = dA T^T sA,
  * nB = dA T^T sB and mu = M^T nB for B_cov = M w, M = 1/2 [[1,1,0],[1,0,1],[1,0,0]];
@@ -30,6 +31,7 @@
  * bending strains, as for bhem). */
 #include "sb_vec3.h"
 #include "lf.h"
+#include "sb_shell_batch.h"
 
 #include <math.h>
 #include <string.h>
@@ -60,21 +62,17 @@ static int edge_w(const lf_state *S, const lf_tri *T, int i, const double *qe, d
     lf_dep_normal(&dep[0], P, 0, 1, 2);
     dep[1].kind = LF_DEP_CONST;
     lf_dep_edge(&dep[2], 0, 1);
-    /* altitude h = |u| / |e| */
-    double gh[12], Hh[144], g9[9], H81[81];
-    const double h = lf_ratio(u, e, need ? g9 : NULL, H13 ? H81 : NULL);
+    /* altitude h = |u| / |e| (its 9 variables (u, v, e) do not involve v) */
+    double gh[12], g9h[9], H81h[81];
+    const double h = lf_ratio(u, e, need ? g9h : NULL, H13 ? H81h : NULL);
     if (need) {
         memset(gh, 0, sizeof gh);
-        if (H13) memset(Hh, 0, sizeof Hh);
-        lf_chain(dep, g9, H13 ? H81 : NULL, 12, gh, H13 ? Hh : NULL);
+        lf_chain(dep, g9h, NULL, 12, gh, NULL);
     }
     /* director angle alpha = c psi + sigma phi */
     const double cpsi = T->c[i];
-    double psi = 0.0, gp[12], Hp[144];
-    if (need) {
-        memset(gp, 0, sizeof gp);
-        if (H13) memset(Hp, 0, sizeof Hp);
-    }
+    double psi = 0.0, gp[12], g9p[9], H81p[81];
+    if (need) memset(gp, 0, sizeof gp);
     if (cpsi != 0.0) {
         double v[3];
         if (kind == LF_EDGE_INTERIOR) {
@@ -92,8 +90,8 @@ static int edge_w(const lf_state *S, const lf_tri *T, int i, const double *qe, d
             sb_cross3(e, T->gv[i], v);
             lf_dep_cross_edge(&dep[1], 0, 1, T->gv[i]);
         }
-        psi = lf_angle(u, v, e, need ? g9 : NULL, H13 ? H81 : NULL);
-        if (need) lf_chain(dep, g9, H13 ? H81 : NULL, 12, gp, H13 ? Hp : NULL);
+        psi = lf_angle(u, v, e, need ? g9p : NULL, H13 ? H81p : NULL);
+        if (need) lf_chain(dep, g9p, NULL, 12, gp, NULL);
     }
     const double sig = T->sigma[i];
     const double alpha = cpsi * psi + sig * phi;
@@ -107,12 +105,22 @@ static int edge_w(const lf_state *S, const lf_tri *T, int i, const double *qe, d
         g13[12] = -2.0 * h * ga[12];
     }
     if (H13) {
+        /* d2w = -2 (alpha d2h + dh dalpha^T + dalpha dh^T + h c d2psi): the
+         * chain rule is linear in (g9, H81), so alpha d2h + h c d2psi is one
+         * pass of it over alpha (g9h, H81h) + h c (g9p, H81p) (dep[1] is v's
+         * dependence, which h's derivatives do not touch) */
+        double g9c[9], H81c[81], K[144];
+        const double sp = cpsi != 0.0 ? h * cpsi : 0.0;
+        for (int k = 0; k < 9; k++) g9c[k] = alpha * g9h[k] + (sp != 0.0 ? sp * g9p[k] : 0.0);
+        for (int k = 0; k < 81; k++) H81c[k] = alpha * H81h[k] + (sp != 0.0 ? sp * H81p[k] : 0.0);
+        memset(K, 0, sizeof K);
+        lf_chain(dep, g9c, H81c, 12, NULL, K);
         for (int a = 0; a < 13; a++) {
             const double gha = a < 12 ? gh[a] : 0.0;
             for (int b = 0; b < 13; b++) {
                 const double ghb = b < 12 ? gh[b] : 0.0;
                 double v = gha * ga[b] + ga[a] * ghb;
-                if (a < 12 && b < 12) v += alpha * Hh[12 * a + b] + h * cpsi * Hp[12 * a + b];
+                if (a < 12 && b < 12) v += K[12 * a + b];
                 H13[13 * a + b] = -2.0 * v;
             }
         }
@@ -218,7 +226,8 @@ double lf_tri_energy(lf_state *S, lf_level *L, int t, const double *qe, double *
     mulT(T->ref.T, Ac, Al);
     mulT(T->ref.T, Bc, Bl);
     const double dA = T->ref.dA;
-    double E = dA * sb_shell_section(&S->mat, Al, Bl, need_g ? sA : NULL, need_g ? sB : NULL, need_h ? C6 : NULL);
+    /* the section law's fast form (sb_section_fast.c: denim's thickness points in vectors, StVK by its moments) */
+    double E = dA * sb_section_fast_isa(S->isa, &S->mat, Al, Bl, need_g ? sA : NULL, need_g ? sB : NULL, need_h ? C6 : NULL);
     if (need_g) {
         const double *Tm = T->ref.T;
         double nA[3], nB[3], mu[3];
@@ -282,20 +291,36 @@ double lf_tri_energy(lf_state *S, lf_level *L, int t, const double *qe, double *
                     Dp[i][j] = v;
                 }
             const int nr = bend ? 6 : 3;
+            /* J's columns 0-8 (the triangle's points) have all nr rows; the
+             * opposite point of edge i (9 + 3i ..) and its director (18 + i)
+             * only row 3 + i (w_i), none without bending: Z = D' J and
+             * J^T Z over the nonzero rows alone */
+            int one[LF_NED_MAX];
+            for (int a = 0; a < n; a++) one[a] = a < 9 ? -1 : a < 18 ? 3 + (a - 9) / 3 : 3 + (a - 18);
             double Z[6][LF_NED_MAX];
-            for (int i = 0; i < nr; i++)
-                for (int a = 0; a < n; a++) {
-                    double v = 0;
-                    for (int k = 0; k < nr; k++) v += Dp[i][k] * J[k][a];
-                    Z[i][a] = v;
-                }
-            for (int a = 0; a < n; a++)
+            for (int a = 0; a < n; a++) {
+                const int ka = one[a];
+                if (ka < 0)
+                    for (int i = 0; i < nr; i++) {
+                        double v = 0;
+                        for (int k = 0; k < nr; k++) v += Dp[i][k] * J[k][a];
+                        Z[i][a] = v;
+                    }
+                else
+                    for (int i = 0; i < nr; i++) Z[i][a] = ka < nr ? Dp[i][ka] * J[ka][a] : 0.0;
+            }
+            for (int a = 0; a < n; a++) {
+                const int ka = one[a];
                 for (int b = a; b < n; b++) {
                     double v = 0;
-                    for (int k = 0; k < nr; k++) v += J[k][a] * Z[k][b];
+                    if (ka < 0)
+                        for (int k = 0; k < nr; k++) v += J[k][a] * Z[k][b];
+                    else if (ka < nr)
+                        v = J[ka][a] * Z[ka][b];
                     Ke[a * n + b] += v;
                     if (b != a) Ke[b * n + a] += v;
                 }
+            }
             /* membrane second derivatives (constant patterns) */
             for (int c = 0; c < 3; c++) {
                 const int i0 = c, i1 = 3 + c, i2 = 6 + c;
@@ -337,7 +362,7 @@ double lf_hinge_energy(lf_state *S, const lf_hinge *hg, const double *q, double 
     const double kappa = -hg->coef * (theta - hg->theta_bar);
     const double B[3] = { kappa * hg->Bdir[0], kappa * hg->Bdir[1], kappa * hg->Bdir[2] }, A0[3] = { 0, 0, 0 };
     double sA[3], sB[3], C6[36];
-    const double E = hg->R * sb_shell_section(&S->mat, A0, B, need ? sA : NULL, need ? sB : NULL, K12 ? C6 : NULL);
+    const double E = hg->R * sb_section_fast_isa(S->isa, &S->mat, A0, B, need ? sA : NULL, need ? sB : NULL, K12 ? C6 : NULL);
     if (!need) return E;
     const double d1 = sB[0] * hg->Bdir[0] + sB[1] * hg->Bdir[1] + sB[2] * hg->Bdir[2];   /* dPsi/dkappa */
     const double dE = -hg->R * hg->coef * d1;                                              /* dE/dtheta */

@@ -83,28 +83,51 @@ void lf_chain(const lf_dep dep[3], const double g[9], const double *H, int ld, d
             }
     }
     if (!K) return;
-    /* K += B_k1^T H_{w1 w2} B_k2 */
-    for (int w2 = 0; w2 < 3; w2++) {
-        const lf_dep *d2 = &dep[w2];
-        if (d2->kind == LF_DEP_CONST) continue;
-        for (int k2 = 0; k2 < d2->n; k2++) {
-            const double *B2 = d2->B[k2];
-            const int s2 = d2->slot[k2];
-            for (int w1 = 0; w1 < 3; w1++) {
-                const lf_dep *d1 = &dep[w1];
-                if (d1->kind == LF_DEP_CONST) continue;
-                double HB[9];   /* H_{w1 w2} B2 */
-                for (int i = 0; i < 3; i++) {
-                    const double *Hr = H + (3 * w1 + i) * 9 + 3 * w2;
-                    for (int j = 0; j < 3; j++) HB[3 * i + j] = Hr[0] * B2[j] + Hr[1] * B2[3 + j] + Hr[2] * B2[6 + j];
-                }
-                for (int k1 = 0; k1 < d1->n; k1++) {
-                    const double *B1 = d1->B[k1];
-                    double *Kb = K + (size_t)(3 * d1->slot[k1]) * ld + 3 * s2;
-                    for (int i = 0; i < 3; i++)
-                        for (int j = 0; j < 3; j++)
-                            Kb[(size_t)i * ld + j] += B1[i] * HB[j] + B1[3 + i] * HB[3 + j] + B1[6 + i] * HB[6 + j];
-                }
+    /* K += J^T H J, J = dw/dP, gathered by point slot: J_s = sum of the
+     * terms B (dep w) that act on slot s, so that T_s = H J_s (9 x 3) is
+     * formed once per slot and K_{rs} = J_r^T T_s once per slot pair r <= s
+     * (the mirrored block added as its transpose): about half the flops of
+     * one product B1^T H B2 per pair of terms (a shared point, e.g. the
+     * edge's end points in u, v and e, has up to three terms). */
+    int slots[9], nt[9], tw[9][3];
+    const double *tb[9][3];
+    int ns = 0;
+    for (int w = 0; w < 3; w++) {
+        const lf_dep *d = &dep[w];
+        if (d->kind == LF_DEP_CONST) continue;
+        for (int k = 0; k < d->n; k++) {
+            int s = 0;
+            while (s < ns && slots[s] != d->slot[k]) s++;
+            if (s == ns) { slots[ns] = d->slot[k]; nt[ns++] = 0; }
+            tw[s][nt[s]] = w;
+            tb[s][nt[s]++] = d->B[k];
+        }
+    }
+    for (int s2 = 0; s2 < ns; s2++) {
+        double Ts[9][3];   /* H J_s2: rows w0, w1, w2 */
+        memset(Ts, 0, sizeof Ts);
+        for (int t = 0; t < nt[s2]; t++) {
+            const int w2 = tw[s2][t];
+            const double *B2 = tb[s2][t];
+            for (int r = 0; r < 9; r++) {
+                const double *Hr = H + 9 * r + 3 * w2;
+                for (int j = 0; j < 3; j++) Ts[r][j] += Hr[0] * B2[j] + Hr[1] * B2[3 + j] + Hr[2] * B2[6 + j];
+            }
+        }
+        for (int s1 = 0; s1 <= s2; s1++) {
+            double Kb[3][3] = { { 0 } };
+            for (int t = 0; t < nt[s1]; t++) {
+                const double *B1 = tb[s1][t], (*Tw)[3] = Ts + 3 * tw[s1][t];
+                for (int i = 0; i < 3; i++)
+                    for (int j = 0; j < 3; j++) Kb[i][j] += B1[i] * Tw[0][j] + B1[3 + i] * Tw[1][j] + B1[6 + i] * Tw[2][j];
+            }
+            double *K12 = K + (size_t)(3 * slots[s1]) * ld + 3 * slots[s2];
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) K12[(size_t)i * ld + j] += Kb[i][j];
+            if (s1 != s2) {
+                double *K21 = K + (size_t)(3 * slots[s2]) * ld + 3 * slots[s1];
+                for (int i = 0; i < 3; i++)
+                    for (int j = 0; j < 3; j++) K21[(size_t)i * ld + j] += Kb[j][i];
             }
         }
     }

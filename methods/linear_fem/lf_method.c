@@ -133,6 +133,8 @@ static int lf_create(void *state, const sb_scene *scene, const sb_method_config 
     S->imperfection = pval(ps, "method.imperfection", 0.0);
     if (!(S->imperfection >= 0.0)) return lf_fail(S, SB_ERR_INPUT, "method.imperfection must be >= 0");
     S->seed = (unsigned long)pval(ps, "run.seed", 1);
+    char isa_msg[256];
+    if (sb_shell_isa_from_params(ps, &S->isa, isa_msg, sizeof isa_msg)) return lf_fail(S, SB_ERR_INPUT, "%s", isa_msg);
     const int n_thick = (int)pval(ps, "method.n_thick", 0);
     S->edge_dofs = S->bending == LF_BEND_MIDEDGE && S->director == LF_DIR_EDGE;
     S->res = cfg->res > 0 ? cfg->res : (scene->default_res > 0 ? scene->default_res : 16);
