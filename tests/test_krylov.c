@@ -551,10 +551,10 @@ SB_TEST(linearized_paths_match_cholmod)
 }
 
 /* a column of /history/iterations; returns its length (at most cap) */
-static int read_col(const char *path, const char *name, hid_t type, void *buf, int cap)
+static int read_group_col(const char *path, const char *group, const char *name, hid_t type, void *buf, int cap)
 {
     char dn[128];
-    snprintf(dn, sizeof dn, "/history/iterations/%s", name);
+    snprintf(dn, sizeof dn, "/history/%s/%s", group, name);
     hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (f < 0) return -1;
     hid_t d = H5Dopen2(f, dn, H5P_DEFAULT);
@@ -569,6 +569,11 @@ static int read_col(const char *path, const char *name, hid_t type, void *buf, i
     }
     H5Fclose(f);
     return n;
+}
+
+static int read_col(const char *path, const char *name, hid_t type, void *buf, int cap)
+{
+    return read_group_col(path, "iterations", name, type, buf, cap);
 }
 
 /* Eisenstat & Walker choice 2 and its step-ratio variant (sb_krylov.h) on
@@ -591,6 +596,11 @@ SB_TEST(forcing_terms_by_hand)
     }
     CHECK_NEAR(sb_forcing_ew2_steps(0.98, 1.0, 1e-8, 0.0, 0.05), sb_forcing_ew2(0.98, 1.0, 0.05), 0.0);
     CHECK_NEAR(sb_forcing_ew2_steps(1e-12, 1.0, 1e-12, 1.0, 0.05), 1e-10, 0.0);   /* the floor */
+    /* Kelley's safeguard: max(eta, 0.5 gstop / ||g||), at most eta_max */
+    CHECK_NEAR(sb_forcing_floor(1e-8, 2.0, 1.0), 0.25, 0.0);
+    CHECK_NEAR(sb_forcing_floor(0.3, 2.0, 1.0), 0.3, 0.0);
+    CHECK_NEAR(sb_forcing_floor(1e-8, 1.0, 10.0), 0.9, 0.0);
+    CHECK_NEAR(sb_forcing_floor(1e-8, 2.0, 0.0), 1e-8, 0.0);   /* no threshold known */
 }
 
 /* the history of a record: forcing terms, Krylov counts and statuses */
@@ -618,11 +628,18 @@ SB_TEST(history_records_forcing_terms)
     CHECK(read_col(out, "linear_iters", H5T_NATIVE_INT, li, 64) == n);
     CHECK(read_col(out, "krylov_status", H5T_NATIVE_INT, ks, 64) == n);
     CHECK_MSG(n >= 3, "%d history rows", n);
+    double gstop = 0.0;
+    CHECK_EQ_INT(read_group_col(out, "steps", "gstop", H5T_NATIVE_DOUBLE, &gstop, 1), 1);
+    CHECK(gstop > 0.0);
     double gprev = 0, eta = 0;
+    int floored = 0;
     for (int i = 1; i < n; i++) {
         /* Eisenstat & Walker 1996, choice 2, from the recorded ||g|| and the
-         * last two steps' norms (row 0 is the start: step 0) */
-        double expect = sb_forcing_ew2_steps(gn[i - 1], gprev, sn[i - 1], i >= 2 ? sn[i - 2] : 0.0, eta);
+         * last two steps' norms (row 0 is the start: step 0), with Kelley's
+         * floor 0.5 gstop / ||g|| */
+        const double ew = sb_forcing_ew2_steps(gn[i - 1], gprev, sn[i - 1], i >= 2 ? sn[i - 2] : 0.0, eta);
+        double expect = fmax(ew, fmin(0.9, 0.5 * gstop / gn[i - 1]));
+        floored += expect > ew;
         CHECK_MSG(fabs(rt[i] - expect) <= 1e-12 * expect, "iteration %d: rtol %.6g, expected %.6g", i, rt[i], expect);
         CHECK(li[i] > 0);
         CHECK_EQ_INT(ks[i], SB_KRYLOV_CONVERGED);
@@ -630,9 +647,10 @@ SB_TEST(history_records_forcing_terms)
         eta = expect;
     }
     if (n >= 2) CHECK_NEAR(rt[1], 0.5, 0.0);
+    CHECK_MSG(floored >= 1, "Kelley's floor never applied (gstop %.3g)", gstop);   /* the last iteration's */
     printf("    plate_clamped bhem lsnewton pcg-mg: forcing terms");
     for (int i = 1; i < n; i++) printf(" %.2g (%d CG)", rt[i], li[i]);
-    printf("\n");
+    printf(" (%d raised by Kelley's floor)\n", floored);
     remove(out);
 }
 

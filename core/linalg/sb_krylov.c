@@ -58,6 +58,13 @@ double sb_forcing_ew2_steps(double gnorm, double gprev, double snorm, double spr
     return forcing_ew2(ratio, gprev, eta_prev);
 }
 
+double sb_forcing_floor(double eta, double gnorm, double gstop)
+{
+    const double eta_max = 0.9;   /* forcing_ew2's */
+    if (!(gstop > 0.0) || !(gnorm > 0.0)) return eta;
+    return fmax(eta, fmin(eta_max, 0.5 * gstop / gnorm));   /* Kelley (1995) Eq. (6.20) */
+}
+
 int sb_krylov_f_noise(double f, double f_trial, double pred)
 {
     const double scale = 1e7 * DBL_EPSILON * fmax(fabs(f), fabs(f_trial));

@@ -80,6 +80,15 @@ double sb_forcing_ew2(double gnorm, double gprev, double eta_prev);
  * choice-2 term; the safeguard on eta_{k-1} still bounds how fast it falls. */
 double sb_forcing_ew2_steps(double gnorm, double gprev, double snorm, double sprev, double eta_prev);
 
+/* Kelley's safeguard against oversolving in the last Newton iterations
+ * (C. T. Kelley, Iterative Methods for Linear and Nonlinear Equations,
+ * SIAM 1995, Eq. (6.20)): eta = min(eta_max, max(eta, 0.5 gstop / ||g||)),
+ * gstop the gradient norm the step stops at, so that a solve never asks for
+ * a residual far below it (at ||g|| = 2 gstop it asks for gstop / 4, not
+ * the choice-2 term's eta^2-driven 1e-8).  gstop <= 0 or the fixed
+ * cg_rtol: eta unchanged. */
+double sb_forcing_floor(double eta, double gnorm, double gstop);
+
 /* The round-off test of the Krylov paths' line search and trust-region
  * ratio: an inexact Newton step leaves a residual in the stiff (membrane)
  * directions whose Newton correction changes f by far less than the

@@ -224,6 +224,7 @@ static int krylov_direction(newton_state *s, sb_problem *p, sb_iterate_info *inf
 {
     const int n = s->n;
     double eta = s->cg_rtol >= 0.0 ? s->cg_rtol : sb_forcing_ew2_steps(s->gnorm, s->gprev, s->snorm, s->sprev, s->eta);
+    if (s->cg_rtol < 0.0) eta = sb_forcing_floor(eta, s->gnorm, info->gstop);
     if (s->kind == KIND_LINEARIZED) eta = s->cg_rtol;
     s->eta = eta;
     s->gprev = s->gnorm;

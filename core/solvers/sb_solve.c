@@ -195,6 +195,7 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
         if (it >= max_iter) { reason = SB_REASON_MAX_ITER; break; }
         memset(&info, 0, sizeof info);
         info.level = F;
+        info.gstop = gstop;
         double ev0[6], ev1[6], ti0 = sb_now();
         iter_seconds(&ctx->stats, ev0);
         rc = type->iterate(state, p, x, &info);

@@ -41,6 +41,10 @@ typedef struct sb_iterate_info {
      * (sb_iter_record.krylov_rtol / krylov_status) */
     double linear_rtol;
     int linear_status;
+    /* in: the step's gradient threshold (sb_solve sets it before each
+     * iterate; 0 when not known): the Krylov paths' forcing never asks
+     * for a residual far below it (sb_forcing_floor) */
+    double gstop;
 } sb_iterate_info;
 
 typedef struct sb_solver_type {

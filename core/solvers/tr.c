@@ -140,7 +140,8 @@ static int tr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *inf
 static int tr_krylov_step(tr_state *t, sb_problem *p, sb_trs_result *r, sb_iterate_info *info)
 {
     if (t->fresh) {
-        t->eta = t->cg_rtol >= 0.0 ? t->cg_rtol : sb_forcing_ew2(t->gnorm, t->gprev, t->eta);
+        t->eta = t->cg_rtol >= 0.0 ? t->cg_rtol
+                                   : sb_forcing_floor(sb_forcing_ew2(t->gnorm, t->gprev, t->eta), t->gnorm, info->gstop);
         t->gprev = t->gnorm;
         int rc = sb_krylov_setup(&t->kr, p);
         if (rc < 0) return rc;
