@@ -845,8 +845,12 @@ SB_TEST(dynamic_problem_with_the_mass_by_its_nonzeros_is_consistent)
     if (in) fclose(in);
     if (out) fclose(out);
     CHECK_MSG(replaced == 1, "bench/scenes/trampoline.json: \"dt\": 1.0 found %d times", replaced);
+    /* linear_fem (mass 7-14 % of the pattern) and bhem (a third; its coarser
+     * levels' quadrature released after set-up and built again here) */
+    static const char *const methods[] = { "linear_fem", "bhem" };
+    for (int mi = 0; mi < 2; mi++) {
     fix f;
-    int rc = fix_open(&f, scene, "linear_fem", 8, 3);
+    int rc = fix_open(&f, scene, methods[mi], mi == 0 ? 8 : 4, 3);
     CHECK(rc == 0);
     for (int l = f.F; l >= f.F - 1 && !rc && replaced == 1; l--) {
         const int n = sb_problem_n(f.p, l);
@@ -859,13 +863,14 @@ SB_TEST(dynamic_problem_with_the_mass_by_its_nonzeros_is_consistent)
         sb_problem_constrain(f.p, l, dir);
         fd_report r;
         fd_check_problem(f.p, l, x, dir, 1e-6, &r);
-        printf("    trampoline dt 1e-4, linear_fem level %d: FD gradient %.2e, Hessian %.2e\n", l, r.best_grad,
+        printf("    trampoline dt 1e-4, %s level %d: FD gradient %.2e, Hessian %.2e\n", methods[mi], l, r.best_grad,
                r.best_hess);
-        CHECK_MSG(r.best_grad < 1e-6 && r.best_hess < 1e-6, "level %d: FD gradient %.3g, Hessian %.3g", l, r.best_grad,
-                  r.best_hess);
+        CHECK_MSG(r.best_grad < 1e-6 && r.best_hess < 1e-6, "%s level %d: FD gradient %.3g, Hessian %.3g", methods[mi], l,
+                  r.best_grad, r.best_hess);
         free(x); free(dir);
     }
-    fix_close(&f);
+    if (!rc) fix_close(&f);
+    }
     remove(scene);
 }
 

@@ -29,7 +29,7 @@ static double level_bytes(const sb_method_size *sz, int l, int dynamic, int maps
     const double colmax = (sz->stencil > 1 ? sz->stencil : 1) * bs, wmap = colmax <= 256 ? 1 : colmax <= 65536 ? 2 : 4;
     b += ne * k * 4.0 + (maps ? ne * 0.5 * k * (k + 1) * wmap : 0.0);   /* element nodes, scatter map */
     b += nnz * 8.0 * (dynamic ? 2.0 : 1.0);                 /* H (D) */
-    if (dynamic) b += sz->mass_nnz[l] > 0 ? sz->mass_nnz[l] * 16.0 + 8.0 * n : nnz * 8.0;   /* M */
+    if (dynamic) b += sz->mass_nnz[l] > 0 ? sz->mass_nnz[l] * (8.0 + wmap) + 8.0 * n : nnz * 8.0;   /* M (offsets as the map's) */
     b += n * (1.0 + 4.0 * 8.0);                             /* fixed flags, tmp, xhat, xn, spare */
     return b;
 }

@@ -147,6 +147,9 @@ int bhem_fail(const bhem_state *S, int status, const char *fmt, ...)
 int  bhem_level_build(bhem_state *S, bhem_level *L, int n1, int n2);
 /* Quadrature tables and reference quantities per patch quadrature point. */
 int  bhem_level_quadrature(bhem_state *S, bhem_level *L);
+/* the level's quadrature data (L->ref) when it was released (coarser levels
+ * after set-up, bhem_method.c): built again at first use */
+int  bhem_level_ensure_quadrature(bhem_state *S, bhem_level *L);
 void bhem_level_free(bhem_level *L);
 /* Node index (compact) of grid node (i,j), -1 if inactive; wraps periodic seams. */
 int  bhem_node_at(const bhem_state *S, const bhem_level *L, int i, int j);

@@ -82,6 +82,8 @@ static void bhem_reduce(void *ctx, int e, const sb_elem_out *o)
 int bhem_energy(bhem_state *S, int level, const double *x, double *f, double *g, sb_matrix *H)
 {
     bhem_level *L = &S->lv[level];
+    int qrc = bhem_level_ensure_quadrature(S, L);
+    if (qrc) return qrc;
     const sb_scene *sc = S->scene;
     if (L->rebranch) {
         /* first evaluation of a step: re-centre the end-moment angle branches */
@@ -121,6 +123,8 @@ int bhem_material_state(bhem_state *S, int level, const double *x, sb_material_s
 {
     bhem_level *L = &S->lv[level];
     sb_material_state_init(ms);
+    int qrc = bhem_level_ensure_quadrature(S, L);
+    if (qrc) return qrc;
     int status = SB_OK;
     for (int e = 0; e < L->n_elems; e++) {
         bhem_gather(L, e, x, S->qe);

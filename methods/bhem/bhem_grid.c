@@ -248,6 +248,11 @@ int bhem_level_quadrature(bhem_state *S, bhem_level *L)
     return SB_OK;
 }
 
+int bhem_level_ensure_quadrature(bhem_state *S, bhem_level *L)
+{
+    return L->ref ? SB_OK : bhem_level_quadrature(S, L);
+}
+
 void bhem_level_free(bhem_level *L)
 {
     free(L->node_id); free(L->node_i); free(L->node_j);

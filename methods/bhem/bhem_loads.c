@@ -222,6 +222,8 @@ void bhem_loads_update(bhem_state *S, bhem_level *L)
  * same scalar block for each of the three components. */
 int bhem_mass(bhem_state *S, bhem_level *L, sb_matrix *M)
 {
+    int qrc = bhem_level_ensure_quadrature(S, L);
+    if (qrc) return qrc;
     double *Me = S->Ke;
     for (int e = 0; e < L->n_elems; e++) {
         memset(Me, 0, sizeof(double) * BHEM_NED * BHEM_NED);
