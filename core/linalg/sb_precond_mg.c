@@ -313,29 +313,35 @@ static int mg_setup(void *st, sb_problem *p)
 /* y = D^{-1}-block forward Gauss–Seidel sweep from zero: (D + L) y = t.
  * H is upper CSC (sb_sparse.h): the strictly lower part of row j is column
  * j above the node block. */
-static void gs_forward(const mg_level *L, const sb_matrix *H, const double *t, double *y)
+/* one node block of the forward sweep: v = t - (rows of the block, columns
+ * before it) y, then y_block = binv v */
+static inline void gs_forward_block(const mg_level *L, const sb_matrix *H, int b0, const double *t, double *y,
+                                    double *v)
 {
     const sb_pattern *pat = H->pat;
     const double *val = H->val;
-    const int n = L->n, bs = L->bs;
-    double v[12];
-    for (int b0 = 0; b0 < n; b0 += bs) {
-        for (int j = b0; j < b0 + bs; j++) {
-            double s = t[j];
-            for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
-                const int i = pat->rowind[k];
-                if (i >= b0) break;
-                s -= val[k] * y[i];
-            }
-            v[j - b0] = s;
+    const int bs = L->bs;
+    for (int j = b0; j < b0 + bs; j++) {
+        double s = t[j];
+        for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
+            const int i = pat->rowind[k];
+            if (i >= b0) break;
+            s -= val[k] * y[i];
         }
-        const double *A = L->binv + (size_t)b0 * bs;
-        for (int i = 0; i < bs; i++) {
-            double s = 0.0;
-            for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
-            y[b0 + i] = s;
-        }
+        v[j - b0] = s;
     }
+    const double *A = L->binv + (size_t)b0 * bs;
+    for (int i = 0; i < bs; i++) {
+        double s = 0.0;
+        for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
+        y[b0 + i] = s;
+    }
+}
+
+static void gs_forward(const mg_level *L, const sb_matrix *H, const double *t, double *y)
+{
+    double v[12];
+    for (int b0 = 0; b0 < L->n; b0 += L->bs) gs_forward_block(L, H, b0, t, y, v);
 }
 
 /* backward sweep from zero: (D + U) y = t; the finished blocks' columns are
@@ -382,21 +388,7 @@ static void gs_forward_residual(const mg_level *L, const sb_matrix *H, const dou
     double v[12];
     memset(r, 0, (size_t)n * sizeof *r);
     for (int b0 = 0; b0 < n; b0 += bs) {
-        for (int j = b0; j < b0 + bs; j++) {
-            double s = t[j];
-            for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
-                const int i = pat->rowind[k];
-                if (i >= b0) break;
-                s -= val[k] * y[i];
-            }
-            v[j - b0] = s;
-        }
-        const double *A = L->binv + (size_t)b0 * bs;
-        for (int i = 0; i < bs; i++) {
-            double s = 0.0;
-            for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
-            y[b0 + i] = s;
-        }
+        gs_forward_block(L, H, b0, t, y, v);
         /* the block's own share of r, v - D y: zero up to round-off unless
          * binv is not D's inverse (a block that is not SPD gets the
          * inverted absolute diagonal, sb_block_inverse_spd) */
