@@ -44,7 +44,7 @@ GOAL_DOFS = 2.5e5
 ROOT = ("scene_name", "method", "solver", "levels", "res", "n_dofs", "status", "reason", "steps_planned",
         "steps_done", "build_id")
 STATS = ("seconds_total", "peak_rss", "peak_rss_setup")
-HIST = ("iter", "linear_iters", "krylov_status", "seconds", "seconds_assembly", "shift")
+HIST = ("iter", "linear_iters", "krylov_status", "seconds", "seconds_assembly", "shift", "krylov_rtol")
 
 
 def read_record(path):
@@ -78,6 +78,11 @@ def read_record(path):
     r["cg"] = li
     r["cg_mean"] = sum(li) / len(li) if li else float("nan")
     r["cg_max"] = max(li) if li else float("nan")
+    # per digit of the tolerance each Newton step asked for: sum CG / sum log10(1/eta) (the forcing terms'
+    # mix, which differs from run to run, taken out of the count)
+    eta = [v["krylov_rtol"][k] for k in rows] if "krylov_rtol" in v else []
+    dig = sum(math.log10(1.0 / e) for e in eta if 0.0 < e < 1.0)
+    r["cg_digit"] = sum(li) / dig if dig > 0 and li else float("nan")
     r["capped"] = sum(1 for s in ks if s & 3 == 1)
     r["shifted"] = sum(1 for k in rows if v["shift"][k] > 0) if "shift" in v else 0
     sec = [v["seconds"][k] for k in rows]
@@ -208,10 +213,14 @@ def main():
     w("")
     w("CG iterations per Newton iteration against dofs (mean over the run's Newton iterations; slope = growth per "
       "unit of ln n between consecutive sizes; *at most logarithmic* when the last slope is not above the first, "
-      "or the last increase is at most one iteration; see the script's docstring):")
+      "or the last increase is at most one iteration; see the script's docstring).  *Per digit*: the run's CG "
+      "iterations over the digits its Newton steps asked for, sum log10(1/eta) of the recorded forcing terms, "
+      "judged by the same rule: the count per Newton step mixes the solver's cost with how much each step asked "
+      "of it, which the forcing terms decide and which differs from one run to the next:")
     w("")
-    w("| scene | method | path | dofs | CG/Newton mean | slopes per ln n | verdict |")
-    w("|---|---|---|---|---|---|---|")
+    w("| scene | method | path | dofs | CG/Newton mean | slopes per ln n | verdict | CG per digit of eta | "
+      "slopes per ln n | verdict per digit |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
     for sc in scenes:
         for m in sorted({r["method"] for r in recs if r["scene_name"] == sc}):
             for lin in LINEAR[1:]:
@@ -221,19 +230,29 @@ def main():
                 pts = [(n, r["cg_mean"]) for n, r in runs]
                 if len(pts) < 2:
                     continue
-                sl = [(pts[i + 1][1] - pts[i][1]) / math.log(pts[i + 1][0] / pts[i][0]) for i in range(len(pts) - 1)]
                 bad = [n for n, r in runs if r["status"] != "converged"]
-                if bad:
-                    verdict = "not judged: the %s-dof run%s did not converge" % (
-                        ", ".join(f0(float(n)) for n in bad), "s" if len(bad) > 1 else "")
-                elif len(pts) >= 3:
-                    ok = sl[-1] <= sl[0] or pts[-1][1] - pts[-2][1] <= 1.0
-                    verdict = "at most logarithmic" if ok else "faster than logarithmic"
+
+                def judge(p):
+                    s = [(p[i + 1][1] - p[i][1]) / math.log(p[i + 1][0] / p[i][0]) for i in range(len(p) - 1)]
+                    if bad:
+                        v = "not judged: the %s-dof run%s did not converge" % (
+                            ", ".join(f0(float(n)) for n in bad), "s" if len(bad) > 1 else "")
+                    elif len(p) >= 3:
+                        ok = s[-1] <= s[0] or p[-1][1] - p[-2][1] <= 1.0
+                        v = "at most logarithmic" if ok else "faster than logarithmic"
+                    else:
+                        v = "two sizes only: not judged"
+                    return s, v
+                sl, verdict = judge(pts)
+                pd = [(n, r["cg_digit"]) for n, r in runs]
+                if all(math.isfinite(c) for _, c in pd):
+                    sld, vd = judge(pd)
+                    dcols = (", ".join(f1(c) for _, c in pd), ", ".join("%.2f" % x for x in sld), vd)
                 else:
-                    verdict = "two sizes only: not judged"
-                w("| %s | %s | %s | %s | %s | %s | %s |" % (
+                    dcols = ("—", "—", "—")
+                w("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                     sc, m, lin, ", ".join(f0(float(n)) for n, _ in pts), ", ".join(f1(c) for _, c in pts),
-                    ", ".join("%.2f" % x for x in sl), verdict))
+                    ", ".join("%.2f" % x for x in sl), verdict, *dcols))
     w("")
     # the study's plan (`shellbench sweep --study ... --plan`, saved as DIR/plan.txt when the records were
     # committed): every planned run without a record or digest here was not made
