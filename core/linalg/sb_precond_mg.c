@@ -468,6 +468,10 @@ static void residual(const sb_matrix *H, int n, const double *b, const double *x
 
 static int vcycle(mg_state *m, sb_problem *p, int l);
 
+/* x_l += I (cycle on level l-1 of I^T t_l): the coarse correction, from the
+ * residual in L->t */
+static int coarse_correction(mg_state *m, sb_problem *p, int l);
+
 /* The W-cycle's second visit (gamma = 2) of level c (0 < c < nl-1): one more
  * cycle on the residual of the first one's iterate, x_c += B_c (b_c - H_c x_c).
  * Two steps of a symmetric iteration are again symmetric, B_2 = 2 B - B H B =
@@ -504,12 +508,8 @@ static int vcycle(mg_state *m, sb_problem *p, int l)
     const int fused = m->sweeps == 1 && !(L->ns && L->band_ok);
     if (fused) {
         gs_forward_residual(L, H, L->b, L->x, L->t);
-        int rc = sb_problem_restrict(p, l - 1, L->t, m->lv[l - 1].b);
-        if (!rc) rc = vcycle(m, p, l - 1);
-        if (!rc && m->cycle == SB_MG_CYCLE_W && l - 1 > 0) rc = second_cycle(m, p, l - 1);
-        if (!rc) rc = sb_problem_prolong(p, l - 1, m->lv[l - 1].x, L->e);
+        int rc = coarse_correction(m, p, l);
         if (rc) return rc;
-        sb_axpy(n, 1.0, L->e, L->x);
         gs_backward_inplace(L, H, L->b, L->x, L->w);
         return SB_OK;
     }
@@ -525,12 +525,7 @@ static int vcycle(mg_state *m, sb_problem *p, int l)
     if (rc) return rc;
     /* coarse correction */
     residual(H, n, L->b, L->x, L->t);
-    rc = sb_problem_restrict(p, l - 1, L->t, m->lv[l - 1].b);
-    if (!rc) rc = vcycle(m, p, l - 1);
-    if (!rc && m->cycle == SB_MG_CYCLE_W && l - 1 > 0) rc = second_cycle(m, p, l - 1);
-    if (!rc) rc = sb_problem_prolong(p, l - 1, m->lv[l - 1].x, L->e);
-    if (rc) return rc;
-    sb_axpy(n, 1.0, L->e, L->x);
+    if ((rc = coarse_correction(m, p, l))) return rc;
     /* the band again before the backward sweeps: the adjoint order */
     if ((rc = band_solve(L, H))) return rc;
     /* post-smoothing: backward sweeps (the adjoint of the pre-smoother) */
@@ -539,6 +534,18 @@ static int vcycle(mg_state *m, sb_problem *p, int l)
         gs_backward(L, H, L->t, L->e, L->w);
         sb_axpy(n, 1.0, L->e, L->x);
     }
+    return SB_OK;
+}
+
+static int coarse_correction(mg_state *m, sb_problem *p, int l)
+{
+    mg_level *L = &m->lv[l];
+    int rc = sb_problem_restrict(p, l - 1, L->t, m->lv[l - 1].b);
+    if (!rc) rc = vcycle(m, p, l - 1);
+    if (!rc && m->cycle == SB_MG_CYCLE_W && l - 1 > 0) rc = second_cycle(m, p, l - 1);
+    if (!rc) rc = sb_problem_prolong(p, l - 1, m->lv[l - 1].x, L->e);
+    if (rc) return rc;
+    sb_axpy(L->n, 1.0, L->e, L->x);
     return SB_OK;
 }
 
