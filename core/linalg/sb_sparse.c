@@ -4,7 +4,6 @@
 
 #include <math.h>
 #include <limits.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -224,10 +223,12 @@ fail:
     return rc;
 }
 
-/* entry i of a scatter map of w bytes an entry (w a constant where inlined) */
-static inline __attribute__((always_inline)) long map_get(const void *map, int w, long i)
+int sb_pattern_offset_width(const sb_pattern *p)
 {
-    return w == 1 ? ((const uint8_t *)map)[i] : w == 2 ? ((const uint16_t *)map)[i] : ((const int32_t *)map)[i];
+    long maxcol = 0;   /* every offset lies below the longest column's length */
+    for (int c = 0; c < p->n; c++)
+        if (p->colptr[c + 1] - p->colptr[c] > maxcol) maxcol = p->colptr[c + 1] - p->colptr[c];
+    return maxcol <= 256 ? 1 : maxcol <= 65536 ? 2 : maxcol <= INT_MAX ? 4 : 0;
 }
 
 int sb_pattern_ensure_maps(sb_pattern *p)
@@ -236,11 +237,8 @@ int sb_pattern_ensure_maps(sb_pattern *p)
     const int ne = p->n_elems, bs = p->bs;
     const long *off = p->elem_node_off;
     const int *nodes = p->elem_nodes;
-    long maxcol = 0;   /* every offset o lies below the longest column's length */
-    for (int c = 0; c < p->n; c++)
-        if (p->colptr[c + 1] - p->colptr[c] > maxcol) maxcol = p->colptr[c + 1] - p->colptr[c];
-    if (maxcol > INT32_MAX) return SB_ERR_INTERNAL;
-    const int w = maxcol <= UINT8_MAX + 1L ? 1 : maxcol <= UINT16_MAX + 1L ? 2 : 4;
+    const int w = sb_pattern_offset_width(p);
+    if (!w) return SB_ERR_INTERNAL;
     long *moff = malloc(((size_t)ne + 1) * sizeof *moff);
     if (!moff) return SB_ERR_NOMEM;
     long nmap = 0;
@@ -273,10 +271,7 @@ int sb_pattern_ensure_maps(sb_pattern *p)
                         free(map);
                         return SB_ERR_INTERNAL;
                     }
-                if (w == 1) map[m] = (uint8_t)o;
-                else if (w == 2) ((uint16_t *)map)[m] = (uint16_t)o;
-                else ((int32_t *)map)[m] = (int32_t)o;
-                m++;
+                sb_offset_set(map, w, m++, o);
             }
     }
     p->elem_map_off = moff;
@@ -338,7 +333,7 @@ static inline __attribute__((always_inline)) void add_element_w(sb_matrix *A, in
             if (nd[b] < 0 || nd[a] > nd[b]) continue;
             const double *blk = Ke + (size_t)(bs * a) * m + bs * b;
             const long *col = cp + (size_t)nd[b] * bs;
-            const long o = map_get(map, w, mi++);
+            const long o = sb_offset_get(map, w, mi++);
             if (nd[a] < nd[b]) {
                 for (int j = 0; j < bs; j++) {
                     double *dst = val + col[j] + o;
@@ -355,7 +350,8 @@ static inline __attribute__((always_inline)) void add_element_w(sb_matrix *A, in
 }
 
 /* bs = 1 (linear_fem with edge directors): every block is one entry, the
- * diagonal ones included, so the scatter has no branch on the order */
+ * diagonal ones included, so the scatter needs no block loops and no
+ * separate diagonal case */
 static inline __attribute__((always_inline)) void add_element_scalar(sb_matrix *A, int e, const double *Ke, int w)
 {
     const sb_pattern *p = A->pat;
@@ -372,7 +368,7 @@ static inline __attribute__((always_inline)) void add_element_scalar(sb_matrix *
         for (int b = 0; b < k; b++) {
             const int nb = nd[b];
             if (nb < 0 || na > nb) continue;
-            val[cp[nb] + map_get(map, w, mi++)] += row[b];
+            val[cp[nb] + sb_offset_get(map, w, mi++)] += row[b];
         }
     }
 }
@@ -408,7 +404,7 @@ void sb_matrix_get_element(const sb_matrix *A, int e, double *Ke)
         for (int b = 0; b < k; b++) {
             if (nd[b] < 0 || nd[a] > nd[b]) continue;
             const long *col = cp + (size_t)nd[b] * bs;
-            const long o = map_get(p->map, p->map_width, mi++);
+            const long o = sb_offset_get(p->map, p->map_width, mi++);
             for (int j = 0; j < bs; j++) {
                 const double *src = val + col[j] + o;
                 for (int i = 0; i < bs; i++) {

@@ -41,7 +41,7 @@ typedef struct sb_pattern {
     long *elem_node_off;/* n_elems+1, into elem_nodes */
     int *elem_nodes;    /* node lists (-1 = no node) */
     long *elem_map_off; /* n_elems+1, into map (NULL until sb_pattern_ensure_maps for a lazy pattern) */
-    void *map;          /* block row offsets within their columns: uint8_t, uint16_t or int32_t */
+    void *map;          /* block row offsets within their columns (sb_offset_get) */
     int map_width;      /* bytes an entry of map: 1, 2 or 4 */
 } sb_pattern;
 
@@ -59,6 +59,21 @@ int  sb_pattern_ensure_maps(sb_pattern *p);     /* SB_OK when built (or already 
 void sb_pattern_free(sb_pattern *p);
 /* position of entry (i, j) (any order) in the value array, -1 if not in the pattern */
 long sb_pattern_find(const sb_pattern *p, int i, int j);
+/* Offsets within the pattern's columns held in w = 1, 2 or 4 bytes an
+ * entry (the scatter maps, a mass matrix by its nonzeros): the fewest bytes
+ * that hold every offset, i.e. the longest column's length (0 when it
+ * exceeds 2^31 - 1), and entry i of such an array. */
+int sb_pattern_offset_width(const sb_pattern *p);
+static inline __attribute__((always_inline)) long sb_offset_get(const void *a, int w, long i)
+{
+    return w == 1 ? ((const unsigned char *)a)[i] : w == 2 ? ((const unsigned short *)a)[i] : ((const int *)a)[i];
+}
+static inline void sb_offset_set(void *a, int w, long i, long o)
+{
+    if (w == 1) ((unsigned char *)a)[i] = (unsigned char)o;
+    else if (w == 2) ((unsigned short *)a)[i] = (unsigned short)o;
+    else ((int *)a)[i] = (int)o;
+}
 /* nodes of element e: *k and pointer */
 const int *sb_pattern_elem_nodes(const sb_pattern *p, int e, int *k);
 

@@ -24,17 +24,10 @@ typedef struct sparse_mass {
     long *cp;                 /* n+1 */
     void *off;                /* each entry's offset within its column of the level pattern (its row:
                                * the pattern's rowind there), in w bytes: 1, 2 or 4, the fewest that
-                               * hold the longest column (sb_sparse.h's scatter maps) */
+                               * hold the longest column (sb_pattern_offset_width, sb_offset_get) */
     int w;
     double *val;
 } sparse_mass;
-
-/* offset k of a sparse mass */
-static inline long mass_off(const sparse_mass *S, long k)
-{
-    return S->w == 1 ? ((const unsigned char *)S->off)[k] : S->w == 2 ? ((const unsigned short *)S->off)[k]
-                                                                      : ((const int *)S->off)[k];
-}
 
 typedef struct level_data {
     int n;
@@ -255,13 +248,12 @@ int sb_problem_rebuild(sb_problem *p)
 static void mass_compact(level_data *L)
 {
     const sb_pattern *pat = L->pat;
-    long nz = 0, maxcol = 0;
+    long nz = 0;
     for (long q = 0; q < pat->nnz; q++) nz += L->M.val[q] != 0.0;
     if (2 * nz > pat->nnz) return;
-    for (int c = 0; c < pat->n; c++)
-        if (pat->colptr[c + 1] - pat->colptr[c] > maxcol) maxcol = pat->colptr[c + 1] - pat->colptr[c];
     sparse_mass S = { 0 };
-    S.w = maxcol <= 256 ? 1 : maxcol <= 65536 ? 2 : 4;
+    S.w = sb_pattern_offset_width(pat);
+    if (!S.w) return;
     S.cp = malloc(((size_t)pat->n + 1) * sizeof *S.cp);
     S.off = malloc((size_t)(nz ? nz : 1) * (size_t)S.w);
     S.val = malloc((size_t)(nz ? nz : 1) * sizeof *S.val);
@@ -271,10 +263,7 @@ static void mass_compact(level_data *L)
     for (int c = 0; c < pat->n; c++) {
         for (long q = pat->colptr[c]; q < pat->colptr[c + 1]; q++)
             if (L->M.val[q] != 0.0) {
-                const long o = q - pat->colptr[c];
-                if (S.w == 1) ((unsigned char *)S.off)[k] = (unsigned char)o;
-                else if (S.w == 2) ((unsigned short *)S.off)[k] = (unsigned short)o;
-                else ((int *)S.off)[k] = (int)o;
+                sb_offset_set(S.off, S.w, k, q - pat->colptr[c]);
                 S.val[k++] = L->M.val[q];
             }
         S.cp[c + 1] = k;
@@ -319,7 +308,7 @@ static void mass_axpy(const level_data *L, sb_matrix *A, double alpha)
     const sparse_mass *S = &L->Ms;
     const long *cp = L->pat->colptr;
     for (int c = 0; c < L->n; c++)
-        for (long k = S->cp[c]; k < S->cp[c + 1]; k++) A->val[cp[c] + mass_off(S, k)] += alpha * S->val[k];
+        for (long k = S->cp[c]; k < S->cp[c + 1]; k++) A->val[cp[c] + sb_offset_get(S->off, S->w, k)] += alpha * S->val[k];
 }
 
 /* dofs, pattern, work arrays and (dynamic) mass of level l */
@@ -716,7 +705,7 @@ static double mass_quad_form(const level_data *L, const double *d, double scale,
         double acc = 0.0, dv = 0.0;
         const int *rows = L->pat->rowind + L->pat->colptr[c];
         for (long k = S->cp[c]; k < S->cp[c + 1]; k++) {
-            const int r = rows[mass_off(S, k)];
+            const int r = rows[sb_offset_get(S->off, S->w, k)];
             const double v = S->val[k];
             if (r == c) { dv = v; continue; }   /* the diagonal closes the column */
             acc += v * d[r];
