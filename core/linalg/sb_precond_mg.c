@@ -344,12 +344,27 @@ static void gs_forward(const mg_level *L, const sb_matrix *H, const double *t, d
     for (int b0 = 0; b0 < L->n; b0 += L->bs) gs_forward_block(L, H, b0, t, y, v);
 }
 
+/* w_i += H_ij y_j for the node block's columns j (b0 .. b0+bs-1) and the
+ * rows i above the block: a finished block's share of the later rows'
+ * sums in a backward sweep */
+static inline void scatter_above(const sb_matrix *H, int b0, int bs, const double *y, double *w)
+{
+    const sb_pattern *pat = H->pat;
+    const double *val = H->val;
+    for (int j = b0; j < b0 + bs; j++) {
+        const double yj = y[j];
+        for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
+            const int i = pat->rowind[k];
+            if (i >= b0) break;
+            w[i] += val[k] * yj;
+        }
+    }
+}
+
 /* backward sweep from zero: (D + U) y = t; the finished blocks' columns are
  * scattered into w (w_i = sum_{j later} H_ij y_j) */
 static void gs_backward(const mg_level *L, const sb_matrix *H, const double *t, double *y, double *w)
 {
-    const sb_pattern *pat = H->pat;
-    const double *val = H->val;
     const int n = L->n, bs = L->bs;
     double v[12];
     memset(w, 0, (size_t)n * sizeof *w);
@@ -361,14 +376,7 @@ static void gs_backward(const mg_level *L, const sb_matrix *H, const double *t, 
             for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
             y[b0 + i] = s;
         }
-        for (int j = b0; j < b0 + bs; j++) {
-            const double yj = y[j];
-            for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
-                const int i = pat->rowind[k];
-                if (i >= b0) break;
-                w[i] += val[k] * yj;
-            }
-        }
+        scatter_above(H, b0, bs, y, w);
     }
 }
 
@@ -448,14 +456,7 @@ static void gs_backward_inplace(const mg_level *L, const sb_matrix *H, const dou
             for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
             x[b0 + i] += s;
         }
-        for (int j = b0; j < b0 + bs; j++) {
-            const double xj = x[j];
-            for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
-                const int i = pat->rowind[k];
-                if (i >= b0) break;
-                w[i] += val[k] * xj;
-            }
-        }
+        scatter_above(H, b0, bs, x, w);
     }
 }
 
