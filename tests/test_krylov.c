@@ -613,9 +613,10 @@ SB_TEST(history_records_forcing_terms)
     sb_test_request(&req, "plate_clamped", "bhem", "lsnewton", 8);
     req.levels = 2;
     req.out = out;
-    const char *sets[1] = { "solver.linear=pcg-mg" };
+    /* Kelley's floor alone here (the default); the rounding floor: the next tests */
+    const char *sets[2] = { "solver.linear=pcg-mg", "solver.cg_noise_floor=0" };
     req.sets = sets;
-    req.n_sets = 1;
+    req.n_sets = 2;
     int ec;
     json_t *js = sb_test_run_json(&req, &ec);
     CHECK_EQ_INT(ec, 0);
@@ -652,6 +653,109 @@ SB_TEST(history_records_forcing_terms)
     for (int i = 1; i < n; i++) printf(" %.2g (%d CG)", rt[i], li[i]);
     printf(" (%d raised by Kelley's floor)\n", floored);
     remove(out);
+}
+
+/* sb_problem_gradient_noise (sb_noise.c): with the Hessian of the gradient
+ * the differences are rounding (a level far below ||g||, and the same at two
+ * builds of the run: not asserted); with a matrix that is not the Hessian
+ * (H scaled by 1.5, standing for a PSD projection) they double with delta
+ * and the evaluation's part is dropped.  The level against the ||g|| at which
+ * lsnewton + cholmod stalls on the same plate: within a factor 3. */
+SB_TEST(gradient_rounding_level_is_measured_not_guessed)
+{
+    const char *methods[] = { "linear_fem", "bhem" };
+    const int res[] = { 16, 8 };
+    for (int m = 0; m < 2; m++) {
+        fix f;
+        CHECK_EQ_INT(fix_open(&f, "plate_clamped", methods[m], res[m], 2), 0);
+        double *w1 = malloc(f.n * sizeof(double)), *w2 = malloc(f.n * sizeof(double)), *w3 = malloc(f.n * sizeof(double));
+        double nu = -1.0, ro = -1.0;
+        CHECK_EQ_INT(sb_problem_gradient_noise(f.p, f.F, f.x, f.g, w1, w2, w3, &nu, &ro), SB_OK);
+        const double gn = sb_problem_norm(f.p, f.F, f.g);
+        CHECK_MSG(nu > 0.0 && nu < 1e-4 * gn && ro >= 0.0 && ro <= 2.0 * nu, "%s: level %.3g (rounding %.3g) at ||g|| %.3g",
+                  methods[m], nu, ro, gn);
+        sb_matrix *H = sb_problem_hessian(f.p, f.F);
+        for (long q = 0; q < H->pat->nnz; q++) H->val[q] *= 1.5;
+        double nu_bad = -1.0, ro_bad = -1.0;
+        CHECK_EQ_INT(sb_problem_gradient_noise(f.p, f.F, f.x, f.g, w1, w2, w3, &nu_bad, &ro_bad), SB_OK);
+        CHECK_MSG(ro_bad == 0.0 && nu_bad > 0.0, "%s: a matrix that is not the Hessian gave a rounding part %.3g", methods[m],
+                  ro_bad);
+        free(w1); free(w2); free(w3);
+        fix_close(&f);
+
+        /* the stalled ||g|| of the direct path against the level the Krylov path recorded */
+        double stall = 0, level = 0;
+        for (int pass = 0; pass < 2; pass++) {
+            char out[256];
+            snprintf(out, sizeof out, "/tmp/sb_test_noise_%d_%d.h5", (int)getpid(), pass);
+            remove(out);
+            sb_run_request req;
+            sb_test_request(&req, "plate_clamped", methods[m], "lsnewton", res[m]);
+            req.levels = 2;
+            req.out = out;
+            const char *sets[2] = { pass ? "solver.linear=pcg-mg" : "solver.linear=cholmod", "solver.cg_noise_floor=1" };
+            req.sets = sets;
+            req.n_sets = pass ? 2 : 1;
+            int ec;
+            json_t *js = sb_test_run_json(&req, &ec);
+            CHECK_EQ_INT(ec, 0);
+            json_decref(js);
+            double v = 0;
+            CHECK_EQ_INT(read_group_col(out, "steps", pass ? "gnoise" : "gnorm", H5T_NATIVE_DOUBLE, &v, 1), 1);
+            if (pass) level = v; else stall = v;
+            remove(out);
+        }
+        CHECK_MSG(level > stall / 3.0 && level < 3.0 * stall, "%s: level %.3g, cholmod stalls at %.3g", methods[m], level,
+                  stall);
+        printf("    %s plate: rounding level %.3g (cholmod stalls at ||g|| = %.3g)\n", methods[m], level, stall);
+    }
+}
+
+/* The rounding floor saves the CG iterations below the gradient's rounding
+ * and nothing else: the same Newton iterations, status and probes within
+ * the probe tolerance, fewer CG iterations, on the clamped plate with three
+ * methods (the subdivision method's rounding is its penalty band's, which
+ * the preconditioned comparison sees as moving x by nothing). */
+SB_TEST(rounding_floor_saves_only_useless_cg_iterations)
+{
+    const char *methods[] = { "linear_fem", "bhem", "rmtr" };
+    const int res[] = { 48, 32, 32 };
+    const int levels[] = { 3, 3, 3 };
+    for (int m = 0; m < 3; m++) {
+        int cg[2] = { 0, 0 }, newton[2] = { 0, 0 };
+        double pr[2][48], tol[16];
+        int np[2] = { 0, 0 };
+        for (int on = 0; on < 2; on++) {
+            char out[256];
+            snprintf(out, sizeof out, "/tmp/sb_test_floor_%d_%d.h5", (int)getpid(), on);
+            remove(out);
+            sb_run_request req;
+            sb_test_request(&req, "plate_clamped", methods[m], "lsnewton", res[m]);
+            req.levels = levels[m];
+            req.out = out;
+            req.summary_json = 1;
+            const char *sets[2] = { "solver.linear=pcg-mg", on ? "solver.cg_noise_floor=1" : "solver.cg_noise_floor=0" };
+            req.sets = sets;
+            req.n_sets = 2;
+            int ec;
+            json_t *js = sb_test_run_json(&req, &ec);
+            CHECK_MSG(js && ec == 0, "%s floor %d: exit %d", methods[m], on, ec);   /* 0: converged */
+            np[on] = js ? probes_of(js, pr[on], tol, 16) : 0;
+            json_decref(js);
+            int li[64];
+            const int n = read_col(out, "linear_iters", H5T_NATIVE_INT, li, 64);
+            newton[on] = n - 1;
+            for (int i = 1; i < n; i++) cg[on] += li[i];
+            remove(out);
+        }
+        CHECK_EQ_INT(newton[1], newton[0]);
+        CHECK_MSG(cg[1] < cg[0], "%s: %d CG iterations with the floor, %d without", methods[m], cg[1], cg[0]);
+        CHECK_EQ_INT(np[1], np[0]);
+        for (int k = 0; k < 3 * np[0] && np[1] == np[0]; k++)
+            CHECK_MSG(fabs(pr[1][k] - pr[0][k]) <= tol[k / 3], "%s probe %d: %.9g against %.9g (tol %.3g)", methods[m], k / 3,
+                      pr[1][k], pr[0][k], tol[k / 3]);
+        printf("    %s plate: %d Newton iterations, CG %d -> %d with the rounding floor\n", methods[m], newton[0], cg[0], cg[1]);
+    }
 }
 
 SB_TEST(a_capped_solve_is_a_recorded_outcome)
@@ -884,6 +988,8 @@ int main(int argc, char **argv)
                                           SB_CASE(every_path_reaches_the_probe_values_of_cholmod), SB_CASE(lifting_solves_with_the_run_s_linear_solver), SB_CASE(lean_galerkin_product_equals_the_indexed_one),
                                           SB_CASE(linearized_paths_match_cholmod),
                                           SB_CASE(forcing_terms_by_hand), SB_CASE(history_records_forcing_terms),
+                                          SB_CASE(gradient_rounding_level_is_measured_not_guessed),
+                                          SB_CASE(rounding_floor_saves_only_useless_cg_iterations),
                                           SB_CASE(a_capped_solve_is_a_recorded_outcome),
                                           SB_CASE(indefinite_hessians_per_path),
                                           SB_CASE(lagged_coarse_levels_keep_the_preconditioner_spd),

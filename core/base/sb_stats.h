@@ -89,6 +89,7 @@ typedef struct sb_step_record {
     double work_qp;
     double force_scale;  /* run.stop=scaled: the step's force scale (sb_solve.h), NaN otherwise */
     double gstop;        /* the gradient threshold the step's stopping rule used */
+    double gnoise;       /* the computed gradient's rounding level the Krylov forcing measured (0: none) */
     int dofs;            /* dofs of the finest level in this step (adaptive meshes change it) */
     int triangles;       /* triangles of the method's own surface in this step (triangle methods:
                             linear_fem, adaptive_sqrt3); 0 for methods whose surface is not triangles */

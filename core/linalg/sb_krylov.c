@@ -65,6 +65,42 @@ double sb_forcing_floor(double eta, double gnorm, double gstop)
     return fmax(eta, fmin(eta_max, 0.5 * gstop / gnorm));   /* Kelley (1995) Eq. (6.20) */
 }
 
+void sb_noise_floor_reset(sb_noise_floor *nf)
+{
+    nf->measured = 0;
+    nf->level = nf->zeta = 0.0;
+}
+
+/* z = M^{-1} r, counted as the preconditioner's work */
+static void precond_apply(sb_krylov *k, sb_problem *p, const double *r, double *z)
+{
+    const double t0 = sb_problem_krylov_begin(p);
+    k->type->apply(k->pstate, p, r, z);
+    sb_problem_count_krylov(p, k->level, 0, t0);
+}
+
+int sb_noise_floor_apply(sb_noise_floor *nf, sb_krylov *k, int have_m, sb_problem *p, const double *x, const double *g,
+                         double gnorm, double gstop, double *w_x, double *w_g, double *w_h, double *eta)
+{
+    if (nf->on && have_m && !nf->measured && *eta < 0.1) {
+        nf->measured = 1;
+        int rc = sb_problem_gradient_noise(p, k->level, x, g, w_x, w_g, w_h, &nf->level, NULL);
+        if (rc < 0) return rc;
+        if (rc != SB_OK) nf->level = 0.0;   /* a non-finite neighbour: no level */
+        if (nf->level > 0.0) {              /* w_h holds a vector of the level */
+            precond_apply(k, p, w_h, k->z);
+            nf->zeta = sb_problem_norm(p, k->level, k->z);
+        }
+    }
+    if (nf->on && have_m && nf->zeta > 0.0) {
+        precond_apply(k, p, g, k->z);
+        const double gm = sb_problem_norm(p, k->level, k->z);
+        if (gm > 0.0 && isfinite(gm)) *eta = fmax(*eta, fmin(0.9, 0.5 * nf->zeta / gm));
+    }
+    *eta = sb_forcing_floor(*eta, gnorm, gstop);
+    return SB_OK;
+}
+
 int sb_krylov_f_noise(double f, double f_trial, double pred)
 {
     const double scale = 1e7 * DBL_EPSILON * fmax(fabs(f), fabs(f_trial));

@@ -89,6 +89,41 @@ double sb_forcing_ew2_steps(double gnorm, double gprev, double snorm, double spr
  * cg_rtol: eta unchanged. */
 double sb_forcing_floor(double eta, double gnorm, double gstop);
 
+/* The forcing floor's second bound: the computed gradient's rounding e
+ * (sb_problem_gradient_noise), below which no residual changes the state a
+ * step ends with, so that a Newton iteration never solves more accurately
+ * than it can use (the clamped plate's last Newton iteration asked 6e-9 of
+ * CG, 59 of its 94 iterations, for a gradient that stalls at 2.5e-9 anyway).
+ * What matters is the correction, not the residual: the rounding of a stiff
+ * penalty (the subdivision method's boundary band) is large in ||.|| and
+ * moves x by nothing, while a soft mode's residual below it still moves x.
+ * So the two are compared after the preconditioner, M^{-1} ~ H^{-1}:
+ *     eta >= min(eta_max, 0.5 ||M^{-1} e|| / ||M^{-1} g||)
+ * (with Kelley's gstop floor).  e is measured at most once a step (two
+ * gradient evaluations), at the first iteration whose forcing term is below
+ * 0.1 — the fast local phase, where the floor can bind; ||M^{-1} e|| is kept
+ * for the step and ||M^{-1} g|| costs one preconditioner application an
+ * iteration from then on.  Steps that never get there pay nothing.  Off by
+ * default: measured, it saves 10 % on the plate and costs 5 % on the
+ * trampoline (docs/solvers.md).  No
+ * preconditioner (its set-up failed: an indefinite H) or
+ * solver.cg_noise_floor = 0: Kelley's floor alone. */
+typedef struct sb_noise_floor {
+    int on;          /* solver.cg_noise_floor */
+    int measured;    /* this step */
+    double level;    /* ||e|| (0: not measured, or not the rounding's) */
+    double zeta;     /* ||M^{-1} e|| at the measurement (0: none) */
+} sb_noise_floor;
+#define SB_NOISE_FLOOR_HELP "1: Krylov paths with Eisenstat-Walker forcing never ask for a residual whose correction is " \
+    "below that of the computed gradient's rounding, measured once a step (two gradient evaluations); 0 (default): " \
+    "Kelley's floor alone"
+void sb_noise_floor_reset(sb_noise_floor *nf);
+/* eta after both floors; x, g: the iterate and its gradient, the level's
+ * Hessian assembled at x and k's preconditioner set up for it (have_m = 0:
+ * not); w_x, w_g, w_h: n-vector workspaces (k's own are used too) */
+int sb_noise_floor_apply(sb_noise_floor *nf, sb_krylov *k, int have_m, sb_problem *p, const double *x, const double *g,
+                         double gnorm, double gstop, double *w_x, double *w_g, double *w_h, double *eta);
+
 /* The round-off test of the Krylov paths' line search and trust-region
  * ratio: an inexact Newton step leaves a residual in the stiff (membrane)
  * directions whose Newton correction changes f by far less than the

@@ -101,6 +101,18 @@ void sb_problem_constrain(const sb_problem *p, int level, double *v);
 void sb_problem_impose(const sb_problem *p, int level, double *x);
 /* Euclidean norm over free dofs. */
 double sb_problem_norm(const sb_problem *p, int level, const double *v);
+/* The rounding level of the computed gradient at x (sb_noise.c): the ||g||
+ * below which no solve can drive the computed gradient — the evaluation's
+ * rounding, measured from two gradient evaluations (counted) at x perturbed
+ * by a few units in the last place (g the gradient at x, H =
+ * sb_problem_hessian its Hessian there), and H dx, dx the rounding of the
+ * state to doubles.  *rounding (optional): the evaluation's part alone, 0
+ * when the differences are H's, not the rounding's (H not the Hessian of g:
+ * a PSD projection).  w_x, w_g, w_h: n-vector workspaces; w_h ends holding
+ * a vector of the level's size and kind (*noise = its norm).  SB_OK,
+ * SB_NONFINITE or an error. */
+int sb_problem_gradient_noise(sb_problem *p, int level, const double *x, const double *g, double *w_x, double *w_g,
+                              double *w_h, double *noise, double *rounding);
 
 /* Transfers (counted); lc is the coarse level. */
 int  sb_problem_prolong(sb_problem *p, int lc, const double *xc, double *xf);

@@ -407,6 +407,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         if (swept) {
             memset(&o, 0, sizeof o);
             o.f = o.gnorm = o.g0 = o.force_scale = o.gstop = NAN;
+            o.gnoise = 0.0;
             reason = o.reason = SB_REASON_OBSTACLE_SWEPT;
             sb_copy(n, R->xn, R->x);   /* the state stays at the step's start */
             if (!req->quiet) fprintf(err, "shellbench: %s\n", rec->contact_stop);
@@ -447,7 +448,7 @@ static int run_steps(run_state *R, const sb_run_request *req, int first_step)
         if (R->mt->eval_points) sb_run_record_probes(R, step);
         sb_stats_event(stats, F, SB_EV_SAMPLES, tsm);
         sb_step_record sr = { step, si.t, iters, reason, f, gn, 0, stats->work_assembly - wa0, stats->work_qp - wq0,
-                              o.force_scale, o.gstop, n, n_tris, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+                              o.force_scale, o.gstop, o.gnoise, n, n_tris, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
         sr.seconds = tr0 - t0;
         sr.peak_rss = sb_peak_rss();
         sb_stats_push_step(stats, &sr);

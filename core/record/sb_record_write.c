@@ -225,6 +225,7 @@ const sb_record_column sb_record_step_cols[] = {
     { "work_qp", offsetof(sb_step_record, work_qp), 0, "WU", 0 },
     { "force_scale", offsetof(sb_step_record, force_scale), 0, "", 0 },
     { "gstop", offsetof(sb_step_record, gstop), 0, "", 0 },
+    { "gnoise", offsetof(sb_step_record, gnoise), 0, "", 1 },
     { "dofs", offsetof(sb_step_record, dofs), 1, "", 0 },
     { "triangles", offsetof(sb_step_record, triangles), 1, "", 0 },
     { "seconds_assembly", offsetof(sb_step_record, seconds_assembly), 0, "s", 1 },

@@ -23,7 +23,8 @@
     { "mg_lag", SB_PARAM_INT, 1, 1, 1000000, NULL, MG_LAG_HELP },                                                      \
     { "mg_cycle", SB_PARAM_CHOICE, 0, 0, 0, sb_mg_cycle_names, SB_MG_CYCLE_HELP },                                     \
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,                                                               \
-      "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" }
+      "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },            \
+    { "cg_noise_floor", SB_PARAM_INT, 0, 0, 1, NULL, SB_NOISE_FLOOR_HELP }
 #define MG_LAG_HELP "pcg-mg: rebuild the coarse levels (Galerkin products, coarsest factorization) at each step's " \
     "first Newton iteration and every mg_lag-th one after; 1: every iteration"
 #define LINEAR_HELP "linear solver of the Newton step: cholmod (sparse Cholesky), pcg-jacobi (CG, node-block Jacobi), " \
@@ -90,6 +91,7 @@ typedef struct newton_state {
     double cg_rtol;                    /* < 0: Eisenstat–Walker forcing */
     double eta, gprev;                 /* the last forcing term and the ||g|| it was computed at */
     double snorm, sprev;               /* the last two steps' norms (0: none yet this step) */
+    sb_noise_floor noise;              /* the forcing's floor at the gradient's rounding level */
     double *g, *gt, *d, *xt;
     double f, gnorm;
 } newton_state;
@@ -115,6 +117,7 @@ static int krylov_alloc(newton_state *s, sb_problem *p, const sb_paramset *ps)
     if (!pt) return SB_OK;
     s->krylov = 1;
     s->cg_rtol = sb_param(ps, "solver.cg_rtol");
+    s->noise.on = s->kind != KIND_LINEARIZED && sb_param_int(ps, "solver.cg_noise_floor");   /* linearized: fixed cg_rtol */
     s->cg_max_iter = sb_param_int(ps, "solver.cg_max_iter");
     sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.mg_sweeps"), .mg_lag = sb_param_int(ps, "solver.mg_lag"),
                           .mg_cycle = sb_mg_cycle_kind(sb_param_choice(ps, "solver.mg_cycle")),
@@ -205,6 +208,7 @@ static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info 
     info->delta = INFINITY;
     s->eta = 0.0;          /* Eisenstat–Walker starts afresh each step */
     s->gprev = s->snorm = s->sprev = 0.0;
+    sb_noise_floor_reset(&s->noise);
     return rc;
 }
 
@@ -220,11 +224,20 @@ static int newton_set(void *st, sb_problem *p, const double *x, sb_iterate_info 
  *              (krylov_status 1): lsnewton uses its d only when it is a
  *              descent direction (the line search then judges it), damped
  *              and linearized stop with linear_solver. */
-static int krylov_direction(newton_state *s, sb_problem *p, sb_iterate_info *info, double *shift_out)
+static int krylov_direction(newton_state *s, sb_problem *p, const double *x, sb_iterate_info *info, double *shift_out)
 {
     const int n = s->n;
+    int rc = sb_krylov_setup(&s->kr, p);
+    if (rc < 0) return rc;
     double eta = s->cg_rtol >= 0.0 ? s->cg_rtol : sb_forcing_ew2_steps(s->gnorm, s->gprev, s->snorm, s->sprev, s->eta);
-    if (s->cg_rtol < 0.0) eta = sb_forcing_floor(eta, s->gnorm, info->gstop);
+    if (s->cg_rtol < 0.0 && s->kind != KIND_LINEARIZED) {
+        /* Kelley's floor on gstop and on the gradient's rounding (d, gt, xt
+         * are free until the solve) */
+        int rf = sb_noise_floor_apply(&s->noise, &s->kr, rc == SB_OK, p, x, s->g, s->gnorm, info->gstop, s->xt, s->gt,
+                                      s->d, &eta);
+        if (rf < 0) return rf;
+        info->gnoise = s->noise.level;
+    }
     if (s->kind == KIND_LINEARIZED) eta = s->cg_rtol;
     s->eta = eta;
     s->gprev = s->gnorm;
@@ -232,8 +245,6 @@ static int krylov_direction(newton_state *s, sb_problem *p, sb_iterate_info *inf
     sb_krylov_result r;
     double shift = 0.0;
     int iters = 0;
-    int rc = sb_krylov_setup(&s->kr, p);
-    if (rc < 0) return rc;
     if (rc == SB_OK) {
         rc = sb_krylov_solve(&s->kr, p, s->g, INFINITY, eta, s->cg_max_iter, s->d, &r);
         if (rc < 0) return rc;
@@ -278,12 +289,12 @@ static int krylov_direction(newton_state *s, sb_problem *p, sb_iterate_info *inf
 /* d = -(H + shift I)^{-1} g.  lsnewton: on a non-positive-definite H the
  * shift grows geometrically from shift0 * max|H_ij| until the factorization
  * succeeds (Nocedal & Wright Alg. 3.3); the others record NOT_POSDEF. */
-static int direction(newton_state *s, sb_problem *p, sb_iterate_info *info)
+static int direction(newton_state *s, sb_problem *p, const double *x, sb_iterate_info *info)
 {
     double shift = 0.0;
     int rc;
     if (s->krylov) {
-        rc = krylov_direction(s, p, info, &shift);
+        rc = krylov_direction(s, p, x, info, &shift);
         if (rc < 0 || info->fail) return rc < 0 ? rc : SB_OK;
         goto judge;
     }
@@ -356,7 +367,7 @@ static int newton_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *i
     newton_state *s = st;
     const int n = s->n;
     info->delta = 0.0;
-    int rc = direction(s, p, info);
+    int rc = direction(s, p, x, info);
     if (rc < 0 || info->fail) {
         info->f = s->f;
         info->gnorm = s->gnorm;

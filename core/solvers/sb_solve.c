@@ -199,6 +199,7 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
         double ev0[6], ev1[6], ti0 = sb_now();
         iter_seconds(&ctx->stats, ev0);
         rc = type->iterate(state, p, x, &info);
+        if (info.gnoise > 0.0) out->gnoise = info.gnoise;
         iter_seconds(&ctx->stats, ev1);
         const double ti1 = sb_now();
         it++;

@@ -45,6 +45,9 @@ typedef struct sb_iterate_info {
      * iterate; 0 when not known): the Krylov paths' forcing never asks
      * for a residual far below it (sb_forcing_floor) */
     double gstop;
+    /* out: the computed gradient's rounding level the Krylov forcing floor
+     * measured this step (sb_noise_floor; 0: not measured) */
+    double gnoise;
 } sb_iterate_info;
 
 typedef struct sb_solver_type {
@@ -90,6 +93,7 @@ typedef struct sb_step_outcome {
     double force_scale;   /* run.stop=scaled: ||grad E|| of the method's energy at the reference
                              configuration with this step's loads and boundary data (NaN otherwise) */
     double gstop;         /* the gradient threshold the step used */
+    double gnoise;        /* the gradient's rounding level the solver measured (0: none) */
 } sb_step_outcome;
 
 /* sb_solve_step with the outcome's scales. */

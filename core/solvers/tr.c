@@ -40,6 +40,7 @@ static const sb_param_def tr_params[] = {
     { "mg_cycle", SB_PARAM_CHOICE, 0, 0, 0, sb_mg_cycle_names, SB_MG_CYCLE_HELP },
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
+    { "cg_noise_floor", SB_PARAM_INT, 0, 0, 1, NULL, SB_NOISE_FLOOR_HELP },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -57,6 +58,7 @@ typedef struct tr_state {
     int krylov;
     sb_krylov kr;
     double cg_rtol, eta, gprev;
+    sb_noise_floor noise;   /* the forcing's floor at the gradient's rounding level */
 } tr_state;
 
 static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
@@ -86,6 +88,7 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
     if (rc == SB_OK && pt) {
         t->krylov = 1;
         t->cg_rtol = sb_param(ps, "solver.cg_rtol");
+        t->noise.on = sb_param_int(ps, "solver.cg_noise_floor");
         sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.mg_sweeps"),
                               .mg_lag = sb_param_int(ps, "solver.mg_lag"),
                               .mg_cycle = sb_mg_cycle_kind(sb_param_choice(ps, "solver.mg_cycle")),
@@ -124,6 +127,7 @@ static int tr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *inf
     t->gnorm = sb_problem_norm(p, t->F, t->g);
     t->fresh = 1;
     t->eta = t->gprev = 0.0;   /* Eisenstat–Walker starts afresh each step */
+    sb_noise_floor_reset(&t->noise);
     info->f = t->f;
     info->gnorm = t->gnorm;
     info->delta = t->delta;
@@ -137,16 +141,23 @@ static int tr_set(void *st, sb_problem *p, const double *x, sb_iterate_info *inf
  * the step on the boundary (Steihaug–Toint), and a solve that reaches its
  * cap is a truncated step judged by the ratio test like any other
  * (recorded as krylov_status 1). */
-static int tr_krylov_step(tr_state *t, sb_problem *p, sb_trs_result *r, sb_iterate_info *info)
+static int tr_krylov_step(tr_state *t, sb_problem *p, const double *x, sb_trs_result *r, sb_iterate_info *info)
 {
     if (t->fresh) {
-        t->eta = t->cg_rtol >= 0.0 ? t->cg_rtol
-                                   : sb_forcing_floor(sb_forcing_ew2(t->gnorm, t->gprev, t->eta), t->gnorm, info->gstop);
-        t->gprev = t->gnorm;
         int rc = sb_krylov_setup(&t->kr, p);
         if (rc < 0) return rc;
         /* SB_NOT_POSDEF (AMG set-up on an indefinite H): CG runs with the
          * preconditioner as it is and restarts without it if it misbehaves */
+        if (t->cg_rtol >= 0.0) t->eta = t->cg_rtol;
+        else {
+            /* Kelley's floor on gstop and on the gradient's rounding (s, gt,
+             * xt are free until the solve) */
+            t->eta = sb_forcing_ew2(t->gnorm, t->gprev, t->eta);
+            int rf = sb_noise_floor_apply(&t->noise, &t->kr, rc == SB_OK, p, x, t->g, t->gnorm, info->gstop, t->xt,
+                                          t->gt, t->s, &t->eta);
+            if (rf < 0) return rf;
+        }
+        t->gprev = t->gnorm;
     }
     double t0 = sb_now();
     sb_krylov_result kr;
@@ -160,6 +171,7 @@ static int tr_krylov_step(tr_state *t, sb_problem *p, sb_trs_result *r, sb_itera
     r->boundary = kr.status == SB_KRYLOV_BOUNDARY;
     r->newton = kr.status == SB_KRYLOV_CONVERGED;
     info->linear_rtol = t->eta;
+    info->gnoise = t->noise.level;
     info->linear_status = (int)kr.status;
     return SB_OK;
 }
@@ -185,7 +197,7 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     const int n = t->n;
     sb_trs_result r;
     /* Alg. 4.1 line 2: constrained QP */
-    int rc = t->krylov ? tr_krylov_step(t, p, &r, info)
+    int rc = t->krylov ? tr_krylov_step(t, p, x, &r, info)
                        : sb_trs_solve(&t->trs, p, t->F, t->g, t->delta, t->fresh, t->cg_max, t->s, &r);
     if (rc < 0) return rc;
     t->fresh = 0;
