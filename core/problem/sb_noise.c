@@ -20,8 +20,8 @@
  * ASSUMPTION: the rounding at x + delta is as large as at x and not
  * correlated with it.  Checked against the ||g|| at which lsnewton + cholmod
  * stalls (docs/solvers.md "The gradient's rounding level"): the measured
- * level is 0.75-0.95 of it on the clamped plate and the trampoline with
- * linear_fem, bhem and the subdivision method.
+ * level is 0.75-1.5 of it on the clamped plate with linear_fem, bhem
+ * and the subdivision method (tests/test_krylov.c asserts a factor 3).
  * However well g is computed, x itself is a vector of doubles: the
  * minimizer rounded to them is off by up to half an ulp a dof, which leaves
  * H dx in the gradient (on the clamped plate at res 16 with linear_fem this
@@ -31,7 +31,6 @@
  * hash.
  * Cost: two gradient evaluations (counted as such) and three products with H. */
 #include "sb_problem.h"
-#include "sb_sparse.h"
 
 #include <float.h>
 #include <math.h>
