@@ -208,8 +208,18 @@ int sb_krylov_solve(sb_krylov *k, sb_problem *p, const double *g, double delta, 
     res->status = SB_KRYLOV_CAP;
     int it = 0;
     if (max_iter <= 0) max_iter = n;
+    const int ztest = k->ztol > 0.0;
+    double znorm = ztest ? sb_norm2(n, z) : 0.0;
     while (1) {
         if (rnorm <= tol) { res->status = SB_KRYLOV_CONVERGED; break; }
+        /* the correction test (after an iteration, so that s is a step;
+         * only while z is the preconditioner's: a restart's z = r is no
+         * estimate of the error) */
+        if (ztest && precond && it > 0 && znorm <= k->ztol) {
+            res->status = SB_KRYLOV_CONVERGED;
+            res->by_correction = 1;
+            break;
+        }
         if (it >= max_iter) break;
         sb_matrix_symv(H, d, Hd);
         it++;
@@ -242,6 +252,7 @@ int sb_krylov_solve(sb_krylov *k, sb_problem *p, const double *g, double delta, 
             if (rc < 0) return rc;
         } else sb_copy(n, r, z);
         double rz1 = sb_dot(n, r, z);
+        if (ztest) znorm = sb_norm2(n, z);
         if (precond && !(rz1 > 0.0) && rnorm > 0.0) {
             precond = 0;
             res->precond_restart = 1;
@@ -253,6 +264,7 @@ int sb_krylov_solve(sb_krylov *k, sb_problem *p, const double *g, double delta, 
         for (int i = 0; i < n; i++) d[i] = -z[i] + beta * d[i];
     }
     res->iters = it;
+    res->znorm = znorm;
     res->relres = g0 > 0.0 ? rnorm / g0 : 0.0;
     res->snorm = sb_norm2(n, s);
     sb_matrix_symv(H, s, Hd);

@@ -25,6 +25,8 @@ typedef struct sb_krylov_result {
     double relres;         /* ||H s + g|| / ||g|| at the end (the recursive residual) */
     double snorm;          /* ||s|| */
     double pred;           /* -(g^T s + s^T H s / 2) */
+    double znorm;          /* ||M^{-1} r|| at the end when ztol was set (0 otherwise) */
+    int by_correction;     /* stopped by ztol (status CONVERGED) */
 } sb_krylov_result;
 
 typedef struct sb_krylov {
@@ -33,6 +35,13 @@ typedef struct sb_krylov {
     void *pstate;
     double *r, *z, *d, *Hd, *diag0;
     int shifted;           /* the level's Hessian holds diag0 + shift */
+    /* > 0: CG also stops (CONVERGED, by_correction) after an iteration whose
+     * preconditioned residual z = M^{-1} r has ||z|| <= ztol.  z is the
+     * preconditioner's estimate of the iterate's remaining error s* - s =
+     * H^{-1} r, so the caller sets ztol below the smallest correction it
+     * can use (solver.cg_xstop: half of run.xtol_rel ||x||); set per solve
+     * by the caller, 0 by sb_krylov_alloc */
+    double ztol;
 } sb_krylov;
 
 /* Workspaces and the preconditioner's alloc (which refuses what cannot work

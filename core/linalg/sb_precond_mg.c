@@ -59,6 +59,12 @@ typedef struct mg_level {
     double *b, *x, *t, *e, *w;  /* right side, iterate, residual, correction, scatter scratch */
     double *binv;               /* n * bs inverted node blocks (levels >= 1) */
     double *xw;                 /* W-cycle (levels 1 .. nl-2): the first cycle's iterate */
+    /* kd[j]: the entries of column j above its node block are
+     * colptr[j] .. colptr[j] + kd[j] - 1, the block's own from there to the
+     * diagonal (the column's last entry): the sweeps' loops split once per
+     * pattern instead of testing every entry's row (levels >= 1) */
+    int *kd;
+    const sb_pattern *kfrom;
     /* the penalty band (levels >= 1 of a method with penalty_support): its
      * dofs, their principal submatrix of the level's operator (pattern from
      * the level's, values copied from bpos each set-up), CHOLMOD */
@@ -101,7 +107,7 @@ static void mg_free(void *st)
     for (int l = 0; l < SB_MAX_LEVELS; l++) {
         mg_level *L = &m->lv[l];
         band_free(L);
-        free(L->b); free(L->x); free(L->t); free(L->e); free(L->w); free(L->binv); free(L->xw);
+        free(L->b); free(L->x); free(L->t); free(L->e); free(L->w); free(L->binv); free(L->xw); free(L->kd);
         memset(L, 0, sizeof *L);
     }
 }
@@ -138,9 +144,10 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
         L->e = malloc(n * sizeof(double));
         L->w = malloc(n * sizeof(double));
         if (l > 0) L->binv = malloc(n * (size_t)L->bs * sizeof(double));
+        if (l > 0) L->kd = malloc(n * sizeof(int));
         const int w = m->cycle == SB_MG_CYCLE_W && l > 0 && l < m->nl - 1;
         if (w) L->xw = malloc(n * sizeof(double));
-        if (!L->b || !L->x || !L->t || !L->e || !L->w || (l > 0 && !L->binv) || (w && !L->xw)) {
+        if (!L->b || !L->x || !L->t || !L->e || !L->w || (l > 0 && (!L->binv || !L->kd)) || (w && !L->xw)) {
             mg_free(m);
             return sb_error(ctx, SB_ERR_NOMEM, "out of memory (pcg-mg workspaces, level %d)", l);
         }
@@ -168,8 +175,11 @@ static int mg_alloc(void *st, sb_problem *p, int level, const sb_precond_opts *o
 }
 
 /* the smoother's inverted node blocks of level l, from its Hessian as it is */
+static void split_columns(mg_level *L, const sb_pattern *pat);
+
 static void mg_block_inverses(mg_level *L, sb_problem *p, int l)
 {
+    split_columns(L, sb_problem_hessian(p, l)->pat);
     if (L->bs == 1) sb_problem_hess_diag(p, l, L->binv);
     else {
         memset(L->binv, 0, (size_t)L->n * L->bs * sizeof(double));
@@ -310,32 +320,49 @@ static int mg_setup(void *st, sb_problem *p)
     return rc;
 }
 
-/* y = D^{-1}-block forward Gauss–Seidel sweep from zero: (D + L) y = t.
- * H is upper CSC (sb_sparse.h): the strictly lower part of row j is column
- * j above the node block. */
+/* The smoother: block Gauss–Seidel over the node blocks.  H is upper CSC
+ * (sb_sparse.h): the strictly lower part of row j is column j above its
+ * node block.
+ *
+ * kd of level L's pattern (once per pattern): the rows of a column are
+ * sorted and its last entry is the diagonal (sb_sparse.h) */
+static void split_columns(mg_level *L, const sb_pattern *pat)
+{
+    if (L->kfrom == pat) return;
+    for (int b0 = 0; b0 < L->n; b0 += L->bs)
+        for (int j = b0; j < b0 + L->bs; j++) {
+            long k = pat->colptr[j];
+            while (k < pat->colptr[j + 1] && pat->rowind[k] < b0) k++;
+            L->kd[j] = (int)(k - pat->colptr[j]);
+        }
+    L->kfrom = pat;
+}
+
+/* y_block = binv_block v (bs x bs, row-major) */
+static inline void block_apply(const double *A, int bs, const double *v, double *y)
+{
+    for (int i = 0; i < bs; i++) {
+        double s = 0.0;
+        for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
+        y[i] = s;
+    }
+}
+
 /* one node block of the forward sweep: v = t - (rows of the block, columns
  * before it) y, then y_block = binv v */
 static inline void gs_forward_block(const mg_level *L, const sb_matrix *H, int b0, const double *t, double *y,
                                     double *v)
 {
-    const sb_pattern *pat = H->pat;
+    const long *cp = H->pat->colptr;
+    const int *ri = H->pat->rowind;
     const double *val = H->val;
     const int bs = L->bs;
     for (int j = b0; j < b0 + bs; j++) {
         double s = t[j];
-        for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
-            const int i = pat->rowind[k];
-            if (i >= b0) break;
-            s -= val[k] * y[i];
-        }
+        for (long k = cp[j], ke = cp[j] + L->kd[j]; k < ke; k++) s -= val[k] * y[ri[k]];
         v[j - b0] = s;
     }
-    const double *A = L->binv + (size_t)b0 * bs;
-    for (int i = 0; i < bs; i++) {
-        double s = 0.0;
-        for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
-        y[b0 + i] = s;
-    }
+    block_apply(L->binv + (size_t)b0 * bs, bs, v, y + b0);
 }
 
 static void gs_forward(const mg_level *L, const sb_matrix *H, const double *t, double *y)
@@ -347,17 +374,14 @@ static void gs_forward(const mg_level *L, const sb_matrix *H, const double *t, d
 /* w_i += H_ij y_j for the node block's columns j (b0 .. b0+bs-1) and the
  * rows i above the block: a finished block's share of the later rows'
  * sums in a backward sweep */
-static inline void scatter_above(const sb_matrix *H, int b0, int bs, const double *y, double *w)
+static inline void scatter_above(const mg_level *L, const sb_matrix *H, int b0, const double *y, double *w)
 {
-    const sb_pattern *pat = H->pat;
+    const long *cp = H->pat->colptr;
+    const int *ri = H->pat->rowind;
     const double *val = H->val;
-    for (int j = b0; j < b0 + bs; j++) {
+    for (int j = b0; j < b0 + L->bs; j++) {
         const double yj = y[j];
-        for (long k = pat->colptr[j]; k < pat->colptr[j + 1]; k++) {
-            const int i = pat->rowind[k];
-            if (i >= b0) break;
-            w[i] += val[k] * yj;
-        }
+        for (long k = cp[j], ke = cp[j] + L->kd[j]; k < ke; k++) w[ri[k]] += val[k] * yj;
     }
 }
 
@@ -370,13 +394,8 @@ static void gs_backward(const mg_level *L, const sb_matrix *H, const double *t, 
     memset(w, 0, (size_t)n * sizeof *w);
     for (int b0 = n - bs; b0 >= 0; b0 -= bs) {
         for (int j = b0; j < b0 + bs; j++) v[j - b0] = t[j] - w[j];
-        const double *A = L->binv + (size_t)b0 * bs;
-        for (int i = 0; i < bs; i++) {
-            double s = 0.0;
-            for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
-            y[b0 + i] = s;
-        }
-        scatter_above(H, b0, bs, y, w);
+        block_apply(L->binv + (size_t)b0 * bs, bs, v, y + b0);
+        scatter_above(L, H, b0, y, w);
     }
 }
 
@@ -390,7 +409,8 @@ static void gs_backward(const mg_level *L, const sb_matrix *H, const double *t, 
  * reads 12 bytes an entry for 2 flops). */
 static void gs_forward_residual(const mg_level *L, const sb_matrix *H, const double *t, double *y, double *r)
 {
-    const sb_pattern *pat = H->pat;
+    const long *cp = H->pat->colptr;
+    const int *ri = H->pat->rowind;
     const double *val = H->val;
     const int n = L->n, bs = L->bs;
     double v[12];
@@ -403,17 +423,14 @@ static void gs_forward_residual(const mg_level *L, const sb_matrix *H, const dou
         for (int j = b0; j < b0 + bs; j++) r[j] += v[j - b0];
         for (int j = b0; j < b0 + bs; j++) {
             const double yj = y[j];
-            long k = pat->colptr[j];
-            for (; k < pat->colptr[j + 1]; k++) {
-                const int i = pat->rowind[k];
-                if (i >= b0) break;
+            const long kb = cp[j] + L->kd[j], dg = cp[j + 1] - 1;
+            for (long k = cp[j]; k < kb; k++) r[ri[k]] -= val[k] * yj;
+            for (long k = kb; k < dg; k++) {   /* the diagonal block's column j: rows b0 <= i < j */
+                const int i = ri[k];
+                r[j] -= val[k] * y[i];
                 r[i] -= val[k] * yj;
             }
-            for (; k < pat->colptr[j + 1]; k++) {   /* the diagonal block's column j: rows b0 <= i <= j */
-                const int i = pat->rowind[k];
-                r[j] -= val[k] * y[i];
-                if (i != j) r[i] -= val[k] * yj;
-            }
+            r[j] -= val[dg] * yj;
         }
     }
 }
@@ -427,36 +444,30 @@ static void gs_forward_residual(const mg_level *L, const sb_matrix *H, const dou
  * two forms), in one pass instead of two. */
 static void gs_backward_inplace(const mg_level *L, const sb_matrix *H, const double *b, double *x, double *w)
 {
-    const sb_pattern *pat = H->pat;
+    const long *cp = H->pat->colptr;
+    const int *ri = H->pat->rowind;
     const double *val = H->val;
     const int n = L->n, bs = L->bs;
-    double v[12];
+    double v[12], d[12];
     memset(w, 0, (size_t)n * sizeof *w);
     for (int b0 = n - bs; b0 >= 0; b0 -= bs) {
         for (int j = b0; j < b0 + bs; j++) v[j - b0] = b[j] - w[j];
         for (int j = b0; j < b0 + bs; j++) {
             const double xj = x[j];
+            const long kb = cp[j] + L->kd[j], dg = cp[j + 1] - 1;
             double s = 0.0;
-            long k = pat->colptr[j];
-            for (; k < pat->colptr[j + 1]; k++) {
-                const int i = pat->rowind[k];
-                if (i >= b0) break;
-                s += val[k] * x[i];
-            }
+            for (long k = cp[j]; k < kb; k++) s += val[k] * x[ri[k]];
             v[j - b0] -= s;
-            for (; k < pat->colptr[j + 1]; k++) {   /* the diagonal block's column j: rows b0 <= i <= j */
-                const int i = pat->rowind[k];
+            for (long k = kb; k < dg; k++) {   /* the diagonal block's column j: rows b0 <= i < j */
+                const int i = ri[k];
                 v[j - b0] -= val[k] * x[i];
-                if (i != j) v[i - b0] -= val[k] * xj;
+                v[i - b0] -= val[k] * xj;
             }
+            v[j - b0] -= val[dg] * xj;
         }
-        const double *A = L->binv + (size_t)b0 * bs;
-        for (int i = 0; i < bs; i++) {
-            double s = 0.0;
-            for (int j = 0; j < bs; j++) s += A[i * bs + j] * v[j];
-            x[b0 + i] += s;
-        }
-        scatter_above(H, b0, bs, x, w);
+        block_apply(L->binv + (size_t)b0 * bs, bs, v, d);
+        for (int i = 0; i < bs; i++) x[b0 + i] += d[i];
+        scatter_above(L, H, b0, x, w);
     }
 }
 

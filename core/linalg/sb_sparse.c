@@ -265,8 +265,11 @@ int sb_pattern_ensure_maps(sb_pattern *p)
                  * the column's neighbour nodes times bs) */
                 const int c0 = nd[b] * bs;
                 const long o = find_pos(p, nd[a] * bs, c0) - p->colptr[c0];
+                /* checked in every column of the block: its row there
+                 * (a column's rows are distinct, so one look suffices) */
                 for (int j = 0; j < bs; j++)
-                    if (o < 0 || find_pos(p, nd[a] * bs, c0 + j) != p->colptr[c0 + j] + o) {
+                    if (o < 0 || o >= p->colptr[c0 + j + 1] - p->colptr[c0 + j] ||
+                        p->rowind[p->colptr[c0 + j] + o] != nd[a] * bs) {
                         free(moff);
                         free(map);
                         return SB_ERR_INTERNAL;

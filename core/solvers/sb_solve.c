@@ -196,6 +196,7 @@ sb_reason sb_solve_step_ex(const sb_solver_type *type, void *state, sb_problem *
         memset(&info, 0, sizeof info);
         info.level = F;
         info.gstop = gstop;
+        info.xstop = scaled ? xtol_rel * sb_norm2(n, x) : 0.0;
         double ev0[6], ev1[6], ti0 = sb_now();
         iter_seconds(&ctx->stats, ev0);
         rc = type->iterate(state, p, x, &info);

@@ -45,6 +45,11 @@ typedef struct sb_iterate_info {
      * iterate; 0 when not known): the Krylov paths' forcing never asks
      * for a residual far below it (sb_forcing_floor) */
     double gstop;
+    /* in: run.xtol_rel ||x|| under run.stop=scaled (the smallest correction
+     * the stopping rule resolves: roundoff_limit), else 0: the Newton
+     * family's Krylov paths stop CG once the remaining correction is well
+     * below it (solver.cg_xstop, sb_krylov.h) */
+    double xstop;
     /* out: the computed gradient's rounding level the Krylov forcing floor
      * measured this step (sb_noise_floor; 0: not measured) */
     double gnoise;
