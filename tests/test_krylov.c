@@ -1031,30 +1031,30 @@ SB_TEST(preconditioned_residual_estimates_the_remaining_error)
     }
 }
 
-/* solver.cg_xstop (newton.c): the correction test ends the last Newton
- * iterations' CG solves once the remaining error is below the stopping
- * rule's resolution, and the run still solves its scene: converged, its
- * final x within run.xtol_rel ||x|| of lsnewton + cholmod's, with fewer CG
- * iterations than the forcing terms alone, on the clamped plate with three
- * methods. */
+/* solver.cg_xstop (newton.c, tr.c): the correction test ends the last
+ * Newton iterations' CG solves once the remaining error is below the
+ * stopping rule's resolution, and the run still solves its scene:
+ * converged, its final x within run.xtol_rel ||x|| of lsnewton + cholmod's,
+ * with fewer CG iterations than the forcing terms alone, on the clamped
+ * plate with three methods; tr's Steihaug-Toint path with the test too. */
 SB_TEST(correction_test_stops_cg_at_the_stopping_rule_resolution)
 {
     const char *methods[] = { "linear_fem", "bhem", "rmtr" };
     const int res[] = { 48, 32, 32 };
     for (int m = 0; m < 3; m++) {
-        int cg[2] = { 0, 0 }, newton[3] = { 0, 0, 0 };
-        double *xf[3] = { NULL, NULL, NULL };
+        int cg[2] = { 0, 0 }, newton[4] = { 0, 0, 0, 0 };
+        double *xf[4] = { NULL, NULL, NULL, NULL };
         size_t nx = 0;
-        for (int arm = 0; arm < 3; arm++) {   /* cholmod, pcg-mg without and with the test */
+        for (int arm = 0; arm < 4; arm++) {   /* cholmod, pcg-mg without and with the test, tr + pcg-mg with it */
             char out[256];
             snprintf(out, sizeof out, "/tmp/sb_test_xstop_%d_%d.h5", (int)getpid(), arm);
             remove(out);
             sb_run_request req;
-            sb_test_request(&req, "plate_clamped", methods[m], "lsnewton", res[m]);
+            sb_test_request(&req, "plate_clamped", methods[m], arm == 3 ? "tr" : "lsnewton", res[m]);
             req.levels = 3;
             req.out = out;
             const char *sets[3] = { arm ? "solver.linear=pcg-mg" : "solver.linear=cholmod",
-                                    arm == 2 ? "solver.cg_xstop=1" : "solver.cg_xstop=0", "solver.cg_noise_floor=0" };
+                                    arm >= 2 ? "solver.cg_xstop=1" : "solver.cg_xstop=0", "solver.cg_noise_floor=0" };
             req.sets = sets;
             req.n_sets = 3;
             int ec;
@@ -1064,7 +1064,7 @@ SB_TEST(correction_test_stops_cg_at_the_stopping_rule_resolution)
             int li[64];
             const int n = read_col(out, "linear_iters", H5T_NATIVE_INT, li, 64);
             newton[arm] = n - 1;
-            if (arm)
+            if (arm == 1 || arm == 2)
                 for (int i = 1; i < n; i++) cg[arm - 1] += li[i];
             hid_t h5 = H5Fopen(out, H5F_ACC_RDONLY, H5P_DEFAULT);
             if (h5 >= 0) {
@@ -1073,23 +1073,24 @@ SB_TEST(correction_test_stops_cg_at_the_stopping_rule_resolution)
             }
             remove(out);
         }
-        CHECK(xf[0] && xf[2]);
-        if (xf[0] && xf[2]) {
-            double d = 0.0, xn = 0.0;
-            for (size_t i = 0; i < nx; i++) {
-                d += (xf[2][i] - xf[0][i]) * (xf[2][i] - xf[0][i]);
-                xn += xf[0][i] * xf[0][i];
-            }
-            d = sqrt(d), xn = sqrt(xn);
-            CHECK_MSG(d <= 1e-12 * xn, "%s: final x %.3g from cholmod's, run.xtol_rel ||x|| = %.3g", methods[m], d,
-                      1e-12 * xn);
-            printf("    %s plate: Newton %d / %d / %d (cholmod / forcing / + correction test), CG %d -> %d, final x "
-                   "%.2g xtol_rel ||x|| from cholmod's\n", methods[m], newton[0], newton[1], newton[2], cg[0], cg[1],
-                   d / (1e-12 * xn));
+        CHECK(xf[0] && xf[2] && xf[3]);
+        double dd[4] = { 0, 0, 0, 0 }, xn = 0.0;
+        for (int arm = 2; arm < 4 && xf[0]; arm++) {
+            if (!xf[arm]) continue;
+            for (size_t i = 0; i < nx; i++) dd[arm] += (xf[arm][i] - xf[0][i]) * (xf[arm][i] - xf[0][i]);
+            dd[arm] = sqrt(dd[arm]);
         }
+        for (size_t i = 0; xf[0] && i < nx; i++) xn += xf[0][i] * xf[0][i];
+        xn = sqrt(xn);
+        for (int arm = 2; arm < 4; arm++)
+            CHECK_MSG(dd[arm] <= 1e-12 * xn, "%s %s: final x %.3g from cholmod's, run.xtol_rel ||x|| = %.3g", methods[m],
+                      arm == 3 ? "tr" : "lsnewton", dd[arm], 1e-12 * xn);
+        printf("    %s plate: Newton %d / %d / %d (cholmod / forcing / + correction test), CG %d -> %d, final x "
+               "%.2g xtol_rel ||x|| from cholmod's (tr + pcg-mg: %d iterations, %.2g)\n", methods[m], newton[0], newton[1],
+               newton[2], cg[0], cg[1], dd[2] / (1e-12 * xn), newton[3], dd[3] / (1e-12 * xn));
         CHECK_MSG(cg[1] < cg[0], "%s: %d CG iterations with the correction test, %d without", methods[m], cg[1], cg[0]);
         CHECK(newton[2] <= newton[1]);
-        for (int arm = 0; arm < 3; arm++) free(xf[arm]);
+        for (int arm = 0; arm < 4; arm++) free(xf[arm]);
     }
 }
 

@@ -44,6 +44,14 @@ typedef struct sb_krylov {
     double ztol;
 } sb_krylov;
 
+/* solver.cg_xstop of lsnewton, damped and tr (newton.c, tr.c): ztol a tenth
+ * of run.xtol_rel ||x|| */
+#define SB_CG_XSTOP_HELP                                                                                               \
+    "Krylov paths with Eisenstat-Walker forcing, run.stop=scaled: 1 stops CG also when its preconditioned residual "   \
+    "||M^-1 r|| (the estimate of the step's remaining error) is below run.xtol_rel ||x|| / 10 (run.xtol_rel ||x||: "  \
+    "the smallest correction the stopping rule resolves); the correction the roundoff_limit test sees is then "        \
+    "||s|| + ||M^-1 r||; 0: the forcing terms alone"
+
 /* Workspaces and the preconditioner's alloc (which refuses what cannot work
  * with a sentence in the context). */
 int  sb_krylov_alloc(sb_krylov *k, sb_problem *p, int level, const sb_precond_type *type, const sb_precond_opts *o);

@@ -25,16 +25,11 @@
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,                                                               \
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },            \
     { "cg_noise_floor", SB_PARAM_INT, 0, 0, 1, NULL, SB_NOISE_FLOOR_HELP },                                          \
-    { "cg_xstop", SB_PARAM_INT, 1, 0, 1, NULL, CG_XSTOP_HELP }
+    { "cg_xstop", SB_PARAM_INT, 1, 0, 1, NULL, SB_CG_XSTOP_HELP }
 #define MG_LAG_HELP "pcg-mg: rebuild the coarse levels (Galerkin products, coarsest factorization) at each step's " \
     "first Newton iteration and every mg_lag-th one after; 1: every iteration"
 #define LINEAR_HELP "linear solver of the Newton step: cholmod (sparse Cholesky), pcg-jacobi (CG, node-block Jacobi), " \
     "pcg-mg (CG, one V-cycle of the method's hierarchy), pcg-amg (CG, hypre BoomerAMG)"
-#define CG_XSTOP_HELP                                                                                                  \
-    "Krylov paths with Eisenstat-Walker forcing, run.stop=scaled: 1 stops CG also when its preconditioned residual "   \
-    "||M^-1 r|| (the estimate of the step's remaining error) is below run.xtol_rel ||x|| / 10 (run.xtol_rel ||x||: "  \
-    "the smallest correction the stopping rule resolves); the correction the roundoff_limit test sees is then "        \
-    "||d|| + ||M^-1 r||; 0: the forcing terms alone"
 #define EW_HELP "Krylov paths: stop CG at ||H d + g|| <= cg_rtol ||g||; -1: Eisenstat-Walker forcing terms (choice 2)"
 
 static const sb_param_def lsnewton_params[] = {

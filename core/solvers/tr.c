@@ -41,6 +41,7 @@ static const sb_param_def tr_params[] = {
     { "amg_strength", SB_PARAM_REAL, 0.5, 0, 0.99, NULL,
       "pcg-amg: BoomerAMG strength threshold (0.5: hypre's advice for 3-D problems; hypre's default 0.25)" },
     { "cg_noise_floor", SB_PARAM_INT, 0, 0, 1, NULL, SB_NOISE_FLOOR_HELP },
+    { "cg_xstop", SB_PARAM_INT, 1, 0, 1, NULL, SB_CG_XSTOP_HELP },
     { NULL, 0, 0, 0, 0, NULL, NULL }
 };
 
@@ -59,6 +60,8 @@ typedef struct tr_state {
     sb_krylov kr;
     double cg_rtol, eta, gprev;
     sb_noise_floor noise;   /* the forcing's floor at the gradient's rounding level */
+    int xstop;              /* solver.cg_xstop */
+    double zcorr;           /* ||M^-1 r|| of a solve the correction test stopped (else 0) */
 } tr_state;
 
 static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
@@ -89,6 +92,7 @@ static int tr_alloc(void *st, sb_problem *p, const sb_paramset *ps)
         t->krylov = 1;
         t->cg_rtol = sb_param(ps, "solver.cg_rtol");
         t->noise.on = sb_param_int(ps, "solver.cg_noise_floor");
+        t->xstop = t->cg_rtol < 0.0 && sb_param_int(ps, "solver.cg_xstop");
         sb_precond_opts o = { .mg_sweeps = sb_param_int(ps, "solver.mg_sweeps"),
                               .mg_lag = sb_param_int(ps, "solver.mg_lag"),
                               .mg_cycle = sb_mg_cycle_kind(sb_param_choice(ps, "solver.mg_cycle")),
@@ -161,6 +165,8 @@ static int tr_krylov_step(tr_state *t, sb_problem *p, const double *x, sb_trs_re
     }
     double t0 = sb_now();
     sb_krylov_result kr;
+    /* the correction test, as lsnewton's (newton.c krylov_direction) */
+    t->kr.ztol = t->xstop && info->xstop > 0.0 ? 0.1 * info->xstop : 0.0;
     int rc = sb_krylov_solve(&t->kr, p, t->g, t->delta, t->eta, t->cg_max, t->s, &kr);
     sb_problem_count_qp(p, t->F, sb_now() - t0);
     if (rc < 0) return rc;
@@ -172,7 +178,8 @@ static int tr_krylov_step(tr_state *t, sb_problem *p, const double *x, sb_trs_re
     r->newton = kr.status == SB_KRYLOV_CONVERGED;
     info->linear_rtol = t->eta;
     info->gnoise = t->noise.level;
-    info->linear_status = (int)kr.status;
+    info->linear_status = (int)kr.status + (kr.by_correction ? 8 : 0);
+    t->zcorr = kr.by_correction ? kr.znorm : 0.0;
     return SB_OK;
 }
 
@@ -231,7 +238,7 @@ static int tr_iterate(void *st, sb_problem *p, double *x, sb_iterate_info *info)
     info->linear_iters = r.iters;
     info->rho = rho;
     info->has_correction = r.newton;     /* the Newton step at x, not cut by the radius */
-    info->correction = r.snorm;
+    info->correction = r.snorm + (t->krylov ? t->zcorr : 0.0);   /* + the estimated remaining error */
     if (rho > t->eta1) {
         /* line 5: accept; derivatives are recomputed only here */
         double fnew;
