@@ -39,7 +39,7 @@ typedef struct sb_krylov {
      * preconditioned residual z = M^{-1} r has ||z|| <= ztol.  z is the
      * preconditioner's estimate of the iterate's remaining error s* - s =
      * H^{-1} r, so the caller sets ztol below the smallest correction it
-     * can use (solver.cg_xstop: half of run.xtol_rel ||x||); set per solve
+     * can use (solver.cg_xstop: a tenth of run.xtol_rel ||x||); set per solve
      * by the caller, 0 by sb_krylov_alloc */
     double ztol;
 } sb_krylov;
