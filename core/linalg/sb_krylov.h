@@ -44,8 +44,12 @@ typedef struct sb_krylov {
     double ztol;
 } sb_krylov;
 
-/* solver.cg_xstop of lsnewton, damped and tr (newton.c, tr.c): ztol a tenth
- * of run.xtol_rel ||x|| */
+/* solver.cg_xstop of lsnewton, damped and tr (newton.c, tr.c): the ztol of
+ * a solve, a tenth of xstop = run.xtol_rel ||x|| (sb_iterate_info.xstop;
+ * why a tenth: newton.c krylov_direction), 0 when the test is off or the
+ * stopping rule has no xstop */
+static inline double sb_krylov_xstop_ztol(int on, double xstop) { return on && xstop > 0.0 ? 0.1 * xstop : 0.0; }
+
 #define SB_CG_XSTOP_HELP                                                                                               \
     "Krylov paths with Eisenstat-Walker forcing, run.stop=scaled: 1 stops CG also when its preconditioned residual "   \
     "||M^-1 r|| (the estimate of the step's remaining error) is below run.xtol_rel ||x|| / 10 (run.xtol_rel ||x||: "  \

@@ -261,7 +261,7 @@ static int krylov_direction(newton_state *s, sb_problem *p, const double *x, sb_
      * iteration's one-CG-iteration correction to pass the test (a half,
      * tried first, left the correction just above xstop and cost the
      * 261,251-dof linear_fem plate a fifth Newton iteration) */
-    s->kr.ztol = s->xstop && info->xstop > 0.0 ? 0.1 * info->xstop : 0.0;
+    s->kr.ztol = sb_krylov_xstop_ztol(s->xstop, info->xstop);
     s->zcorr = 0.0;
     if (rc == SB_OK) {
         rc = sb_krylov_solve(&s->kr, p, s->g, INFINITY, eta, s->cg_max_iter, s->d, &r);

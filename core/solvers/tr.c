@@ -166,7 +166,7 @@ static int tr_krylov_step(tr_state *t, sb_problem *p, const double *x, sb_trs_re
     double t0 = sb_now();
     sb_krylov_result kr;
     /* the correction test, as lsnewton's (newton.c krylov_direction) */
-    t->kr.ztol = t->xstop && info->xstop > 0.0 ? 0.1 * info->xstop : 0.0;
+    t->kr.ztol = sb_krylov_xstop_ztol(t->xstop, info->xstop);
     int rc = sb_krylov_solve(&t->kr, p, t->g, t->delta, t->eta, t->cg_max, t->s, &kr);
     sb_problem_count_qp(p, t->F, sb_now() - t0);
     if (rc < 0) return rc;
