@@ -15,6 +15,9 @@ typedef struct sb_material_state {
     long soft_section;          /* membrane + bending tangent indefinite */
     double area;                /* reference area of all points (m^2) */
     double soft_area;           /* reference area of the soft_membrane points (m^2) */
+    long below_reference;       /* section energy below the reference state's (0): the
+                                 * denim law's wells beyond about 2.5 % strain (docs/denim.md) */
+    double below_reference_area;/* reference area of those points (m^2) */
     double max_strain[3];       /* max |E11|, |E22|, |E12|, local frame, midsurface */
     double min_rel_eig;         /* smallest relative eigenvalue of a membrane tangent */
     /* not recorded: the membrane eigenvalue and the section's softness of a

@@ -252,6 +252,8 @@ char *sb_run_summary_json(run_state *R, const char *out_path)
         json_object_set_new(ma, "soft_membrane", json_integer(m->soft_membrane));
         json_object_set_new(ma, "soft_section", json_integer(m->soft_section));
         json_set_num(ma, "soft_area_fraction", m->area > 0 ? m->soft_area / m->area : 0.0);
+        json_object_set_new(ma, "below_reference", json_integer(m->below_reference));
+        json_set_num(ma, "below_reference_area_fraction", m->area > 0 ? m->below_reference_area / m->area : 0.0);
         json_object_set_new(ma, "max_strain", json_pack("[fff]", m->max_strain[0], m->max_strain[1], m->max_strain[2]));
         json_set_num(ma, "min_rel_eig", m->min_rel_eig);
         json_object_set_new(o, "material", ma);

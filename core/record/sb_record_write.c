@@ -356,6 +356,8 @@ static int write_material(sb_h5w *w, hid_t final, const sb_material_state *m)
     bad |= sb_h5w_attr_dbl(w, g, "area", m->area);
     bad |= sb_h5w_attr_dbl(w, g, "soft_area", m->soft_area);
     bad |= sb_h5w_attr_dbl(w, g, "soft_area_fraction", m->area > 0 ? m->soft_area / m->area : 0.0);
+    bad |= sb_h5w_attr_long(w, g, "below_reference", m->below_reference);
+    bad |= sb_h5w_attr_dbl(w, g, "below_reference_area_fraction", m->area > 0 ? m->below_reference_area / m->area : 0.0);
     bad |= sb_h5w_attr_dbl(w, g, "max_E11", m->max_strain[0]);
     bad |= sb_h5w_attr_dbl(w, g, "max_E22", m->max_strain[1]);
     bad |= sb_h5w_attr_dbl(w, g, "max_E12", m->max_strain[2]);

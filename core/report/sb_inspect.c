@@ -99,10 +99,11 @@ int sb_inspect_report(int n_files, char **files, const char *format, FILE *out, 
     const int csv = format && !strcmp(format, "csv");
     if (csv)
         fprintf(out, "file,scene,method,solver,dofs,levels,status,status_code,steps_done,points,soft_membrane,soft_section,"
-                     "soft_area_fraction,max_E11,max_E22,max_E12,min_rel_eig\n");
+                     "soft_area_fraction,max_E11,max_E22,max_E12,min_rel_eig,below_reference,below_reference_area_fraction\n");
     else
         fprintf(out, "| file | dofs | status | points | softening (membrane) | area fraction | "
-                     "softening (section) | max E11 | max E22 | max E12 |\n|---|--:|---|--:|--:|--:|--:|--:|--:|--:|\n");
+                     "softening (section) | max E11 | max E22 | max E12 | energy below reference (area fraction) |\n"
+                     "|---|--:|---|--:|--:|--:|--:|--:|--:|--:|--:|\n");
     int bad = 0;
     for (int i = 0; i < n_files; i++) {
         sb_material_state ms;
@@ -115,17 +116,19 @@ int sb_inspect_report(int n_files, char **files, const char *format, FILE *out, 
             continue;
         }
         const double frac = ms.area > 0 ? ms.soft_area / ms.area : 0.0;
+        const double below = ms.area > 0 ? ms.below_reference_area / ms.area : 0.0;
         char fe[1024];
         sb_escape_copy(files[i], fe, sizeof fe);   /* the file name as given, terminal-safe */
         if (csv)
-            fprintf(out, "%s,%s,%s,%s,%d,%d,%s,%d,%d,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g\n", fe, su.scene, su.method,
+            fprintf(out, "%s,%s,%s,%s,%d,%d,%s,%d,%d,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g\n", fe, su.scene, su.method,
                     su.solver, su.n_x, su.levels, sb_record_status_name(su.status), su.status, su.steps_done, ms.points, ms.soft_membrane,
-                    ms.soft_section, frac, ms.max_strain[0], ms.max_strain[1], ms.max_strain[2], ms.min_rel_eig);
+                    ms.soft_section, frac, ms.max_strain[0], ms.max_strain[1], ms.max_strain[2], ms.min_rel_eig,
+                    ms.below_reference, below);
         else
-            fprintf(out, "| %s | %d | %s | %ld | %ld | %.3g | %ld | %.3g | %.3g | %.3g |\n", fe, su.n_x,
+            fprintf(out, "| %s | %d | %s | %ld | %ld | %.3g | %ld | %.3g | %.3g | %.3g | %ld (%.3g) |\n", fe, su.n_x,
                     sb_record_status_name(su.status),
                     ms.points, ms.soft_membrane, frac, ms.soft_section, ms.max_strain[0], ms.max_strain[1],
-                    ms.max_strain[2]);
+                    ms.max_strain[2], ms.below_reference, below);
         sb_record_setup_free(&su);
     }
     return bad;

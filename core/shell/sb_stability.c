@@ -177,6 +177,13 @@ int sb_material_state_add_strains(sb_material_state *ms, const sb_material *m, d
         ms->soft_area += dA;
     }
     ms->soft_section += ss;
+    /* energy below the reference state's (A = B = 0: 0).  A section whose
+     * tangent is constant and positive definite (StVK not soft) has a
+     * quadratic, nonnegative energy: no evaluation needed */
+    if (!(m->kind == SB_MAT_STVK && lm >= tol && !ss) && sb_shell_section(m, A, B, NULL, NULL, NULL) < 0.0) {
+        ms->below_reference++;
+        ms->below_reference_area += dA;
+    }
     if (lm < ms->min_rel_eig) ms->min_rel_eig = lm;
     for (int i = 0; i < 3; i++) ms->max_strain[i] = fmax(ms->max_strain[i], fabs(A[i]));
     return SB_OK;
