@@ -270,6 +270,15 @@ SB_TEST(report_tables_pictures_and_refused_outputs)
             CHECK_MSG(b != NULL, "the table of the scene with several solutions has distance columns");
             CHECK_MSG(!strstr(sev, "| probe error |"), "no error columns after the scene with several solutions");
         }
+        /* the scenes with several solutions: where the minimum lies in the
+         * material law (docs/denim.md); hand-made records hold no
+         * /final/material, so the cell is a dash */
+        char *ms = strstr(md, "## Scenes with several solutions");
+        char *hd = ms ? strstr(ms, "| E (J) | ΔE | below rest | starts converged |") : NULL;
+        CHECK_MSG(hd != NULL, "the several-solutions table has a below-rest column");
+        char *row = hd ? strstr(hd, "\n| rmtr/tr |") : NULL;
+        CHECK_MSG(row && strstr(row, " | — | 1 of 1 |") && strstr(row, " | — | 1 of 1 |") < strchr(row + 1, '\n'),
+                  "a record without a material state shows a dash");
         /* hand-made records hold no final state: a sentence, not a picture */
         CHECK(strstr(md, "*plate_clamped: no picture: the record cannot be drawn") != NULL);
         CHECK(!strstr(md, "](thumb-"));

@@ -303,6 +303,8 @@ typedef struct sb_record_summary {
     char overrides[1024];      /* the parameters the run was given (--set), "key=value, key=value"; "" none */
     char validation[16];       /* "passed", "failed", "none"; "" in records written before validation */
     double potential_change;   /* NaN when not recorded */
+    double below_reference;    /* /final/material below_reference_area_fraction: share of the area whose
+                                * energy is below the reference state's (docs/denim.md); NaN when not recorded */
 } sb_record_summary;
 
 int  sb_record_read_summary(const char *path, sb_record_summary *s, char *err, size_t errlen);

@@ -182,6 +182,15 @@ int sb_record_read_summary(const char *path, sb_record_summary *s, char *err, si
             rc = sb_h5r_attr_dbl(&r, f, "potential_change", &s->potential_change);
         s->energy_final = NAN;
         if (!rc && H5Aexists(f, "energy_final") > 0) rc = sb_h5r_attr_dbl(&r, f, "energy_final", &s->energy_final);
+        s->below_reference = NAN;
+        if (!rc && H5Lexists(f, "/final", H5P_DEFAULT) > 0 && H5Lexists(f, "/final/material", H5P_DEFAULT) > 0) {
+            hid_t gm = H5Gopen2(f, "/final/material", H5P_DEFAULT);
+            if (gm >= 0) {
+                if (H5Aexists(gm, "below_reference_area_fraction") > 0)
+                    rc = sb_h5r_attr_dbl(&r, gm, "below_reference_area_fraction", &s->below_reference);
+                H5Gclose(gm);
+            }
+        }
         s->resume_point = -1;
         hid_t gr = rc || H5Lexists(f, "/resume", H5P_DEFAULT) <= 0 ? -1 : H5Gopen2(f, "/resume", H5P_DEFAULT);
         if (gr >= 0) {

@@ -133,6 +133,7 @@ static void read_point(sb_study_data *d, sb_study_point *q, FILE *err)
     q->seconds = s.seconds;
     q->work = s.work_assembly;
     q->energy = s.energy_final;
+    q->below_reference = s.below_reference;
     snprintf(q->build, sizeof q->build, "%s", s.build_id);
     if (s.has_error && !strcmp(s.error_kind, "probes")) q->err_probe = s.error_probe;
     sb_record_summary_free(&s);
@@ -204,6 +205,7 @@ int sb_study_data_load(const sb_study *st, sb_study_data *d, FILE *err)
         q->config = sb_study_config(st, d->plan.n_variants, r->method, r->solver, r->variant);
         q->dofs = r->dofs;
         q->err_probe = q->err_rms = q->err_max = q->error = q->energy = q->seconds = q->work = NAN;
+        q->below_reference = NAN;
         snprintf(q->why, sizeof q->why, "%s", r->why);
         if (r->state == SB_PLAN_SKIP) q->state = SB_POINT_SKIPPED;
         else if (r->state == SB_PLAN_NOT_APPLICABLE) q->state = SB_POINT_NOT_APPLICABLE;

@@ -32,6 +32,7 @@ typedef struct sb_study_point {
     double err_rms, err_max;  /* field error against the reference record / diameter */
     double error;             /* the one the scene is ranked by (NaN: none) */
     double energy;            /* energy_final (J) */
+    double below_reference;   /* share of the area below the reference state's energy (NaN: not recorded) */
     int n_samples;
     double *pos;              /* sampled final positions (owned; for distances between starts) */
     char build[64];

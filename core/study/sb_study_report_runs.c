@@ -39,7 +39,9 @@ void sb_rep_multiple_scenes(sb_rep *R)
                    "spread over perturbed starts (`run.perturb`, `run.seed`): how far apart in energy (ΔE spread) and in "
                    "shape (max |x_a − x_b| / diameter between the starts' final surfaces) the minima reached from nearby "
                    "starts are.  On a scene with a unique solution the same columns check uniqueness: the starts should "
-                   "agree to the solver tolerance.\n\n");
+                   "agree to the solver tolerance.  *Below rest*: the share of the cloth's area whose energy is below "
+                   "the flat, unstrained sheet's (the denim law's wells beyond about 2.5 %% strain, docs/denim.md): "
+                   "a minimum there is set by the material law's fit rather than by the loads.\n\n");
     for (int i = 0; i < st->n_scenes; i++) {
         const sb_study_scene *sc = &st->scenes[i];
         if (!(sc->n_seeds > 0 || sc->solution == SB_SOLUTION_MULTIPLE)) continue;
@@ -52,20 +54,21 @@ void sb_rep_multiple_scenes(sb_rep *R)
         if (sc->n_seeds) fprintf(R->md, " and %d perturbed by ±%g per dof (seeds", sc->n_seeds, sc->perturb);
         for (int k = 0; k < sc->n_seeds; k++) fprintf(R->md, "%s%ld", k ? ", " : " ", sc->seeds[k]);
         fprintf(R->md, "%s.\n\n", sc->n_seeds ? ")" : "");
-        fprintf(R->md, "| configuration | dofs | unperturbed start | iterations | %s WU | E (J) | ΔE | starts converged | ΔE spread | max shape distance between starts |\n",
+        fprintf(R->md, "| configuration | dofs | unperturbed start | iterations | %s WU | E (J) | ΔE | below rest | starts converged | ΔE spread | max shape distance between starts |\n",
                 R->o->deterministic ? "" : "seconds |");
-        fprintf(R->md, "|---|--:|---|--:|%s--:|--:|--:|--:|--:|--:|\n", R->o->deterministic ? "" : "--:|");
+        fprintf(R->md, "|---|--:|---|--:|%s--:|--:|--:|--:|--:|--:|--:|\n", R->o->deterministic ? "" : "--:|");
         for (int k = 0; k < d->plan.n; k++) {
             const sb_plan_run *r = &d->plan.runs[k];
             const sb_study_point *q = &d->pt[k];
             if (r->scene != i || r->start != 0 || q->state != SB_POINT_RECORDED) continue;
-            char label[128], stw[128], sec[32], wu[32], e[32], de[32], spread[32], dist[32];
+            char label[128], stw[128], sec[32], wu[32], e[32], de[32], spread[32], dist[32], below[32];
             sb_study_config_label(d, q->config, label, sizeof label);
             status_words(q, stw, sizeof stw);
             sb_rep_g3(sec, sizeof sec, q->seconds);
             sb_rep_g3(wu, sizeof wu, q->work);
             snprintf(e, sizeof e, isfinite(q->energy) ? "%.6g" : "—", q->energy);
             sb_rep_g3(de, sizeof de, isfinite(eref) && q->status == 0 ? (q->energy - eref) / fabs(eref) : NAN);
+            sb_rep_g3(below, sizeof below, q->below_reference);
             /* the other starts of this configuration and resolution */
             int conv = q->status == 0, total = 1;
             double emin = q->status == 0 ? q->energy : INFINITY, emax = q->status == 0 ? q->energy : -INFINITY, dmax = 0;
@@ -85,8 +88,9 @@ void sb_rep_multiple_scenes(sb_rep *R)
             double scale = isfinite(eref) ? fabs(eref) : fabs(q->energy);
             sb_rep_g3(spread, sizeof spread, total > 1 && conv > 1 ? (emax - emin) / scale : NAN);
             sb_rep_g3(dist, sizeof dist, have_d ? dmax : NAN);
-            fprintf(R->md, "| %s | %ld | %s | %d | %s%s%s | %s | %s | %d of %d | %s | %s |\n", label, q->dofs, stw,
-                    q->iterations, R->o->deterministic ? "" : sec, R->o->deterministic ? "" : " | ", wu, e, de, conv, total, spread, dist);
+            fprintf(R->md, "| %s | %ld | %s | %d | %s%s%s | %s | %s | %s | %d of %d | %s | %s |\n", label, q->dofs, stw,
+                    q->iterations, R->o->deterministic ? "" : sec, R->o->deterministic ? "" : " | ", wu, e, de, below, conv,
+                    total, spread, dist);
         }
         fprintf(R->md, "\n");
     }
