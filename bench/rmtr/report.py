@@ -1092,30 +1092,32 @@ if pc:
 print("  The scenes are nonconvex: TR and RMTR can end a step in different local minima (compare f in the records).")
 
 
+def iteration_split(name):
+    """(V-cycles on the finest level, V-cycles on coarser tops (nested start), Krylov steps, their CG iterations)"""
+    def col(d):   # h5col, but a column older records lack (krylov_rtol) reads as absent
+        path = path_of(name)
+        out = subprocess.run(["h5dump", "-d", "/history/iterations/" + d, "-y", "-w", "0", path],
+                             capture_output=True, text=True).stdout if os.path.exists(path) else ""
+        if "DATA {" not in out:
+            return None
+        body = out[out.find("DATA {") + 6:]
+        return [float(v) for v in body[:body.find("}")].split(",") if v.strip()]
+    it, lev, kr, li = (col(d) for d in ("iter", "level", "krylov_rtol", "linear_iters"))
+    if not it:
+        return None
+    kr = kr or [0.0] * len(it)
+    top = max(lev)
+    v = sum(1 for i, l, k in zip(it, lev, kr) if i > 0 and l == top and k == 0)
+    c = sum(1 for i, l in zip(it, lev) if i > 0 and l < top)
+    k = sum(1 for i, q in zip(it, kr) if i > 0 and q > 0)
+    cg = sum(n for i, q, n in zip(it, kr, li) if i > 0 and q > 0)
+    return v, c, k, cg
+
+
 def krylov_section():
     """issue 38: Table 4's rows with the Krylov acceleration (solver.krylov=auto, records rmtrdK-*, written by
     bench/rmtr/krylov.sh) beside the defaults (rmtrd-*), and the penalty diagnostic of pcg-mg on this hierarchy
     (results/rmtr/krylov_penalty.csv)"""
-    def split(name):
-        """(V-cycles on the finest level, V-cycles on coarser tops (nested start), Krylov steps, their CG iterations)"""
-        def col(d):   # h5col, but a column older records lack (krylov_rtol) reads as absent
-            path = path_of(name)
-            out = subprocess.run(["h5dump", "-d", "/history/iterations/" + d, "-y", "-w", "0", path],
-                                 capture_output=True, text=True).stdout if os.path.exists(path) else ""
-            if "DATA {" not in out:
-                return None
-            body = out[out.find("DATA {") + 6:]
-            return [float(v) for v in body[:body.find("}")].split(",") if v.strip()]
-        it, lev, kr, li = (col(d) for d in ("iter", "level", "krylov_rtol", "linear_iters"))
-        if not it:
-            return None
-        kr = kr or [0.0] * len(it)
-        top = max(lev)
-        v = sum(1 for i, l, k in zip(it, lev, kr) if i > 0 and l == top and k == 0)
-        c = sum(1 for i, l in zip(it, lev) if i > 0 and l < top)
-        k = sum(1 for i, q in zip(it, kr) if i > 0 and q > 0)
-        cg = sum(n for i, q, n in zip(it, kr, li) if i > 0 and q > 0)
-        return v, c, k, cg
     lines, goal = [], {}
     for sc in SCENES:
         for l in range(2, 7):
@@ -1124,7 +1126,7 @@ def krylov_section():
             if kr is None:
                 continue
             pn, pr = rec("rmtrd-%s-l%d%s" % (sc, l, suf))
-            sk, sp = split(kn), split(pn) if pr is not None else None
+            sk, sp = iteration_split(kn), iteration_split(pn) if pr is not None else None
             paper = T4[sc][l - 2] if l - 2 < len(T4[sc]) else None
             cell = "—"
             if sk:
@@ -1202,7 +1204,72 @@ def krylov_section():
                 print("| %s | %s | %s |" % (lin, b, " | ".join(cells)))
 
 
+def nowells_section():
+    """issue 38, diagnostic: the hard scenes with mu_21 = 0.5 (no energy below the flat sheet's), from
+    results/rmtr/nowells.csv (bench/rmtr/nowells.sh), beside the Table 4 rows of the scenes as specified"""
+    path = os.path.join(os.path.dirname(RUNS.rstrip("/")), "nowells.csv")
+    if not os.path.exists(path):
+        return
+    with open(path) as fh:
+        data = {r["record"]: r for r in csv.DictReader(fh)}
+
+    def total(r):   # every iteration: finest V-cycles, coarser tops, Krylov steps
+        return int(r["finest_vcycles"]) + int(r["coarser_tops"]) + int(r["krylov_steps"])
+
+    def cell(r):
+        if r is None:
+            return "—"
+        k = ", %s K (%s CG)" % (num(int(r["krylov_steps"])), num(int(r["cg_iterations"]))) if r["krylov"] == "auto" else ""
+        conv = r["status"].startswith("converged")
+        return "%s + %s V%s = **%s**%s" % (num(int(r["finest_vcycles"])), num(int(r["coarser_tops"])), k,
+                                           num(total(r)), "" if conv else " (%s)" % r["status"])
+
+    def with_wells(name):
+        _, rr = rec(name)
+        sp = iteration_split(name) if rr is not None and ok(rr) else None
+        return num(sp[0] + sp[1] + sp[2]) if sp else "—"
+
+    print("\n## Table 4 without the law's wells (diagnostic, `bash bench/rmtr/nowells.sh`)\n")
+    print("With Table 1 as we read it (mu_21 = 1) the denim law has energy below the flat sheet's beyond about 2.5 %")
+    print("strain, and the hard scenes' final states lie mostly in those wells (docs/denim.md).  The same scenes with")
+    print("the coupling halved, mu_21 = 0.5 (`material.mu` {\"21\": 0.5}: a law without wells; not the paper's")
+    print("material), run with the settings of the rows above (\"ours\", and with `solver.krylov=auto`); iterations of")
+    print("every kind: finest V-cycles + V-cycles on coarser tops (nested start) [+ Krylov steps] = **all**.  Columns")
+    print("\"with the wells\": the Table 4 rows above (all iterations).  *below rest*, *max strain*: where the final")
+    print("state of the run without the wells lies (share of the area below the flat sheet's energy; largest strain).\n")
+    print("| scene | levels | dofs | paper | with the wells: ours / + Krylov | without: ours | without: + Krylov | all / paper (without, + Krylov) | f (J), without | below rest | max strain |")
+    print("|---|--:|--:|--:|--:|---|---|--:|--:|--:|--:|")
+    verdict = []
+    for sc in SCENES:
+        if sc == "trampoline":
+            continue
+        seq = []
+        for l in range(2, 7):
+            p, k = data.get("rmtrd-%s-l%d" % (sc, l)), data.get("rmtrdK-%s-l%d" % (sc, l))
+            if p is None and k is None:
+                continue
+            r = k or p
+            paper = T4[sc][l - 2]
+            kconv = k is not None and k["status"].startswith("converged")
+            if kconv:
+                seq.append((l, total(k), paper))
+            print("| %s | %d | %s | %s | %s / %s | %s | %s | %s | %s | %s | %s |" % (
+                NAMES[sc], l, num(int(r["dofs"])), num(paper), with_wells("rmtrd-%s-l%d" % (sc, l)),
+                with_wells("rmtrdK-%s-l%d" % (sc, l)), cell(p), cell(k),
+                ratio(total(k), paper) if kconv else "—", r["f_final"],
+                "%.3g" % float(r["below_reference_area_fraction"]), "%.3g" % float(r["max_strain"])))
+        if len(seq) > 1:
+            grows = any(b[1] > a[1] for a, b in zip(seq, seq[1:]))
+            high = ["%d levels %.3gx" % (l, v / p) for l, v, p in seq if l >= 5 and v > p]
+            verdict.append("%s %s (%s%s)" % (NAMES[sc], " → ".join(num(v) for _, v, _ in seq),
+                                             "grows" if grows else "does not grow",
+                                             "; above the paper at " + ", ".join(high) if high else ""))
+    if verdict:
+        print("\nWithout the wells, with Krylov acceleration (all iterations, converged rows): %s." % "; ".join(verdict))
+
+
 krylov_section()
+nowells_section()
 
 
 _redirect.__exit__(None, None, None)
