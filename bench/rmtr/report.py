@@ -1178,10 +1178,10 @@ def krylov_section():
         print("\nIssue 38's goal on the hard scenes (iterations of every kind, converged rows, 2 to 6 levels: not")
         print("growing with the levels, at or below the paper at 5-6 levels): %s.  %s." % (
             "missed" if missed else "met", "; ".join(verdicts)))
-        print("What the final states show (fresh runs at 2-3 levels; these records are digests): on all three hard")
+        print("What the final states show (fresh runs at 2-4 levels; these records are digests): on all three hard")
         print("scenes most of the cloth ends below the flat sheet's energy, in the denim law's wells beyond 2.5 %")
-        print("strain, so the counts measure each element's path into a well rather than the gravity equilibrium the")
-        print("paper's counts describe (docs/denim.md, \"Energy below the reference state\"; docs/krylov.md).")
+        print("strain (docs/denim.md, \"Energy below the reference state\"); what the wells do to the counts is measured")
+        print("in the section \"Table 4 without the law's wells\" below (bench/rmtr/nowells.sh).")
     pen = "results/rmtr/krylov_penalty.csv"
     if os.path.exists(pen):
         with open(pen) as fh:
