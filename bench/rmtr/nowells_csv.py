@@ -5,9 +5,9 @@
 
 One row per record DIR/rmtrd[K]-SCENE-lL.h5: the record summary (`shellbench report --format csv`), the
 energy of its last step (J), the iteration split of its history (finest V-cycles, V-cycles on coarser tops in the nested start, Krylov steps
-and their CG iterations: the split of bench/rmtr/report.py's Krylov section), and where the final state lies
+and their CG iterations: history_split.py, as bench/rmtr/report.py's Krylov section), and where the final state lies
 in the material law (`shellbench inspect --format csv`: the softening share and the share below the flat
-sheet's energy).  Reads HDF5 through h5dump, as report.py."""
+sheet's energy)."""
 import csv
 import glob
 import io
@@ -16,15 +16,7 @@ import re
 import subprocess
 import sys
 
-
-def column(path, name, group="iterations"):
-    """a /history/GROUP column as floats (None when the record has none)"""
-    out = subprocess.run(["h5dump", "-d", "/history/%s/%s" % (group, name), "-y", "-w", "0", path],
-                         capture_output=True, text=True).stdout
-    if "DATA {" not in out:
-        return None
-    body = out[out.find("DATA {") + 6:]
-    return [float(v) for v in body[:body.find("}")].split(",") if v.strip()]
+from history_split import dataset, iteration_split
 
 
 def one_row(binary, path):
@@ -35,19 +27,14 @@ def one_row(binary, path):
         return None
     r = next(csv.DictReader(io.StringIO(rep.stdout)))
     m = next(csv.DictReader(io.StringIO(ins.stdout)))
-    it, lev, kr, li = (column(path, c) for c in ("iter", "level", "krylov_rtol", "linear_iters"))
-    kr = kr or [0.0] * len(it)
-    top = max(lev)
+    v, c, k, cg = iteration_split(path)
     name = os.path.basename(path)[:-3]
     g = re.match(r"(rmtrdK?)-(.+)-l(\d)$", name)
     return {
         "record": name, "krylov": "auto" if g.group(1) == "rmtrdK" else "off", "scene": g.group(2),
         "levels": g.group(3), "dofs": r["dofs"], "status": r["status"],
-        "finest_vcycles": sum(1 for i, l, k in zip(it, lev, kr) if i > 0 and l == top and k == 0),
-        "coarser_tops": sum(1 for i, l in zip(it, lev) if i > 0 and l < top),
-        "krylov_steps": sum(1 for i, k in zip(it, kr) if i > 0 and k > 0),
-        "cg_iterations": int(sum(n for i, k, n in zip(it, kr, li) if i > 0 and k > 0)),
-        "f_final": "%.6g" % column(path, "f", "steps")[-1], "seconds": r["seconds"],
+        "finest_vcycles": v, "coarser_tops": c, "krylov_steps": k, "cg_iterations": cg,
+        "f_final": "%.6g" % dataset(path, "/history/steps/f")[-1], "seconds": r["seconds"],
         "soft_area_fraction": m["soft_area_fraction"], "below_reference_area_fraction": m["below_reference_area_fraction"],
         "max_strain": max(float(m["max_E11"]), float(m["max_E22"]), float(m["max_E12"])),
     }

@@ -912,6 +912,7 @@ if cp:
                                                      sci(c[2]) if c else "—"))
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import history_split   # how a record's iterations split (also bench/rmtr/nowells_csv.py)
 import report_fig9, report_fig10   # issue 43: Fig. 9's parts and Fig. 10 at 1,083 dofs (own files)
 print(report_fig9.section(RESULTS, FIG9), end="")
 print(report_fig10.section(os.path.dirname(RESULTS)), end="")
@@ -1093,25 +1094,18 @@ print("  The scenes are nonconvex: TR and RMTR can end a step in different local
 
 
 def iteration_split(name):
-    """(V-cycles on the finest level, V-cycles on coarser tops (nested start), Krylov steps, their CG iterations)"""
-    def col(d):   # h5col, but a column older records lack (krylov_rtol) reads as absent
-        path = path_of(name)
-        out = subprocess.run(["h5dump", "-d", "/history/iterations/" + d, "-y", "-w", "0", path],
-                             capture_output=True, text=True).stdout if os.path.exists(path) else ""
-        if "DATA {" not in out:
-            return None
-        body = out[out.find("DATA {") + 6:]
-        return [float(v) for v in body[:body.find("}")].split(",") if v.strip()]
-    it, lev, kr, li = (col(d) for d in ("iter", "level", "krylov_rtol", "linear_iters"))
-    if not it:
-        return None
-    kr = kr or [0.0] * len(it)
-    top = max(lev)
-    v = sum(1 for i, l, k in zip(it, lev, kr) if i > 0 and l == top and k == 0)
-    c = sum(1 for i, l in zip(it, lev) if i > 0 and l < top)
-    k = sum(1 for i, q in zip(it, kr) if i > 0 and q > 0)
-    cg = sum(n for i, q, n in zip(it, kr, li) if i > 0 and q > 0)
-    return v, c, k, cg
+    """history_split.iteration_split of a record name"""
+    return history_split.iteration_split(path_of(name))
+
+
+def growth_verdict(name, seq):
+    """(missed, sentence) of one scene's counts seq = [(levels, all iterations, paper, ...)]: the issue's goal
+    is counts that do not grow with the levels and at 5-6 levels are at or below the paper's"""
+    grows = any(b[1] > a[1] for a, b in zip(seq, seq[1:]))
+    high = ["%d levels %.3gx" % (q[0], q[1] / q[2]) for q in seq if q[0] >= 5 and q[2] and q[1] > q[2]]
+    return grows or bool(high), "%s %s (%s%s" % (NAMES[name], " → ".join(num(q[1]) for q in seq),
+                                                 "grows" if grows else "does not grow",
+                                                 "; above the paper at " + ", ".join(high) if high else "")
 
 
 def krylov_section():
@@ -1167,13 +1161,9 @@ def krylov_section():
     for sc in SCENES:
         if sc == "trampoline" or sc not in goal:
             continue
-        c = goal[sc]
-        grows = any(b[1] > a[1] for a, b in zip(c, c[1:]))
-        high = ["%d levels %.3gx" % (l, v / p) for l, v, p in c if l >= 5 and p and v > p]
-        missed = missed or grows or bool(high)
-        verdicts.append("%s %s (%s%s)" % (NAMES[sc], " → ".join(num(v) for _, v, _ in c),
-                                         "grows" if grows else "does not grow",
-                                         "; above the paper at " + ", ".join(high) if high else ""))
+        m, text = growth_verdict(sc, goal[sc])
+        missed = missed or m
+        verdicts.append(text + ")")
     if verdicts:
         print("\nIssue 38's goal on the hard scenes (iterations of every kind, converged rows, 2 to 6 levels: not")
         print("growing with the levels, at or below the paper at 5-6 levels): %s.  %s." % (
@@ -1260,12 +1250,7 @@ def nowells_section():
                 ratio(total(k), paper) if kconv else "—", r["f_final"],
                 "%.3g" % float(r["below_reference_area_fraction"]), "%.3g" % float(r["max_strain"])))
         if len(seq) > 1:
-            grows = any(b[1] > a[1] for a, b in zip(seq, seq[1:]))
-            high = ["%d levels %.3gx" % (l, v / p) for l, v, p, _ in seq if l >= 5 and v > p]
-            verdict.append("%s %s (%s%s; on the finest level %s)" % (
-                NAMES[sc], " → ".join(num(v) for _, v, _, _ in seq), "grows" if grows else "does not grow",
-                "; above the paper at " + ", ".join(high) if high else "",
-                " → ".join(num(f) for _, _, _, f in seq)))
+            verdict.append(growth_verdict(sc, seq)[1] + "; on the finest level %s)" % " → ".join(num(q[3]) for q in seq))
     if verdict:
         print("\nWithout the wells, with Krylov acceleration (all iterations at %s levels, converged rows): %s." % (
             "/".join(sorted({r["levels"] for r in data.values()})), "; ".join(verdict)))
